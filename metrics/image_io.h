@@ -1,0 +1,25 @@
+// PNG reading and writing for display images (OpenImageIO, or stb without it).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace cbr::metrics {
+
+struct Rgba8Image {
+    int width = 0;
+    int height = 0;
+    std::vector<uint8_t> pixels;  // tightly packed RGBA8, row-major, top row first
+};
+
+// Writes an 8-bit RGBA PNG. Writes to a temporary name in the same folder and renames,
+// so a crash never leaves a half-written file. Throws std::runtime_error on failure.
+void writePng(const std::filesystem::path& file, const Rgba8Image& image);
+// Reads any 8-bit PNG as RGBA8 (alpha 255 where absent). Throws std::invalid_argument
+// naming the file when it is missing or not a readable image.
+Rgba8Image readPng(const std::filesystem::path& file);
+// "OpenImageIO x.y.z" or "stb_image_write": for provenance.
+const char* imageIoBackend();
+
+}  // namespace cbr::metrics
