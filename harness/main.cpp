@@ -1,1 +1,118 @@
-int main() { return 0; }
+// cbrbench's command line: devices, scenes, paths, variants, run.
+#include <cstdio>
+#include <iostream>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+#include "camera_paths/path.h"
+#include "harness/options.h"
+#include "harness/run.h"
+#include "renderer/scene/scene.h"
+#include "renderer/variants/variants.h"
+#include "renderer/vk/check.h"
+#include "renderer/vk/context.h"
+
+namespace {
+
+constexpr int kExitBadInput = 2;
+
+int listDevices() {
+    auto devices = cbr::vk::listDevices();
+    std::printf("%-5s %-40s %-28s %s\n", "index", "name", "driver", "api");
+    for (const auto& d : devices)
+        std::printf("%-5d %-40s %-28s %s%s\n", d.index, d.name.c_str(),
+                    (d.driver_name + " " + d.driver_info).substr(0, 28).c_str(), d.api_version.c_str(),
+                    d.is_lavapipe ? "  (default)" : "");
+    return 0;
+}
+
+std::vector<std::string> splitList(const std::string& s) {
+    std::vector<std::string> out;
+    size_t start = 0;
+    while (start <= s.size()) {
+        size_t comma = s.find(',', start);
+        std::string item = s.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        if (!item.empty()) out.push_back(item);
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"cbrbench: checkerboard rendering benchmark and quality analysis"};
+    app.require_subcommand(1);
+    auto* devices = app.add_subcommand("devices", "list Vulkan devices (index, name, driver, API version)");
+    auto* scenes = app.add_subcommand("scenes", "list the built-in procedural scenes");
+    auto* paths = app.add_subcommand("paths", "list the built-in camera paths");
+    auto* variants = app.add_subcommand("variants", "list the rendering variants");
+    auto* run = app.add_subcommand("run", "render a flythrough through the variants; write CSV and JSON");
+
+    cbr::harness::RunOptions o;
+    std::string variant_list;
+    run->add_option("--scene", o.scene, "procedural scene name or a .gltf/.glb file")->capture_default_str();
+    run->add_option("--path", o.path, "built-in path name or a path .json file")->capture_default_str();
+    run->add_option("--variants", variant_list, "comma-separated variants (default: all; full always runs)");
+    run->add_option("--res", o.resolution, "output resolution WIDTHxHEIGHT")->capture_default_str();
+    run->add_option("--frames", o.frames, "frames sampled evenly over the path (0: the path's own length)")
+        ->capture_default_str();
+    run->add_option("--repeat", o.repeat, "repetitions of the whole flythrough, variants interleaved")
+        ->capture_default_str();
+    run->add_option("--warmup", o.warmup, "untimed warm-up frames per variant and repetition")->capture_default_str();
+    run->add_option("--device", o.device, "device index or name substring (default: lavapipe, else the first)");
+    run->add_flag("--validate", o.validate, "enable the Khronos validation layer and count its messages");
+    run->add_flag("--save-frames", o.save_frames, "save display images as PNG (repetition 0)");
+    run->add_option("--out", o.out, "output directory (default out/<scene>-<path>-<date-time>)");
+    run->add_option("--drr-scale", o.drr_scale, "drr per-axis render scale in (0, 1]")->capture_default_str();
+    run->add_option("--drr-filter", o.drr_filter, "drr upscale filter: bilinear or catmull-rom")->capture_default_str();
+    run->add_option("--drr-target-ms", o.drr_target_ms, "dynamic drr: target GPU frame time in ms (0: fixed scale)")
+        ->capture_default_str();
+    run->add_option("--shading-cost", o.shading_cost, "fragment shading about K times more expensive, same image")
+        ->capture_default_str();
+    run->add_option("--exposure", o.exposure, "exposure multiplier before tone mapping")->capture_default_str();
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "cbrbench: %s (see cbrbench --help)\n", e.what());
+        return kExitBadInput;
+    }
+
+    try {
+        if (*devices) return listDevices();
+        if (*scenes) {
+            for (const auto& s : cbr::scene::proceduralScenes())
+                std::printf("%-10s %s\n", s.name.c_str(), s.description.c_str());
+            return 0;
+        }
+        if (*paths) {
+            for (const auto& p : cbr::paths::builtinPaths())
+                std::printf("%-16s %s\n", p.name.c_str(), p.description.c_str());
+            return 0;
+        }
+        if (*variants) {
+            for (const auto& v : cbr::variants::allVariants())
+                std::printf("%-8s %s\n", std::string(v.name).c_str(), std::string(v.description).c_str());
+            return 0;
+        }
+        o.variants = splitList(variant_list);
+        o.argv.assign(argv, argv + argc);
+        return cbr::harness::runBenchmark(o);
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "cbrbench: %s\n", e.what());
+        return kExitBadInput;
+    } catch (const cbr::vk::Unsupported& e) {
+        std::fprintf(stderr, "cbrbench: unsupported: %s\n", e.what());
+        return kExitBadInput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "cbrbench: error: %s\n", e.what());
+        return 1;
+    }
+}

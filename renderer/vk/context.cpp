@@ -1,1 +1,338 @@
-// placeholder
+// Instance and device creation, device listing and choice, validation message counting.
+#include "renderer/vk/context.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+#include "renderer/vk/check.h"
+
+namespace cbr::vk {
+namespace {
+
+constexpr size_t kKeptMessages = 20;
+
+VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                              VkDebugUtilsMessageTypeFlagsEXT,
+                                              const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                              void* user) {
+    auto* counts = static_cast<ValidationCounts*>(user);
+    const char* label = "info";
+    if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
+        counts->errors++;
+        label = "error";
+    } else if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+        counts->warnings++;
+        label = "warning";
+    } else {
+        counts->infos++;
+        return VK_FALSE;
+    }
+    std::string text = std::string("validation ") + label + ": " + (data->pMessage ? data->pMessage : "");
+    std::lock_guard lock(counts->mutex);
+    if (counts->first_messages.size() < kKeptMessages) {
+        std::fprintf(stderr, "%s\n", text.c_str());
+        counts->first_messages.push_back(std::move(text));
+    }
+    return VK_FALSE;
+}
+
+std::string versionString(uint32_t v) {
+    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
+           std::to_string(VK_API_VERSION_PATCH(v));
+}
+
+// Vendors pack driverVersion differently; NVIDIA uses 10.8.8.6 bits.
+std::string driverVersionString(uint32_t vendor, uint32_t v) {
+    if (vendor == 0x10de)
+        return std::to_string(v >> 22) + "." + std::to_string((v >> 14) & 0xff) + "." +
+               std::to_string((v >> 6) & 0xff) + "." + std::to_string(v & 0x3f);
+    return versionString(v);
+}
+
+const char* deviceTypeName(VkPhysicalDeviceType t) {
+    switch (t) {
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated-gpu";
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete-gpu";
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual-gpu";
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
+        default: return "other";
+    }
+}
+
+std::string driverIdName(VkDriverId id) {
+    switch (id) {
+        case VK_DRIVER_ID_MESA_LLVMPIPE: return "MESA_LLVMPIPE";
+        case VK_DRIVER_ID_NVIDIA_PROPRIETARY: return "NVIDIA_PROPRIETARY";
+        case VK_DRIVER_ID_MESA_RADV: return "MESA_RADV";
+        case VK_DRIVER_ID_AMD_PROPRIETARY: return "AMD_PROPRIETARY";
+        case VK_DRIVER_ID_INTEL_OPEN_SOURCE_MESA: return "INTEL_OPEN_SOURCE_MESA";
+        case VK_DRIVER_ID_INTEL_PROPRIETARY_WINDOWS: return "INTEL_PROPRIETARY_WINDOWS";
+        case VK_DRIVER_ID_MESA_TURNIP: return "MESA_TURNIP";
+        case VK_DRIVER_ID_MESA_VENUS: return "MESA_VENUS";
+        case VK_DRIVER_ID_MESA_DOZEN: return "MESA_DOZEN";
+        default: return "ID_" + std::to_string(int(id));
+    }
+}
+
+DeviceDescription describe(VkPhysicalDevice physical, int index) {
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
+    vkGetPhysicalDeviceProperties2(physical, &props);
+    const auto& p = props.properties;
+    DeviceDescription d;
+    d.index = index;
+    d.name = p.deviceName;
+    d.driver_name = driver.driverName;
+    d.driver_info = driver.driverInfo;
+    d.driver_id = driverIdName(driver.driverID);
+    d.driver_version = driverVersionString(p.vendorID, p.driverVersion);
+    d.api_version = versionString(p.apiVersion);
+    d.device_type = deviceTypeName(p.deviceType);
+    d.vendor_id = p.vendorID;
+    d.device_id = p.deviceID;
+    d.is_lavapipe = driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE || d.name.find("llvmpipe") != std::string::npos;
+    return d;
+}
+
+VkInstance createInstance(bool validate, bool* debug_utils) {
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "cbrbench";
+    app.apiVersion = VK_API_VERSION_1_3;
+    std::vector<const char*> layers;
+    std::vector<const char*> extensions;
+    *debug_utils = false;
+    if (validate) {
+        uint32_t n = 0;
+        vkEnumerateInstanceLayerProperties(&n, nullptr);
+        std::vector<VkLayerProperties> available(n);
+        vkEnumerateInstanceLayerProperties(&n, available.data());
+        bool found = std::any_of(available.begin(), available.end(), [](const VkLayerProperties& l) {
+            return std::strcmp(l.layerName, "VK_LAYER_KHRONOS_validation") == 0;
+        });
+        if (!found)
+            throw std::invalid_argument(
+                "--validate: the Khronos validation layer (VK_LAYER_KHRONOS_validation) is not installed; "
+                "expected Debian's vulkan-validationlayers package");
+        layers.push_back("VK_LAYER_KHRONOS_validation");
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+        *debug_utils = true;
+    }
+    // Synchronization validation finds missing or wrong barriers, the graph's job.
+    VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = enables;
+    VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    info.pNext = validate ? &features : nullptr;
+    info.pApplicationInfo = &app;
+    info.enabledLayerCount = uint32_t(layers.size());
+    info.ppEnabledLayerNames = layers.data();
+    info.enabledExtensionCount = uint32_t(extensions.size());
+    info.ppEnabledExtensionNames = extensions.data();
+    VkInstance instance = VK_NULL_HANDLE;
+    VkResult r = vkCreateInstance(&info, nullptr, &instance);
+    if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
+        throw Unsupported("no Vulkan 1.3 driver found (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER); "
+                          "expected Mesa's lavapipe (mesa-vulkan-drivers) or a GPU driver");
+    VK_CHECK(r);
+    return instance;
+}
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
+    uint32_t n = 0;
+    VK_CHECK(vkEnumeratePhysicalDevices(instance, &n, nullptr));
+    std::vector<VkPhysicalDevice> devices(n);
+    VK_CHECK(vkEnumeratePhysicalDevices(instance, &n, devices.data()));
+    return devices;
+}
+
+std::string deviceList(const std::vector<DeviceDescription>& all) {
+    std::string s;
+    for (const auto& d : all) s += (s.empty() ? "" : ", ") + std::to_string(d.index) + " (" + d.name + ")";
+    return s.empty() ? "none" : s;
+}
+
+// "" -> lavapipe when present, else the first; a number -> that index; else a name substring.
+int chooseDevice(const std::vector<DeviceDescription>& all, const std::string& want) {
+    if (all.empty()) throw Unsupported("no Vulkan device found; expected lavapipe (mesa-vulkan-drivers) or a GPU");
+    if (want.empty()) {
+        for (const auto& d : all)
+            if (d.is_lavapipe) return d.index;
+        return 0;
+    }
+    if (std::all_of(want.begin(), want.end(), ::isdigit)) {
+        int i = std::stoi(want);
+        if (i >= 0 && i < int(all.size())) return i;
+    } else {
+        std::string lw = want;
+        std::transform(lw.begin(), lw.end(), lw.begin(), ::tolower);
+        for (const auto& d : all) {
+            std::string ln = d.name;
+            std::transform(ln.begin(), ln.end(), ln.begin(), ::tolower);
+            if (ln.find(lw) != std::string::npos) return d.index;
+        }
+    }
+    throw std::invalid_argument("--device " + want + ": no such device; expected an index or a name substring of: " +
+                                deviceList(all));
+}
+
+}  // namespace
+
+std::vector<DeviceDescription> listDevices() {
+    bool debug_utils = false;
+    VkInstance instance = createInstance(false, &debug_utils);
+    std::vector<DeviceDescription> out;
+    auto devices = physicalDevices(instance);
+    for (size_t i = 0; i < devices.size(); ++i) out.push_back(describe(devices[i], int(i)));
+    vkDestroyInstance(instance, nullptr);
+    return out;
+}
+
+Context::Context(const ContextOptions& options) {
+    bool debug_utils = false;
+    instance = createInstance(options.validate, &debug_utils);
+    validation_enabled = options.validate;
+    if (debug_utils) {
+        VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+        info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+        info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                           VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                           VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+        info.pfnUserCallback = onDebugMessage;
+        info.pUserData = &validation;
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+        if (create) VK_CHECK(create(instance, &info, nullptr, &messenger_));
+    }
+
+    auto devices = physicalDevices(instance);
+    std::vector<DeviceDescription> all;
+    for (size_t i = 0; i < devices.size(); ++i) all.push_back(describe(devices[i], int(i)));
+    int chosen = chooseDevice(all, options.device);
+    physical = devices[chosen];
+    description = all[chosen];
+    vkGetPhysicalDeviceProperties(physical, &properties);
+    vkGetPhysicalDeviceMemoryProperties(physical, &memory);
+    if (properties.apiVersion < VK_API_VERSION_1_3)
+        throw Unsupported("device " + description.name + " offers Vulkan " + description.api_version +
+                          "; cbrbench needs 1.3 (dynamic rendering, synchronization2)");
+
+    uint32_t nq = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical, &nq, nullptr);
+    std::vector<VkQueueFamilyProperties> families(nq);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical, &nq, families.data());
+    bool found = false;
+    for (uint32_t i = 0; i < nq && !found; ++i) {
+        if ((families[i].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) ==
+                (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT) &&
+            families[i].timestampValidBits > 0) {
+            queue_family = i;
+            caps.timestamp_valid_bits = families[i].timestampValidBits;
+            found = true;
+        }
+    }
+    if (!found) throw Unsupported("device " + description.name + " has no graphics+compute queue with timestamps");
+
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &f13};
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f11};
+    vkGetPhysicalDeviceFeatures2(physical, &f2);
+    if (!f13.dynamicRendering || !f13.synchronization2)
+        throw Unsupported("device " + description.name + " lacks dynamicRendering or synchronization2");
+
+    caps.timestamp_period_ns = properties.limits.timestampPeriod;
+    caps.pipeline_statistics = f2.features.pipelineStatisticsQuery;
+    caps.sample_rate_shading = f2.features.sampleRateShading;
+    caps.multiview = f11.multiview;
+    caps.color_sample_counts = properties.limits.framebufferColorSampleCounts;
+    caps.depth_sample_counts = properties.limits.framebufferDepthSampleCounts;
+    caps.max_image_dimension_2d = properties.limits.maxImageDimension2D;
+
+    // Enable only what we read above and use.
+    VkPhysicalDeviceVulkan13Features e13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    e13.dynamicRendering = VK_TRUE;
+    e13.synchronization2 = VK_TRUE;
+    VkPhysicalDeviceVulkan11Features e11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &e13};
+    e11.multiview = f11.multiview;
+    VkPhysicalDeviceFeatures2 e2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &e11};
+    e2.features.pipelineStatisticsQuery = f2.features.pipelineStatisticsQuery;
+    e2.features.sampleRateShading = f2.features.sampleRateShading;
+
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo qinfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    qinfo.queueFamilyIndex = queue_family;
+    qinfo.queueCount = 1;
+    qinfo.pQueuePriorities = &priority;
+    VkDeviceCreateInfo dinfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &e2};
+    dinfo.queueCreateInfoCount = 1;
+    dinfo.pQueueCreateInfos = &qinfo;
+    VK_CHECK(vkCreateDevice(physical, &dinfo, nullptr, &device));
+    vkGetDeviceQueue(device, queue_family, 0, &queue);
+
+    VkCommandPoolCreateInfo pinfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pinfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pinfo.queueFamilyIndex = queue_family;
+    VK_CHECK(vkCreateCommandPool(device, &pinfo, nullptr, &command_pool));
+}
+
+Context::~Context() {
+    if (device) {
+        vkDeviceWaitIdle(device);
+        vkDestroyCommandPool(device, command_pool, nullptr);
+        vkDestroyDevice(device, nullptr);
+    }
+    if (messenger_) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+        if (destroy) destroy(instance, messenger_, nullptr);
+    }
+    if (instance) vkDestroyInstance(instance, nullptr);
+}
+
+VkCommandBuffer Context::beginImmediate() {
+    VkCommandBufferAllocateInfo a{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    a.commandPool = command_pool;
+    a.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    a.commandBufferCount = 1;
+    VkCommandBuffer cmd;
+    VK_CHECK(vkAllocateCommandBuffers(device, &a, &cmd));
+    VkCommandBufferBeginInfo b{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    b.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkBeginCommandBuffer(cmd, &b));
+    return cmd;
+}
+
+void Context::endImmediate(VkCommandBuffer cmd) {
+    VK_CHECK(vkEndCommandBuffer(cmd));
+    VkSubmitInfo s{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    s.commandBufferCount = 1;
+    s.pCommandBuffers = &cmd;
+    VK_CHECK(vkQueueSubmit(queue, 1, &s, VK_NULL_HANDLE));
+    VK_CHECK(vkQueueWaitIdle(queue));
+    vkFreeCommandBuffers(device, command_pool, 1, &cmd);
+}
+
+const char* resultName(VkResult r) {
+    switch (r) {
+#define CBR_RESULT(x) case x: return #x;
+        CBR_RESULT(VK_SUCCESS) CBR_RESULT(VK_NOT_READY) CBR_RESULT(VK_TIMEOUT) CBR_RESULT(VK_EVENT_SET)
+        CBR_RESULT(VK_EVENT_RESET) CBR_RESULT(VK_INCOMPLETE) CBR_RESULT(VK_ERROR_OUT_OF_HOST_MEMORY)
+        CBR_RESULT(VK_ERROR_OUT_OF_DEVICE_MEMORY) CBR_RESULT(VK_ERROR_INITIALIZATION_FAILED)
+        CBR_RESULT(VK_ERROR_DEVICE_LOST) CBR_RESULT(VK_ERROR_MEMORY_MAP_FAILED)
+        CBR_RESULT(VK_ERROR_LAYER_NOT_PRESENT) CBR_RESULT(VK_ERROR_EXTENSION_NOT_PRESENT)
+        CBR_RESULT(VK_ERROR_FEATURE_NOT_PRESENT) CBR_RESULT(VK_ERROR_INCOMPATIBLE_DRIVER)
+        CBR_RESULT(VK_ERROR_TOO_MANY_OBJECTS) CBR_RESULT(VK_ERROR_FORMAT_NOT_SUPPORTED)
+        CBR_RESULT(VK_ERROR_FRAGMENTED_POOL) CBR_RESULT(VK_ERROR_UNKNOWN) CBR_RESULT(VK_ERROR_OUT_OF_POOL_MEMORY)
+#undef CBR_RESULT
+        default: return "VK_ERROR_(unnamed)";
+    }
+}
+
+void throwVkError(VkResult result, const char* call, const char* file, int line) {
+    throw Error(std::string(call) + " returned " + resultName(result) + " at " + file + ":" + std::to_string(line));
+}
+
+}  // namespace cbr::vk

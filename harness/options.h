@@ -1,0 +1,34 @@
+// Every setting of a `cbrbench run`, as parsed from the command line.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "renderer/settings.h"
+
+namespace cbr::harness {
+
+struct RunOptions {
+    std::string scene = "atrium";     // procedural name or .gltf/.glb path
+    std::string path = "flythrough";  // built-in name or .json path
+    std::vector<std::string> variants;  // empty: every variant in the table
+    std::string resolution = "960x540";
+    int frames = 0;                   // 0: the path's own length
+    int repeat = 3;
+    int warmup = 5;
+    std::string device;
+    bool validate = false;
+    bool save_frames = false;
+    std::string out;                  // "" -> out/<scene>-<path>-<date-time>
+    std::string drr_filter = "catmull-rom";
+    double drr_scale = 0.7071;
+    double drr_target_ms = 0;
+    int shading_cost = 1;
+    double exposure = 1.0;
+    std::vector<std::string> argv;    // the command line, for run.json
+};
+
+// Parsed "WxH"; throws std::invalid_argument for anything else or a 0 dimension.
+void parseResolution(const std::string& text, uint32_t& width, uint32_t& height);
+
+}  // namespace cbr::harness

@@ -1,0 +1,49 @@
+// The run's files: frames.csv, summary.csv, run.json, and the summary printed at the end.
+#pragma once
+
+#include <filesystem>
+#include <ostream>
+#include <vector>
+
+#include "camera_paths/path.h"
+#include "harness/options.h"
+#include "harness/results.h"
+#include "renderer/scene/scene.h"
+
+namespace cbr::vk {
+class Context;
+}
+
+namespace cbr::harness {
+
+struct RunContext {
+    const RunOptions& options;
+    const render::Settings& settings;
+    const scene::Scene& scene;
+    const paths::CameraPath& path;
+    const std::vector<double>& times;
+    const std::vector<paths::CameraPose>& poses;
+    vk::Context& ctx;
+    const RunResults& results;
+};
+
+// One row per variant, computed from the frame rows (also used by the printed summary).
+struct VariantSummary {
+    std::string variant;
+    std::string status;
+    std::string note;
+    int frames = 0;
+    double gpu_ms_median = 0, gpu_ms_p5 = 0, gpu_ms_p95 = 0, gpu_ms_p99 = 0, gpu_ms_mean = 0;
+    double noise_cv = 0;  // across repetitions, of each repetition's median
+    std::optional<double> speedup, speedup_low, speedup_high;
+    std::optional<double> psnr_db, psnr_db_min, psnr_db_p5, ssim_mean, ssim_min, ssim_luma_mean;
+    std::optional<double> fs_invocations_median;
+    uint32_t render_width = 0, render_height = 0;
+    std::vector<std::pair<std::string, double>> pass_ms_median;
+};
+
+std::vector<VariantSummary> summarize(const RunResults& results);
+void writeOutputs(const std::filesystem::path& dir, const RunContext& rc);
+void printSummary(std::ostream& out, const std::filesystem::path& dir, const RunContext& rc);
+
+}  // namespace cbr::harness

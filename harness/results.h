@@ -1,0 +1,55 @@
+// What a run measured: one row per variant x repetition x frame, plus per-variant facts.
+#pragma once
+
+#include <deque>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "renderer/settings.h"
+
+namespace cbr::harness {
+
+struct Quality {
+    std::optional<double> mse;
+    std::optional<double> psnr_db;  // +inf for identical images
+    std::optional<double> ssim;
+    std::optional<double> ssim_luma;
+    std::string note;               // why a metric is missing
+};
+
+struct FrameRow {
+    std::string variant;
+    int repeat = 0;
+    int frame = 0;
+    double time_s = 0;
+    uint32_t render_width = 0;
+    uint32_t render_height = 0;
+    double render_scale = 1;
+    double gpu_ms = 0;
+    bool timing_ok = true;
+    std::vector<render::PassTime> passes;
+    Quality quality;                // rep 0 only: rendering is deterministic
+    std::string status = "ok";      // ok | failed | skipped
+    std::string note;
+};
+
+struct VariantRun {
+    std::string name;
+    std::string status = "ok";
+    std::string note;
+    std::vector<std::string> passes_ran;
+    std::vector<std::pair<std::string, std::string>> left_out;  // (pass, reason)
+};
+
+struct RunResults {
+    std::deque<FrameRow> rows;  // deque: rows keep their address while metrics fill them in
+    std::vector<VariantRun> variants;
+    std::vector<std::string> order;  // variant order within each repetition
+    int frames = 0;
+    int repeats = 0;
+    double seconds = 0;         // wall time of the run
+};
+
+}  // namespace cbr::harness

@@ -1,0 +1,321 @@
+// The run loop: reference first, variants interleaved per repetition, metrics on workers.
+#include "harness/run.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <iostream>
+#include <memory>
+#include <unistd.h>
+
+#include "camera_paths/path.h"
+#include "harness/outputs.h"
+#include "harness/results.h"
+#include "harness/worker_pool.h"
+#include "metrics/image_io.h"
+#include "metrics/metrics.h"
+#include "renderer/gpu/gpu_scene.h"
+#include "renderer/renderer.h"
+#include "renderer/scene/scene.h"
+#include "renderer/variants/variants.h"
+#include "renderer/vk/check.h"
+#include "renderer/vk/context.h"
+#include "reports/output_dir.h"
+
+namespace cbr::harness {
+namespace {
+
+std::string timestampForName() {
+    std::time_t now = std::time(nullptr);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&now));
+    return buf;
+}
+
+std::string stem(const std::string& spec) {
+    std::filesystem::path p(spec);
+    return p.has_extension() ? p.stem().string() : spec;
+}
+
+render::Camera toCamera(const paths::CameraPose& pose) {
+    render::Camera c;
+    c.position = pose.position;
+    c.view = pose.view();
+    c.fov_y_rad = pose.fov_y_rad;
+    c.near = pose.near;
+    c.far = pose.far;
+    return c;
+}
+
+class Progress {
+public:
+    explicit Progress(int total) : total_(total), tty_(::isatty(2)), start_(std::chrono::steady_clock::now()) {}
+    void step(const std::string& what) {
+        ++done_;
+        if (!tty_) return;
+        double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        double eta = done_ > 0 ? elapsed / done_ * (total_ - done_) : 0;
+        std::fprintf(stderr, "\r\033[K%s  %d/%d frames  ETA %.0f s", what.c_str(), done_, total_, eta);
+    }
+    ~Progress() {
+        if (tty_) std::fprintf(stderr, "\r\033[K");
+    }
+
+private:
+    int total_;
+    int done_ = 0;
+    bool tty_;
+    std::chrono::steady_clock::time_point start_;
+};
+
+// Everything checked before the first output exists.
+struct Prepared {
+    RunOptions options;
+    render::Settings settings;
+    scene::Scene scene;
+    paths::CameraPath path;
+    std::vector<double> times;
+    std::vector<paths::CameraPose> poses;
+    std::vector<const variants::Variant*> order;
+    std::filesystem::path out;
+};
+
+Prepared prepare(const RunOptions& o) {
+    Prepared p;
+    p.options = o;
+    parseResolution(o.resolution, p.settings.width, p.settings.height);
+    if (o.frames < 0) throw std::invalid_argument("--frames " + std::to_string(o.frames) + ": expected >= 1 (or 0: the path's length)");
+    if (o.repeat < 1) throw std::invalid_argument("--repeat " + std::to_string(o.repeat) + ": expected >= 1");
+    if (o.warmup < 0) throw std::invalid_argument("--warmup " + std::to_string(o.warmup) + ": expected >= 0");
+    if (o.shading_cost < 1)
+        throw std::invalid_argument("--shading-cost " + std::to_string(o.shading_cost) + ": expected an integer >= 1");
+    if (!(o.drr_scale > 0.0 && o.drr_scale <= 1.0))
+        throw std::invalid_argument("--drr-scale " + std::to_string(o.drr_scale) + ": expected a per-axis scale in (0, 1]");
+    if (o.drr_target_ms < 0 || !std::isfinite(o.drr_target_ms))
+        throw std::invalid_argument("--drr-target-ms: expected a positive number of milliseconds (or 0: fixed scale)");
+    if (!(o.exposure > 0 && std::isfinite(o.exposure)))
+        throw std::invalid_argument("--exposure: expected a positive finite number");
+    if (o.drr_filter == "bilinear")
+        p.settings.drr_filter = render::DrrFilter::Bilinear;
+    else if (o.drr_filter == "catmull-rom")
+        p.settings.drr_filter = render::DrrFilter::CatmullRom;
+    else
+        throw std::invalid_argument("--drr-filter " + o.drr_filter + ": expected bilinear or catmull-rom");
+    p.settings.drr_scale = o.drr_scale;
+    p.settings.drr_control.target_ms = o.drr_target_ms;
+    p.settings.shading_cost = o.shading_cost;
+    p.settings.exposure = float(o.exposure);
+
+    // The reference always runs first: every other variant is scored against it.
+    const variants::Variant& full = variants::findVariant("full");
+    p.order.push_back(&full);
+    std::vector<std::string> wanted = o.variants;
+    if (wanted.empty())
+        for (const auto& v : variants::allVariants()) wanted.emplace_back(v.name);
+    for (const auto& name : wanted) {
+        const variants::Variant& v = variants::findVariant(name);
+        if (std::find(p.order.begin(), p.order.end(), &v) == p.order.end()) p.order.push_back(&v);
+    }
+
+    p.scene = scene::loadScene(o.scene);
+    paths::BuiltinContext bctx;
+    bctx.bounds = {glm::dvec3(p.scene.bounds_min), glm::dvec3(p.scene.bounds_max)};
+    bctx.width = int(p.settings.width);
+    bctx.height = int(p.settings.height);
+    bctx.scene_name = p.scene.name;
+    std::filesystem::path path_file(o.path);
+    p.path = path_file.extension() == ".json" ? paths::loadPath(path_file) : paths::builtinPath(o.path, bctx);
+    p.times = paths::frameTimes(p.path, o.frames);
+    p.poses = paths::sampleFrames(p.path, o.frames);
+    p.out = o.out.empty() ? std::filesystem::path("out") / (stem(o.scene) + "-" + stem(o.path) + "-" + timestampForName())
+                          : std::filesystem::path(o.out);
+    if (std::filesystem::exists(p.out))
+        throw std::invalid_argument("--out " + p.out.string() + ": already exists; expected a new directory");
+    return p;
+}
+
+void scoreFrame(FrameRow& row, const std::vector<uint8_t>& reference, const std::vector<uint8_t>& image, int w, int h) {
+    try {
+        auto ref = metrics::fromRgba8(reference.data(), w, h, size_t(w) * 4);
+        auto img = metrics::fromRgba8(image.data(), w, h, size_t(w) * 4);
+        double mse = metrics::mse(ref, img);
+        auto s = metrics::ssim(ref, img);
+        row.quality.mse = mse;
+        row.quality.psnr_db = metrics::psnrFromMse(mse);
+        if (std::isfinite(s.ssim)) row.quality.ssim = s.ssim;
+        else row.quality.note += "ssim not finite; ";
+        if (std::isfinite(s.luma_ssim)) row.quality.ssim_luma = s.luma_ssim;
+    } catch (const std::exception& e) {
+        row.quality.note += std::string("metrics failed: ") + e.what();
+    }
+}
+
+}  // namespace
+
+void parseResolution(const std::string& text, uint32_t& width, uint32_t& height) {
+    unsigned long w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%lu%c%lu%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w == 0 ||
+        h == 0 || w > 65536 || h > 65536)
+        throw std::invalid_argument("--res " + text + ": expected WIDTHxHEIGHT with both at least 1, e.g. 960x540");
+    width = uint32_t(w);
+    height = uint32_t(h);
+}
+
+int runBenchmark(const RunOptions& options) {
+    auto wall_start = std::chrono::steady_clock::now();
+    Prepared p = prepare(options);
+    vk::Context ctx({options.validate, options.device});
+    uint32_t max_dim = ctx.caps.max_image_dimension_2d;
+    if (p.settings.width > max_dim || p.settings.height > max_dim)
+        throw std::invalid_argument("--res " + options.resolution + ": above the device limit; expected each side <= " +
+                                    std::to_string(max_dim) + " on " + ctx.description.name);
+
+    reports::OutputDir out(p.out);
+    if (options.save_frames) std::filesystem::create_directories(out.path() / "frames");
+    gpu::GpuScene gpu_scene = gpu::uploadScene(ctx, p.scene);
+
+    RunResults results;
+    results.frames = int(p.poses.size());
+    results.repeats = options.repeat;
+    for (const auto* v : p.order) {
+        results.order.emplace_back(v->name);
+        results.variants.push_back({std::string(v->name)});
+    }
+
+    const int w = int(p.settings.width), h = int(p.settings.height);
+    std::vector<std::shared_ptr<const std::vector<uint8_t>>> reference(p.poses.size());
+    unsigned hw = std::thread::hardware_concurrency();
+    WorkerPool workers(std::max(1u, hw / 2));
+    Progress progress(int(p.order.size() * p.poses.size()) * options.repeat);
+
+    // One renderer per variant for the whole run: pipelines and targets are built once.
+    std::vector<std::unique_ptr<render::Renderer>> renderers(p.order.size());
+    for (size_t vi = 0; vi < p.order.size(); ++vi) {
+        VariantRun& vr = results.variants[vi];
+        try {
+            renderers[vi] = std::make_unique<render::Renderer>(ctx, gpu_scene, *p.order[vi], p.settings);
+        } catch (const vk::Unsupported& e) {
+            vr.status = "skipped";
+            vr.note = e.what();
+        } catch (const vk::Error& e) {
+            vr.status = "failed";
+            vr.note = e.what();
+        }
+    }
+
+    for (int rep = 0; rep < options.repeat; ++rep) {
+        for (size_t vi = 0; vi < p.order.size(); ++vi) {
+            VariantRun& vr = results.variants[vi];
+            const std::string name(p.order[vi]->name);
+            if (vr.status != "ok") {
+                // A failed variant becomes rows that say so, not a crash of the run.
+                for (size_t i = 0; i < p.poses.size(); ++i) {
+                    FrameRow row;
+                    row.variant = name;
+                    row.repeat = rep;
+                    row.frame = int(i);
+                    row.time_s = p.times[i];
+                    row.status = vr.status;
+                    row.note = vr.note;
+                    results.rows.push_back(row);
+                }
+                continue;
+            }
+            render::Renderer& renderer = *renderers[vi];
+            bool quality = rep == 0;
+            auto handle = [&](render::FrameResult&& fr) {
+                FrameRow& row = results.rows.emplace_back();
+                row.variant = name;
+                row.repeat = rep;
+                row.frame = fr.index;
+                row.time_s = p.times[size_t(fr.index)];
+                row.render_width = fr.render_width;
+                row.render_height = fr.render_height;
+                row.render_scale = fr.render_scale;
+                row.gpu_ms = fr.gpu_ms;
+                row.timing_ok = fr.timing_consistent;
+                if (!fr.timing_consistent) row.note = "pass times do not sum to the frame time";
+                row.passes = fr.passes;
+                if (rep == 0 && fr.index == 0) {
+                    for (const auto& pt : fr.passes) vr.passes_ran.push_back(pt.name);
+                    vr.left_out = fr.left_out;
+                }
+                progress.step("repeat " + std::to_string(rep + 1) + "/" + std::to_string(options.repeat) + " " + name);
+                if (fr.rgba.empty()) return;
+                auto image = std::make_shared<const std::vector<uint8_t>>(std::move(fr.rgba));
+                size_t i = size_t(fr.index);
+                if (name == "full") {
+                    reference[i] = image;
+                    row.quality.mse = 0.0;  // the reference against itself
+                    row.quality.psnr_db = metrics::psnrFromMse(0.0);
+                    row.quality.ssim = 1.0;
+                    row.quality.ssim_luma = 1.0;
+                } else {
+                    auto ref = reference[i];
+                    if (!ref) {
+                        row.quality.note = "no reference frame (full failed)";
+                    } else {
+                        workers.submit([&row, ref, image, w, h] { scoreFrame(row, *ref, *image, w, h); });
+                    }
+                }
+                if (options.save_frames) {
+                    char file[128];
+                    std::snprintf(file, sizeof file, "%s_%04d.png", name.c_str(), fr.index);
+                    auto dest = out.path() / "frames" / file;
+                    workers.submit([dest, image, w, h, &row] {
+                        try {
+                            metrics::writePng(dest, {w, h, *image});
+                        } catch (const std::exception& e) {
+                            row.note += std::string("PNG not saved: ") + e.what();
+                        }
+                    });
+                }
+            };
+            try {
+                // Warm-up: the path's first frames, untimed, excluded (timing.md).
+                for (int i = 0; i < options.warmup; ++i) {
+                    size_t k = size_t(i) % p.poses.size();
+                    render::FrameRequest req;
+                    req.index = -1;
+                    req.time = req.prev_time = p.times[k];
+                    req.camera = req.prev_camera = toCamera(p.poses[k]);
+                    req.history_reset = true;
+                    renderer.submit(req);
+                }
+                renderer.finish();
+                for (size_t i = 0; i < p.poses.size(); ++i) {
+                    render::FrameRequest req;
+                    req.index = int(i);
+                    req.time = p.times[i];
+                    req.camera = toCamera(p.poses[i]);
+                    req.history_reset = i == 0 || p.poses[i].cut;
+                    req.prev_time = i == 0 ? p.times[i] : p.times[i - 1];
+                    req.prev_camera = i == 0 ? req.camera : toCamera(p.poses[i - 1]);
+                    req.readback = quality;
+                    for (auto& fr : renderer.submit(req)) handle(std::move(fr));
+                }
+                for (auto& fr : renderer.finish()) handle(std::move(fr));
+            } catch (const vk::Unsupported& e) {
+                vr.status = "skipped";
+                vr.note = e.what();
+            } catch (const vk::Error& e) {
+                vr.status = "failed";
+                vr.note = e.what();
+            }
+        }
+    }
+    workers.wait();
+    renderers.clear();
+    gpu::destroyGpuScene(ctx, gpu_scene);
+    results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+
+    RunContext rc{options, p.settings, p.scene, p.path, p.times, p.poses, ctx, results};
+    writeOutputs(out.path(), rc);
+    out.commit();
+    printSummary(std::cout, out.finalPath(), rc);
+    return 0;
+}
+
+}  // namespace cbr::harness

@@ -1,0 +1,47 @@
+// A Scene uploaded to the device: geometry, textures with mips, materials and draw lists.
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <vulkan/vulkan.h>
+
+#include "renderer/scene/scene.h"
+#include "renderer/vk/resources.h"
+
+namespace cbr::vk {
+class Context;
+}
+
+namespace cbr::gpu {
+
+struct DrawItem {
+    int instance;
+    int mesh;
+    int material;
+};
+
+struct GpuScene {
+    const scene::Scene* cpu = nullptr;
+    vk::Buffer vertices;
+    vk::Buffer indices;
+    vk::Buffer materials;  // one MaterialUniforms per material, at `material_stride`
+    VkDeviceSize material_stride = 0;
+    std::vector<vk::Image> textures;
+    vk::Image white_srgb, white_linear, flat_normal;  // stand-ins for absent textures
+    VkSampler sampler = VK_NULL_HANDLE;
+    VkDescriptorSetLayout frame_layout = VK_NULL_HANDLE;     // set 0: frame UBO, lights SSBO
+    VkDescriptorSetLayout material_layout = VK_NULL_HANDLE;  // set 1: material UBO + 5 textures
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    std::vector<VkDescriptorSet> material_sets;
+    // Draws by alpha mode, opaque and masked sorted by material to save rebinds.
+    std::vector<DrawItem> opaque, masked, blend;
+};
+
+GpuScene uploadScene(vk::Context& ctx, const scene::Scene& scene);
+void destroyGpuScene(vk::Context& ctx, GpuScene& scene);
+
+// Model matrices of every instance at time t.
+std::vector<glm::mat4> instanceMatrices(const scene::Scene& scene, double t);
+
+}  // namespace cbr::gpu

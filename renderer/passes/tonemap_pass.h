@@ -1,0 +1,20 @@
+// The `tonemap` pass: HDR linear colour -> 8-bit sRGB display image (what metrics score).
+#pragma once
+
+#include "renderer/graph/graph.h"
+#include "renderer/vk/pipelines.h"
+
+namespace cbr::passes {
+
+struct Tonemap {
+    vk::ComputeKernel kernel;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    VkSampler sampler = VK_NULL_HANDLE;
+};
+
+Tonemap createTonemap(vk::Context& ctx, vk::Image& hdr, vk::Image& display);
+void destroyTonemap(vk::Context& ctx, Tonemap& t);
+void addTonemapPass(graph::Graph& graph, const Tonemap& t, vk::Image& hdr, vk::Image& display, float exposure);
+
+}  // namespace cbr::passes

@@ -1,0 +1,262 @@
+// The per-variant frame loop: uniforms, graph, submission, timestamp readback.
+#include "renderer/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "renderer/passes/readback_pass.h"
+#include "renderer/shaders/shared.h"
+#include "renderer/vk/check.h"
+#include "renderer/vk/context.h"
+#include "renderer/vk/pipelines.h"
+
+namespace cbr::render {
+
+glm::dmat4 projection(double fov_y_rad, double aspect, double near, double far) {
+    // Reversed Z, finite far: depth = near at 1, far at 0; float depth keeps precision
+    // at a distance (issue: near 1e-4, far 1e7).
+    double f = 1.0 / std::tan(fov_y_rad * 0.5);
+    glm::dmat4 p(0.0);
+    p[0][0] = f / aspect;
+    p[1][1] = -f;  // Vulkan clip space has Y down
+    p[2][2] = near / (far - near);
+    p[2][3] = -1.0;
+    p[3][2] = far * near / (far - near);
+    return p;
+}
+
+struct Renderer::Slot {
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    graph::QueryPools queries;
+    vk::Buffer frame_ubo;
+    vk::Buffer readback;
+    VkDescriptorSet frame_set = VK_NULL_HANDLE;
+    bool in_flight = false;
+    bool has_readback = false;
+    FrameRequest request;
+    graph::RecordedFrame recorded;
+    VkExtent2D render{};
+    double scale = 1;
+};
+
+Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants::Variant& variant,
+                   const Settings& settings)
+    : ctx_(ctx), scene_(scene), settings_(settings) {
+    variant_ = variant.build(ctx, scene, settings);
+    scale_ = variant_->dynamicScale() ? settings.drr_control.max_scale : settings.drr_scale;
+
+    // Every light `shading_cost` times at 1/cost: K times the work, the same sum.
+    std::vector<shaders::GpuLight> lights;
+    int k = std::max(1, settings.shading_cost);
+    for (const auto& l : scene.cpu->lights) {
+        shaders::GpuLight g{};
+        bool point = l.type == scene::Light::Type::Point;
+        g.position = glm::vec4(l.position, point ? 1.0f : 0.0f);
+        glm::vec3 dir = glm::length(l.direction) > 0 ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);
+        g.direction = glm::vec4(dir, l.range);
+        g.radiance = glm::vec4(l.color * (l.intensity / float(k)), 0.0f);
+        for (int i = 0; i < k; ++i) lights.push_back(g);
+    }
+    light_records_ = uint32_t(lights.size());
+    lights_ = vk::uploadBuffer(ctx, lights.data(), lights.size() * sizeof(shaders::GpuLight),
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+
+    int n = std::max(1, settings.frames_in_flight);
+    std::initializer_list<vk::Binding> frame_bindings = {
+        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
+        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+    frame_pool_ = vk::createPool(ctx, frame_bindings, uint32_t(n));
+    for (int i = 0; i < n; ++i) {
+        auto slot = std::make_unique<Slot>();
+        VkCommandBufferAllocateInfo a{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        a.commandPool = ctx.command_pool;
+        a.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        a.commandBufferCount = 1;
+        VK_CHECK(vkAllocateCommandBuffers(ctx.device, &a, &slot->cmd));
+        VkFenceCreateInfo f{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        VK_CHECK(vkCreateFence(ctx.device, &f, nullptr, &slot->fence));
+        VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        q.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        q.queryCount = graph::kMaxPasses + 1;
+        VK_CHECK(vkCreateQueryPool(ctx.device, &q, nullptr, &slot->queries.timestamps));
+        if (ctx.caps.pipeline_statistics) {
+            VkQueryPoolCreateInfo s{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+            s.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
+            s.queryCount = graph::kMaxPasses;
+            s.pipelineStatistics = VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT;
+            VK_CHECK(vkCreateQueryPool(ctx.device, &s, nullptr, &slot->queries.statistics));
+        }
+        slot->frame_ubo = vk::createBuffer(ctx, sizeof(shaders::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                           true);
+        slot->readback = vk::createBuffer(ctx, VkDeviceSize(settings.width) * settings.height * 4,
+                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        slot->frame_set = vk::allocateSet(ctx, frame_pool_, scene.frame_layout);
+        vk::writeBuffer(ctx, slot->frame_set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slot->frame_ubo.buffer, 0,
+                        sizeof(shaders::FrameUniforms));
+        vk::writeBuffer(ctx, slot->frame_set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, lights_.buffer, 0, VK_WHOLE_SIZE);
+        slots_.push_back(std::move(slot));
+    }
+}
+
+Renderer::~Renderer() {
+    vkDeviceWaitIdle(ctx_.device);
+    for (auto& slot : slots_) {
+        vkFreeCommandBuffers(ctx_.device, ctx_.command_pool, 1, &slot->cmd);
+        vkDestroyFence(ctx_.device, slot->fence, nullptr);
+        vkDestroyQueryPool(ctx_.device, slot->queries.timestamps, nullptr);
+        if (slot->queries.statistics) vkDestroyQueryPool(ctx_.device, slot->queries.statistics, nullptr);
+        vk::destroyBuffer(ctx_, slot->frame_ubo);
+        vk::destroyBuffer(ctx_, slot->readback);
+    }
+    vkDestroyDescriptorPool(ctx_.device, frame_pool_, nullptr);
+    vk::destroyBuffer(ctx_, lights_);
+    variant_.reset();
+}
+
+std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
+    std::vector<FrameResult> done;
+    Slot& slot = *slots_[next_slot_];
+    next_slot_ = (next_slot_ + 1) % slots_.size();
+    if (slot.in_flight) {
+        done.push_back(collect(slot));
+        updateScale(done.back());
+    }
+
+    double aspect = double(settings_.width) / double(settings_.height);
+    auto view_proj = [&](const Camera& c) {
+        return glm::mat4(projection(c.fov_y_rad, aspect, c.near, c.far) * c.view);
+    };
+    shaders::FrameUniforms u{};
+    u.view_proj = view_proj(request.camera);
+    u.prev_view_proj = request.history_reset ? u.view_proj : view_proj(request.prev_camera);
+    u.view = glm::mat4(request.camera.view);
+    u.camera_position = glm::vec4(glm::vec3(request.camera.position), 1.0f);
+    u.params = glm::vec4(settings_.lod_bias, settings_.exposure, 0.03f, 0.0f);
+    u.counts = glm::uvec4(light_records_, uint32_t(std::max(1, settings_.shading_cost)), 0, 0);
+    u.background = glm::vec4(scene_.cpu->background, 1.0f);
+    std::memcpy(slot.frame_ubo.mapped, &u, sizeof(u));
+
+    auto frame = std::make_shared<passes::SceneFrame>();
+    frame->scene = &scene_;
+    frame->frame_set = slot.frame_set;
+    frame->models = gpu::instanceMatrices(*scene_.cpu, request.time);
+    frame->prev_models = request.history_reset ? frame->models : gpu::instanceMatrices(*scene_.cpu, request.prev_time);
+    frame->camera_position = glm::vec3(request.camera.position);
+    frame->clear_color = glm::vec4(scene_.cpu->background, 0.0f);
+
+    variants::FrameSetup setup;
+    setup.scene_frame = frame;
+    setup.request = &request;
+    setup.render_scale = scale_;
+    graph::Graph graph;
+    variant_->declare(graph, setup);
+    graph.setOutputs({&variant_->display()});
+    if (request.readback) passes::addReadbackPass(graph, variant_->display(), slot.readback.buffer);
+
+    VK_CHECK(vkResetCommandBuffer(slot.cmd, 0));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkBeginCommandBuffer(slot.cmd, &begin));
+    slot.recorded = graph.record(slot.cmd, slot.queries);
+    if (request.readback) {
+        // The host reads the copy after the fence: make the transfer write visible to it.
+        VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        b.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        b.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+        b.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &b;
+        vkCmdPipelineBarrier2(slot.cmd, &dep);
+    }
+    VK_CHECK(vkEndCommandBuffer(slot.cmd));
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &slot.cmd;
+    VK_CHECK(vkQueueSubmit(ctx_.queue, 1, &submit, slot.fence));
+    slot.in_flight = true;
+    slot.has_readback = request.readback;
+    slot.request = request;
+    slot.render = variant_->renderExtent(scale_);
+    slot.scale = scale_;
+    return done;
+}
+
+std::vector<FrameResult> Renderer::finish() {
+    std::vector<FrameResult> done;
+    for (size_t i = 0; i < slots_.size(); ++i) {
+        Slot& slot = *slots_[(next_slot_ + i) % slots_.size()];
+        if (slot.in_flight) {
+            done.push_back(collect(slot));
+            updateScale(done.back());
+        }
+    }
+    return done;
+}
+
+FrameResult Renderer::collect(Slot& slot) {
+    VK_CHECK(vkWaitForFences(ctx_.device, 1, &slot.fence, VK_TRUE, UINT64_MAX));
+    VK_CHECK(vkResetFences(ctx_.device, 1, &slot.fence));
+    slot.in_flight = false;
+
+    FrameResult r;
+    r.index = slot.request.index;
+    r.render_width = slot.render.width;
+    r.render_height = slot.render.height;
+    r.render_scale = slot.scale;
+    for (const auto& lo : slot.recorded.left_out) r.left_out.push_back({lo.name, lo.reason});
+
+    size_t n = slot.recorded.timed_passes.size();
+    std::vector<uint64_t> stamps(n + 1);
+    VK_CHECK(vkGetQueryPoolResults(ctx_.device, slot.queries.timestamps, 0, uint32_t(n + 1),
+                                   stamps.size() * sizeof(uint64_t), stamps.data(), sizeof(uint64_t),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    uint32_t bits = ctx_.caps.timestamp_valid_bits;
+    uint64_t mask = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
+    double ns_per_tick = ctx_.caps.timestamp_period_ns;
+    auto ticks = [&](uint64_t a, uint64_t b) { return ((b & mask) - (a & mask)) & mask; };  // wraps within valid bits
+    uint64_t sum = 0;
+    for (size_t i = 0; i < n; ++i) {
+        PassTime p;
+        p.name = slot.recorded.timed_passes[i];
+        uint64_t t = ticks(stamps[i], stamps[i + 1]);
+        sum += t;
+        p.gpu_ms = double(t) * ns_per_tick * 1e-6;
+        if (slot.recorded.graphics[i]) {
+            uint64_t invocations = 0;
+            VK_CHECK(vkGetQueryPoolResults(ctx_.device, slot.queries.statistics, uint32_t(i), 1, sizeof(uint64_t),
+                                           &invocations, sizeof(uint64_t),
+                                           VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+            p.fs_invocations = int64_t(invocations);
+        }
+        r.passes.push_back(std::move(p));
+    }
+    uint64_t total = ticks(stamps[0], stamps[n]);
+    r.gpu_ms = double(total) * ns_per_tick * 1e-6;
+    // Chained stamps sum to the frame by construction; a mismatch means a wrapped or
+    // garbage stamp, which the row flags rather than hides.
+    r.timing_consistent = sum == total && total > 0;
+
+    if (slot.has_readback) {
+        size_t bytes = size_t(settings_.width) * settings_.height * 4;
+        r.rgba.resize(bytes);
+        std::memcpy(r.rgba.data(), slot.readback.mapped, bytes);
+    }
+    return r;
+}
+
+void Renderer::updateScale(const FrameResult& result) {
+    if (!variant_->dynamicScale()) return;
+    const DrrControl& c = settings_.drr_control;
+    double ratio = result.gpu_ms / c.target_ms;
+    if (!std::isfinite(ratio) || std::abs(ratio - 1.0) <= c.dead_band) return;
+    // Frame cost scales with pixel count (scale^2); step towards the target, bounded.
+    double wanted = scale_ / std::sqrt(ratio);
+    double next = std::clamp(wanted, scale_ - c.step, scale_ + c.step);
+    scale_ = std::clamp(next, c.min_scale, c.max_scale);
+}
+
+}  // namespace cbr::render

@@ -1,0 +1,49 @@
+// Runs one variant over frames: per-frame uniforms, graph recording, submission with a
+// few frames in flight, timestamp and statistics readback a frame or two late.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "renderer/gpu/gpu_scene.h"
+#include "renderer/settings.h"
+#include "renderer/variants/variants.h"
+#include "renderer/vk/resources.h"
+
+namespace cbr::vk {
+class Context;
+}
+
+namespace cbr::render {
+
+class Renderer {
+public:
+    Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants::Variant& variant, const Settings& settings);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    // Records and submits a frame; returns the frames that completed meanwhile, oldest first.
+    std::vector<FrameResult> submit(const FrameRequest& request);
+    // Waits for every frame in flight and returns them.
+    std::vector<FrameResult> finish();
+    double currentScale() const { return scale_; }
+
+private:
+    struct Slot;
+    FrameResult collect(Slot& slot);
+    void updateScale(const FrameResult& result);
+
+    vk::Context& ctx_;
+    const gpu::GpuScene& scene_;
+    Settings settings_;
+    std::unique_ptr<variants::VariantRenderer> variant_;
+    vk::Buffer lights_;
+    uint32_t light_records_ = 0;
+    VkDescriptorPool frame_pool_ = VK_NULL_HANDLE;
+    std::vector<std::unique_ptr<Slot>> slots_;
+    size_t next_slot_ = 0;
+    double scale_ = 1;
+};
+
+}  // namespace cbr::render

@@ -1,0 +1,75 @@
+// Renderer settings and per-frame requests/results: the renderer's whole interface data.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace cbr::render {
+
+enum class DrrFilter { Bilinear, CatmullRom };
+
+// Dynamic resolution controller (`--drr-target-ms`): steps the per-axis scale towards
+// the target frame time, holding inside a dead band, within bounds.
+struct DrrControl {
+    double target_ms = 0;       // 0: fixed scale
+    double min_scale = 0.5;
+    double max_scale = 1.0;
+    double dead_band = 0.05;    // |measured / target - 1| below this: hold
+    double step = 0.05;         // per-axis scale change per adjustment
+};
+
+struct Settings {
+    uint32_t width = 960;
+    uint32_t height = 540;
+    int shading_cost = 1;       // >= 1; the fragment work is about K times, the image the same
+    float exposure = 1.0f;
+    float lod_bias = 0.0f;      // texture LOD bias in scene passes
+    double drr_scale = 0.7071;  // per axis: half the pixels
+    DrrFilter drr_filter = DrrFilter::CatmullRom;
+    DrrControl drr_control;
+    int frames_in_flight = 2;
+};
+
+struct Camera {
+    glm::dvec3 position{0};
+    glm::dmat4 view{1.0};
+    double fov_y_rad = 1.0;
+    double near = 0.05;
+    double far = 500;
+};
+
+struct FrameRequest {
+    int index = 0;
+    double time = 0;
+    double prev_time = 0;
+    Camera camera;
+    Camera prev_camera;
+    bool history_reset = false;  // first frame or a camera cut
+    bool readback = false;       // copy the display image back (quality frames)
+};
+
+struct PassTime {
+    std::string name;
+    double gpu_ms = 0;
+    int64_t fs_invocations = -1;  // -1: not a graphics pass, or no pipeline statistics
+};
+
+struct FrameResult {
+    int index = 0;
+    double gpu_ms = 0;                 // first begin stamp to last end stamp
+    bool timing_consistent = true;     // passes sum to the frame within tolerance
+    std::vector<PassTime> passes;
+    uint32_t render_width = 0;
+    uint32_t render_height = 0;
+    double render_scale = 1;
+    std::vector<uint8_t> rgba;         // width * height * 4 when read back
+    std::vector<std::pair<std::string, std::string>> left_out;  // (pass, reason)
+};
+
+// Reversed-Z projection (near -> 1, far -> 0), Vulkan clip space (Y down).
+glm::dmat4 projection(double fov_y_rad, double aspect, double near, double far);
+
+}  // namespace cbr::render

@@ -1,0 +1,51 @@
+// Structs shared between GLSL and C++: one definition, sizes checked on the C++ side.
+#ifndef CBR_SHADERS_SHARED_H
+#define CBR_SHADERS_SHARED_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace cbr::shaders {
+using mat4 = glm::mat4;
+using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
+#endif
+
+// std140 and std430 agree on these (mat4 and vec4 members only).
+struct FrameUniforms {
+    mat4 view_proj;        // world -> clip (reversed Z, Vulkan Y down)
+    mat4 prev_view_proj;   // the previous frame's, for motion
+    mat4 view;             // world -> view
+    vec4 camera_position;  // xyz world
+    vec4 params;           // x texture LOD bias, y exposure, z ambient, w unused
+    uvec4 counts;          // x light records (lights x shading cost), y shading cost
+    vec4 background;       // linear clear colour
+};
+
+struct MaterialUniforms {
+    vec4 base_color;  // factor
+    vec4 emissive;    // xyz factor, w normal scale
+    vec4 params;      // x metallic, y roughness, z alpha cutoff, w occlusion strength
+    uvec4 flags;      // x texture presence bits (kTex*)
+};
+
+struct GpuLight {
+    vec4 position;   // xyz, w: 0 directional, 1 point
+    vec4 direction;  // xyz direction the light travels, w range (0: infinite)
+    vec4 radiance;   // rgb colour * intensity / shading cost
+};
+
+#define CBR_TEX_BASE_COLOR 1u
+#define CBR_TEX_METALLIC_ROUGHNESS 2u
+#define CBR_TEX_NORMAL 4u
+#define CBR_TEX_EMISSIVE 8u
+#define CBR_TEX_OCCLUSION 16u
+
+#ifdef __cplusplus
+static_assert(sizeof(FrameUniforms) == 3 * 64 + 4 * 16);
+static_assert(sizeof(MaterialUniforms) == 4 * 16);
+static_assert(sizeof(GpuLight) == 3 * 16);
+}  // namespace cbr::shaders
+#endif
+
+#endif

@@ -1,0 +1,94 @@
+// Forward variants: scene passes into an HDR target, optional upscale, tone map.
+#include "renderer/variants/forward.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "renderer/passes/tonemap_pass.h"
+#include "renderer/passes/upscale_pass.h"
+#include "renderer/vk/context.h"
+
+namespace cbr::variants {
+namespace {
+
+constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;  // float depth + reversed Z
+
+class ForwardVariant final : public VariantRenderer {
+public:
+    ForwardVariant(vk::Context& ctx, const gpu::GpuScene& scene, const render::Settings& s, bool scaled)
+        : ctx_(ctx), scene_(scene), settings_(s), scaled_(scaled) {
+        VkExtent2D full{s.width, s.height};
+        color_ = vk::createImage(ctx, {"hdr", kHdrFormat, full,
+                                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+        depth_ = vk::createImage(ctx, {"depth", kDepthFormat, full, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
+        display_ = vk::createImage(ctx, {"display", VK_FORMAT_R8G8B8A8_UNORM, full,
+                                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+        pipelines_ = passes::createScenePipelines(ctx, scene, {kHdrFormat, kDepthFormat, VK_SAMPLE_COUNT_1_BIT});
+        vk::Image* tonemap_source = &color_;
+        if (scaled_) {
+            upscaled_ = vk::createImage(ctx, {"upscaled", kHdrFormat, full,
+                                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+            auto filter = s.drr_filter == render::DrrFilter::Bilinear ? passes::UpscaleFilter::Bilinear
+                                                                      : passes::UpscaleFilter::CatmullRom;
+            upscale_ = passes::createUpscale(ctx, color_, upscaled_, filter);
+            tonemap_source = &upscaled_;
+        }
+        tonemap_ = passes::createTonemap(ctx, *tonemap_source, display_);
+    }
+
+    ~ForwardVariant() override {
+        vkDeviceWaitIdle(ctx_.device);
+        passes::destroyTonemap(ctx_, tonemap_);
+        passes::destroyUpscale(ctx_, upscale_);
+        passes::destroyScenePipelines(ctx_, pipelines_);
+        for (vk::Image* img : {&color_, &depth_, &display_, &upscaled_}) vk::destroyImage(ctx_, *img);
+    }
+
+    VkExtent2D renderExtent(double scale) const override {
+        if (!scaled_) return {settings_.width, settings_.height};
+        auto axis = [scale](uint32_t n) { return std::clamp(uint32_t(std::lround(n * scale)), 1u, n); };
+        return {axis(settings_.width), axis(settings_.height)};
+    }
+
+    bool dynamicScale() const override { return scaled_ && settings_.drr_control.target_ms > 0; }
+
+    void declare(graph::Graph& graph, FrameSetup& setup) override {
+        VkExtent2D render = renderExtent(setup.render_scale);
+        setup.scene_frame->viewport = render;
+        setup.scene_frame->pipelines = &pipelines_;
+        std::shared_ptr<const passes::SceneFrame> frame = setup.scene_frame;
+        passes::addOpaquePass(graph, color_, depth_, frame);
+        if (!scene_.blend.empty())
+            passes::addTransparentPass(graph, color_, depth_, frame);
+        else
+            graph.leaveOut("transparent", "scene has no BLEND materials");
+        if (scaled_) passes::addUpscalePass(graph, upscale_, color_, render, upscaled_);
+        passes::addTonemapPass(graph, tonemap_, scaled_ ? upscaled_ : color_, display_, settings_.exposure);
+    }
+
+    vk::Image& display() override { return display_; }
+
+private:
+    vk::Context& ctx_;
+    const gpu::GpuScene& scene_;
+    render::Settings settings_;
+    bool scaled_;
+    vk::Image color_, depth_, display_, upscaled_;
+    passes::ScenePipelines pipelines_;
+    passes::Upscale upscale_;
+    passes::Tonemap tonemap_;
+};
+
+}  // namespace
+
+std::unique_ptr<VariantRenderer> buildFull(vk::Context& ctx, const gpu::GpuScene& scene, const render::Settings& s) {
+    return std::make_unique<ForwardVariant>(ctx, scene, s, false);
+}
+
+std::unique_ptr<VariantRenderer> buildDynamicResolution(vk::Context& ctx, const gpu::GpuScene& scene,
+                                                        const render::Settings& s) {
+    return std::make_unique<ForwardVariant>(ctx, scene, s, true);
+}
+
+}  // namespace cbr::variants

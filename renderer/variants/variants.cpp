@@ -1,0 +1,33 @@
+// The one list of variants.
+#include "renderer/variants/variants.h"
+
+#include <stdexcept>
+
+#include "renderer/variants/forward.h"
+
+namespace cbr::variants {
+namespace {
+
+constexpr Variant kVariants[] = {
+    {"full", "native resolution, one sample per pixel (the reference)", buildFull},
+    {"drr", "dynamic resolution: scaled render, upscaled to output size", buildDynamicResolution},
+};
+
+}  // namespace
+
+std::span<const Variant> allVariants() { return kVariants; }
+
+std::string variantNames() {
+    std::string s;
+    for (const auto& v : kVariants) s += (s.empty() ? "" : ", ") + std::string(v.name);
+    return s;
+}
+
+const Variant& findVariant(std::string_view name) {
+    for (const auto& v : kVariants)
+        if (v.name == name) return v;
+    throw std::invalid_argument("--variants: unknown variant '" + std::string(name) + "'; expected one of: " +
+                                variantNames());
+}
+
+}  // namespace cbr::variants

@@ -1,0 +1,131 @@
+// Shader modules, descriptor layouts/pools/sets and compute pipelines.
+#include "renderer/vk/pipelines.h"
+
+#include <map>
+
+#include "renderer/vk/check.h"
+#include "renderer/vk/context.h"
+
+namespace cbr::vk {
+
+VkShaderModule createShaderModule(Context& ctx, const uint32_t* spirv, size_t size_bytes) {
+    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    info.codeSize = size_bytes;
+    info.pCode = spirv;
+    VkShaderModule module;
+    VK_CHECK(vkCreateShaderModule(ctx.device, &info, nullptr, &module));
+    return module;
+}
+
+VkDescriptorSetLayout createSetLayout(Context& ctx, std::initializer_list<Binding> bindings) {
+    std::vector<VkDescriptorSetLayoutBinding> b;
+    for (const auto& x : bindings) b.push_back({x.binding, x.type, 1, x.stages, nullptr});
+    VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    info.bindingCount = uint32_t(b.size());
+    info.pBindings = b.data();
+    VkDescriptorSetLayout layout;
+    VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &info, nullptr, &layout));
+    return layout;
+}
+
+VkDescriptorPool createPool(Context& ctx, std::initializer_list<Binding> bindings, uint32_t sets) {
+    std::map<VkDescriptorType, uint32_t> counts;
+    for (const auto& x : bindings) counts[x.type] += sets;
+    std::vector<VkDescriptorPoolSize> sizes;
+    for (auto [type, n] : counts) sizes.push_back({type, n});
+    VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    info.maxSets = sets;
+    info.poolSizeCount = uint32_t(sizes.size());
+    info.pPoolSizes = sizes.data();
+    VkDescriptorPool pool;
+    VK_CHECK(vkCreateDescriptorPool(ctx.device, &info, nullptr, &pool));
+    return pool;
+}
+
+VkDescriptorSet allocateSet(Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout) {
+    VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    info.descriptorPool = pool;
+    info.descriptorSetCount = 1;
+    info.pSetLayouts = &layout;
+    VkDescriptorSet set;
+    VK_CHECK(vkAllocateDescriptorSets(ctx.device, &info, &set));
+    return set;
+}
+
+void writeImage(Context& ctx, VkDescriptorSet set, uint32_t binding, VkDescriptorType type, VkImageView view,
+                VkImageLayout layout, VkSampler sampler) {
+    VkDescriptorImageInfo image{sampler, view, layout};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.dstBinding = binding;
+    w.descriptorCount = 1;
+    w.descriptorType = type;
+    w.pImageInfo = &image;
+    vkUpdateDescriptorSets(ctx.device, 1, &w, 0, nullptr);
+}
+
+void writeBuffer(Context& ctx, VkDescriptorSet set, uint32_t binding, VkDescriptorType type, VkBuffer buffer,
+                 VkDeviceSize offset, VkDeviceSize range) {
+    VkDescriptorBufferInfo info{buffer, offset, range};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.dstBinding = binding;
+    w.descriptorCount = 1;
+    w.descriptorType = type;
+    w.pBufferInfo = &info;
+    vkUpdateDescriptorSets(ctx.device, 1, &w, 0, nullptr);
+}
+
+ComputeKernel createComputeKernel(Context& ctx, const uint32_t* spirv, size_t size_bytes,
+                                  std::initializer_list<Binding> bindings, uint32_t push_bytes,
+                                  std::vector<SpecConstant> spec) {
+    ComputeKernel k;
+    k.set_layout = createSetLayout(ctx, bindings);
+    VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes};
+    VkPipelineLayoutCreateInfo linfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    linfo.setLayoutCount = 1;
+    linfo.pSetLayouts = &k.set_layout;
+    linfo.pushConstantRangeCount = push_bytes ? 1 : 0;
+    linfo.pPushConstantRanges = &push;
+    VK_CHECK(vkCreatePipelineLayout(ctx.device, &linfo, nullptr, &k.layout));
+
+    std::vector<VkSpecializationMapEntry> entries;
+    std::vector<int32_t> values;
+    for (size_t i = 0; i < spec.size(); ++i) {
+        entries.push_back({spec[i].id, uint32_t(i * sizeof(int32_t)), sizeof(int32_t)});
+        values.push_back(spec[i].value);
+    }
+    VkSpecializationInfo sinfo{uint32_t(entries.size()), entries.data(), values.size() * sizeof(int32_t),
+                               values.data()};
+    VkShaderModule module = createShaderModule(ctx, spirv, size_bytes);
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module;
+    info.stage.pName = "main";
+    info.stage.pSpecializationInfo = spec.empty() ? nullptr : &sinfo;
+    info.layout = k.layout;
+    VK_CHECK(vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &k.pipeline));
+    vkDestroyShaderModule(ctx.device, module, nullptr);
+    return k;
+}
+
+void destroyComputeKernel(Context& ctx, ComputeKernel& k) {
+    if (k.pipeline) vkDestroyPipeline(ctx.device, k.pipeline, nullptr);
+    if (k.layout) vkDestroyPipelineLayout(ctx.device, k.layout, nullptr);
+    if (k.set_layout) vkDestroyDescriptorSetLayout(ctx.device, k.set_layout, nullptr);
+    k = {};
+}
+
+VkSampler createSampler(Context& ctx, VkFilter filter, VkSamplerAddressMode address, float max_lod) {
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = info.minFilter = filter;
+    info.mipmapMode = filter == VK_FILTER_LINEAR ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = info.addressModeV = info.addressModeW = address;
+    info.maxLod = max_lod;
+    VkSampler sampler;
+    VK_CHECK(vkCreateSampler(ctx.device, &info, nullptr, &sampler));
+    return sampler;
+}
+
+}  // namespace cbr::vk

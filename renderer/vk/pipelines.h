@@ -1,0 +1,51 @@
+// Shader modules, descriptor layouts and sets, compute pipelines: the small helpers passes share.
+#pragma once
+
+#include <cstdint>
+#include <initializer_list>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace cbr::vk {
+
+class Context;
+
+VkShaderModule createShaderModule(Context& ctx, const uint32_t* spirv, size_t size_bytes);
+
+struct Binding {
+    uint32_t binding;
+    VkDescriptorType type;
+    VkShaderStageFlags stages;
+};
+VkDescriptorSetLayout createSetLayout(Context& ctx, std::initializer_list<Binding> bindings);
+
+// One pool sized for `sets` sets of the given bindings; sets are never freed singly.
+VkDescriptorPool createPool(Context& ctx, std::initializer_list<Binding> bindings, uint32_t sets);
+VkDescriptorSet allocateSet(Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout);
+
+void writeImage(Context& ctx, VkDescriptorSet set, uint32_t binding, VkDescriptorType type, VkImageView view,
+                VkImageLayout layout, VkSampler sampler = VK_NULL_HANDLE);
+void writeBuffer(Context& ctx, VkDescriptorSet set, uint32_t binding, VkDescriptorType type, VkBuffer buffer,
+                 VkDeviceSize offset, VkDeviceSize range);
+
+// Specialization constants as (constant_id, int value) pairs, written at call sites
+// with labelled arguments: {{/* FILTER= */ 0, 1}}.
+struct SpecConstant {
+    uint32_t id;
+    int32_t value;
+};
+
+struct ComputeKernel {
+    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+};
+ComputeKernel createComputeKernel(Context& ctx, const uint32_t* spirv, size_t size_bytes,
+                                  std::initializer_list<Binding> bindings, uint32_t push_bytes,
+                                  std::vector<SpecConstant> spec = {});
+void destroyComputeKernel(Context& ctx, ComputeKernel& kernel);
+
+VkSampler createSampler(Context& ctx, VkFilter filter, VkSamplerAddressMode address, float max_lod);
+
+}  // namespace cbr::vk

@@ -1,0 +1,190 @@
+// Buffer and image creation, staging uploads, mip generation.
+#include "renderer/vk/resources.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "renderer/vk/check.h"
+#include "renderer/vk/context.h"
+
+namespace cbr::vk {
+namespace {
+
+uint32_t findMemoryType(const Context& ctx, uint32_t type_bits, VkMemoryPropertyFlags want) {
+    for (uint32_t i = 0; i < ctx.memory.memoryTypeCount; ++i)
+        if ((type_bits & (1u << i)) && (ctx.memory.memoryTypes[i].propertyFlags & want) == want) return i;
+    throw Error("no memory type with properties " + std::to_string(want));
+}
+
+VkDeviceMemory allocate(Context& ctx, const VkMemoryRequirements& req, VkMemoryPropertyFlags want) {
+    VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    info.allocationSize = req.size;
+    info.memoryTypeIndex = findMemoryType(ctx, req.memoryTypeBits, want);
+    VkDeviceMemory memory;
+    VK_CHECK(vkAllocateMemory(ctx.device, &info, nullptr, &memory));
+    return memory;
+}
+
+void imageBarrier(VkCommandBuffer cmd, VkImage image, uint32_t base_mip, uint32_t mips, VkImageLayout from,
+                  VkImageLayout to, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                  VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.srcStageMask = src_stage;
+    b.srcAccessMask = src_access;
+    b.dstStageMask = dst_stage;
+    b.dstAccessMask = dst_access;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, base_mip, mips, 0, 1};
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = 1;
+    dep.pImageMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+}  // namespace
+
+bool isDepthFormat(VkFormat f) {
+    return f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_D24_UNORM_S8_UINT ||
+           f == VK_FORMAT_D32_SFLOAT_S8_UINT;
+}
+
+Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool host_visible) {
+    Buffer b;
+    b.size = size;
+    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = std::max<VkDeviceSize>(size, 4);
+    info.usage = usage;
+    VK_CHECK(vkCreateBuffer(ctx.device, &info, nullptr, &b.buffer));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(ctx.device, b.buffer, &req);
+    b.memory = allocate(ctx, req,
+                        host_visible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                     : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
+    if (host_visible) VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
+    return b;
+}
+
+void destroyBuffer(Context& ctx, Buffer& b) {
+    if (b.buffer) vkDestroyBuffer(ctx.device, b.buffer, nullptr);
+    if (b.memory) vkFreeMemory(ctx.device, b.memory, nullptr);
+    b = {};
+}
+
+Buffer uploadBuffer(Context& ctx, const void* data, VkDeviceSize size, VkBufferUsageFlags usage) {
+    Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    std::memcpy(staging.mapped, data, size_t(size));
+    Buffer b = createBuffer(ctx, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+    ctx.immediate([&](VkCommandBuffer cmd) {
+        VkBufferCopy region{0, 0, size};
+        vkCmdCopyBuffer(cmd, staging.buffer, b.buffer, 1, &region);
+    });
+    destroyBuffer(ctx, staging);
+    return b;
+}
+
+Image createImage(Context& ctx, const ImageDesc& desc) {
+    Image img;
+    img.name = desc.name;
+    img.format = desc.format;
+    img.extent = desc.extent;
+    img.mip_levels = desc.mip_levels;
+    img.layers = desc.layers;
+    img.samples = desc.samples;
+    img.aspect = isDepthFormat(desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+    VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    info.imageType = VK_IMAGE_TYPE_2D;
+    info.format = desc.format;
+    info.extent = {desc.extent.width, desc.extent.height, 1};
+    info.mipLevels = desc.mip_levels;
+    info.arrayLayers = desc.layers;
+    info.samples = desc.samples;
+    info.tiling = VK_IMAGE_TILING_OPTIMAL;
+    info.usage = desc.usage;
+    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VkResult r = vkCreateImage(ctx.device, &info, nullptr, &img.image);
+    if (r == VK_ERROR_FORMAT_NOT_SUPPORTED || r == VK_ERROR_FEATURE_NOT_PRESENT)
+        throw Unsupported("image " + desc.name + ": format/usage not supported by the device");
+    VK_CHECK(r);
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(ctx.device, img.image, &req);
+    img.memory = allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
+    VkImageViewCreateInfo vinfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vinfo.image = img.image;
+    vinfo.viewType = desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+    vinfo.format = desc.format;
+    vinfo.subresourceRange = {img.aspect, 0, desc.mip_levels, 0, desc.layers};
+    VK_CHECK(vkCreateImageView(ctx.device, &vinfo, nullptr, &img.view));
+    return img;
+}
+
+void destroyImage(Context& ctx, Image& img) {
+    if (img.view) vkDestroyImageView(ctx.device, img.view, nullptr);
+    if (img.image) vkDestroyImage(ctx.device, img.image, nullptr);
+    if (img.memory) vkFreeMemory(ctx.device, img.memory, nullptr);
+    img = {};
+}
+
+Image uploadTexture(Context& ctx, const std::string& name, const uint8_t* rgba8, uint32_t width, uint32_t height,
+                    bool srgb) {
+    uint32_t mips = 1 + uint32_t(std::floor(std::log2(double(std::max(width, height)))));
+    ImageDesc desc;
+    desc.name = name;
+    desc.format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+    desc.extent = {width, height};
+    desc.mip_levels = mips;
+    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    Image img = createImage(ctx, desc);
+    VkDeviceSize size = VkDeviceSize(width) * height * 4;
+    Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    std::memcpy(staging.mapped, rgba8, size_t(size));
+    ctx.immediate([&](VkCommandBuffer cmd) {
+        imageBarrier(cmd, img.image, 0, mips, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        VkBufferImageCopy copy{};
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.imageExtent = {width, height, 1};
+        vkCmdCopyBufferToImage(cmd, staging.buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        // Each level is a linear blit of the one above (box-like 2:1 filter, sRGB-correct
+        // because the blit filters in linear space for sRGB formats).
+        int32_t w = int32_t(width), h = int32_t(height);
+        for (uint32_t level = 1; level < mips; ++level) {
+            imageBarrier(cmd, img.image, level - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                         VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                         VK_ACCESS_2_TRANSFER_READ_BIT);
+            int32_t nw = std::max(1, w / 2), nh = std::max(1, h / 2);
+            VkImageBlit blit{};
+            blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level - 1, 0, 1};
+            blit.srcOffsets[1] = {w, h, 1};
+            blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
+            blit.dstOffsets[1] = {nw, nh, 1};
+            vkCmdBlitImage(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, img.image,
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+            w = nw;
+            h = nh;
+        }
+        if (mips > 1)
+            imageBarrier(cmd, img.image, 0, mips - 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                         VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        imageBarrier(cmd, img.image, mips - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    });
+    destroyBuffer(ctx, staging);
+    img.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    img.stage = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    img.access = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+    return img;
+}
+
+}  // namespace cbr::vk
