@@ -13,8 +13,8 @@ struct RunOptions {
     std::string path = "flythrough";  // built-in name or .json path
     std::vector<std::string> variants;  // empty: every variant in the table
     std::string resolution = "960x540";
-    int frames = 0;                   // 0: the path's own length
-    int repeat = 3;
+    int frames = 60;                  // 0: the path's own length
+    int repeat = 5;                   // timing.md: default 5, never fewer than 3 for a verdict
     int warmup = 5;
     std::string device;
     bool validate = false;

@@ -1,6 +1,7 @@
 // frames.csv, summary.csv and run.json: one schema each, documented in the README.
 #include "harness/outputs.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -81,7 +82,15 @@ void writeFramesCsv(const std::filesystem::path& file, const RunResults& r, uint
                                      "ssim",         "ssim_luma",     "mse",          "fs_invocations",
                                      "status",       "note"};
     for (const auto& p : passes) cols.push_back("gpu_ms_" + p);
-    for (const auto& p : passes) cols.push_back("fs_invocations_" + p);
+    // Invocation columns only for passes that report them (graphics passes, where the
+    // device has pipeline statistics).
+    for (const auto& p : passes) {
+        bool reported = std::any_of(r.rows.begin(), r.rows.end(), [&](const FrameRow& row) {
+            return std::any_of(row.passes.begin(), row.passes.end(),
+                               [&](const auto& pt) { return pt.name == p && pt.fs_invocations >= 0; });
+        });
+        if (reported) cols.push_back("fs_invocations_" + p);
+    }
     reports::CsvTable table(cols);
     for (const auto& row : r.rows) {
         std::map<std::string, Cell> m;

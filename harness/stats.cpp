@@ -15,6 +15,8 @@ double percentile(std::vector<double> v, double p) {
     double pos = std::clamp(p, 0.0, 100.0) / 100.0 * double(v.size() - 1);
     size_t lo = size_t(std::floor(pos));
     size_t hi = std::min(lo + 1, v.size() - 1);
+    // Equal neighbours (e.g. two +inf PSNRs) must not interpolate to inf - inf = NaN.
+    if (v[lo] == v[hi]) return v[lo];
     return v[lo] + (v[hi] - v[lo]) * (pos - double(lo));
 }
 

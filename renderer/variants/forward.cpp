@@ -51,6 +51,7 @@ public:
         return {axis(settings_.width), axis(settings_.height)};
     }
 
+    bool scaled() const override { return scaled_; }
     bool dynamicScale() const override { return scaled_ && settings_.drr_control.target_ms > 0; }
 
     void declare(graph::Graph& graph, FrameSetup& setup) override {

@@ -31,7 +31,8 @@ public:
     virtual vk::Image& display() = 0;
     // Size rendered at the given per-axis scale (1 for fixed-resolution variants).
     virtual VkExtent2D renderExtent(double scale) const = 0;
-    virtual bool dynamicScale() const { return false; }
+    virtual bool scaled() const { return false; }        // renders below output size
+    virtual bool dynamicScale() const { return false; }  // the scale follows the GPU time
 };
 
 using BuildFn = std::unique_ptr<VariantRenderer> (*)(vk::Context&, const gpu::GpuScene&, const render::Settings&);

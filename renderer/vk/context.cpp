@@ -255,6 +255,7 @@ Context::Context(const ContextOptions& options) {
     VkPhysicalDeviceVulkan13Features e13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     e13.dynamicRendering = VK_TRUE;
     e13.synchronization2 = VK_TRUE;
+    e13.maintenance4 = f13.maintenance4;  // glslang emits LocalSizeId for Vulkan 1.3 targets
     VkPhysicalDeviceVulkan11Features e11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &e13};
     e11.multiview = f11.multiview;
     VkPhysicalDeviceFeatures2 e2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &e11};

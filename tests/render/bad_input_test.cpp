@@ -1,0 +1,87 @@
+// Bad input: one clear line naming what, where and what is accepted; exit code 2;
+// no output directory left behind.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+
+#include "tests/render/bench_runner.h"
+
+namespace cbr::test {
+namespace {
+
+struct Case {
+    std::string name;
+    std::vector<std::string> args;
+    std::vector<std::string> message_contains;  // what and where
+};
+
+std::string models(const std::string& rel) { return std::string(CBR_ASSIMP_MODELS) + "/glTF2/" + rel; }
+
+class BadInput : public ::testing::TestWithParam<Case> {};
+
+TEST_P(BadInput, OneLineExitTwoNoOutput) {
+    const Case& c = GetParam();
+    auto work = scratchDir("bad-" + c.name);
+    auto out = work / "out";
+    std::vector<std::string> args = {"run", "--res", "64x48", "--frames", "2", "--repeat", "1", "--out", out.string()};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    auto r = runBench(args, work);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    // One line on stderr, nothing half-written.
+    std::string err = r.err;
+    while (!err.empty() && err.back() == '\n') err.pop_back();
+    EXPECT_FALSE(err.empty());
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 0) << err;
+    for (const auto& s : c.message_contains) EXPECT_NE(err.find(s), std::string::npos) << "'" << s << "' not in: " << err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    for (const auto& entry : std::filesystem::directory_iterator(work))
+        EXPECT_EQ(entry.path().filename().string().find("out"), std::string::npos) << entry.path();
+}
+
+std::vector<Case> cases() {
+    auto work = scratchDir("bad-path-files");
+    auto write = [&](const std::string& name, const std::string& text) {
+        auto p = work / name;
+        std::ofstream(p) << text;
+        return p.string();
+    };
+    std::string syntax = write("syntax.json", "{\n  \"fps\": 30,\n  \"keyframes\": [\n");
+    std::string times = write("times.json",
+                              R"({"fps": 30, "keyframes": [{"time": 1, "position": [0,1,5], "target": [0,0,0]},
+                                                         {"time": 0.5, "position": [1,1,5], "target": [0,0,0]}]})");
+    return {
+        {"missing_gltf", {"--scene", "/nonexistent/model.gltf"}, {"/nonexistent/model.gltf"}},
+        {"index_out_of_range", {"--scene", models("IndexOutOfRange/IndexOutOfRange.gltf")}, {"IndexOutOfRange.gltf"}},
+        {"all_indices_out_of_range", {"--scene", models("IndexOutOfRange/AllIndicesOutOfRange.gltf")},
+         {"AllIndicesOutOfRange.gltf"}},
+        {"schema_failure", {"--scene", models("SchemaFailures/sceneWrongType.gltf")}, {"sceneWrongType.gltf"}},
+        {"wrong_types_array", {"--scene", models("wrongTypes/badArray.gltf")}, {"badArray.gltf"}},
+        {"wrong_types_number", {"--scene", models("wrongTypes/badNumber.gltf")}, {"badNumber.gltf"}},
+        {"wrong_types_uint", {"--scene", models("wrongTypes/badUint.gltf")}, {"badUint.gltf"}},
+        {"missing_bin", {"--scene", models("MissingBin/BoxTextured.gltf")}, {"MissingBin/BoxTextured.gltf"}},
+        {"box_with_infinites", {"--scene", models("BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb")},
+         {"BoxWithInfinites.glb"}},
+        {"unknown_scene", {"--scene", "cathedral"}, {"cathedral", "atrium"}},
+        {"unknown_path", {"--path", "spiral"}, {"spiral", "orbit"}},
+        {"path_syntax", {"--path", syntax}, {"syntax.json"}},
+        {"path_times", {"--path", times}, {"times.json", "/keyframes/1/time"}},
+        {"missing_path_file", {"--path", (work / "nope.json").string()}, {"nope.json"}},
+        {"unknown_variant", {"--variants", "full,taa"}, {"taa", "full", "drr"}},
+        {"unknown_device", {"--device", "Voodoo2"}, {"Voodoo2", "llvmpipe"}},
+        {"device_index", {"--device", "17"}, {"--device 17"}},
+        {"zero_resolution", {"--res", "0x540"}, {"--res 0x540", "WIDTHxHEIGHT"}},
+        {"garbage_resolution", {"--res", "wide"}, {"--res wide"}},
+        {"resolution_above_limit", {"--res", "40000x100"}, {"--res 40000x100", "device limit"}},
+        {"bad_shading_cost", {"--shading-cost", "0"}, {"--shading-cost"}},
+        {"bad_drr_scale", {"--drr-scale", "1.5"}, {"--drr-scale"}},
+        {"bad_drr_filter", {"--drr-filter", "lanczos9"}, {"--drr-filter", "bilinear"}},
+        {"unknown_option", {"--frobnicate"}, {"--frobnicate"}},
+    };
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, BadInput, ::testing::ValuesIn(cases()),
+                         [](const auto& info) { return info.param.name; });
+
+}  // namespace
+}  // namespace cbr::test

@@ -1,0 +1,115 @@
+// Runs the real cbrbench executable for end-to-end tests and reads what it wrote.
+#pragma once
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace cbr::test {
+
+struct BenchResult {
+    int exit_code = -1;
+    std::string out;
+    std::string err;
+};
+
+inline std::string slurp(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// A fresh scratch directory per test (under the build tree's temp dir).
+inline std::filesystem::path scratchDir(const std::string& name) {
+    auto dir = std::filesystem::temp_directory_path() / ("cbrbench-test-" + name + "-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+inline std::string shellQuote(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+inline BenchResult runBench(const std::vector<std::string>& args, const std::filesystem::path& cwd) {
+    std::string cmd = "cd " + shellQuote(cwd.string()) + " && " + shellQuote(CBR_BENCH_EXE);
+    for (const auto& a : args) cmd += " " + shellQuote(a);
+    auto out_file = cwd / "stdout.txt", err_file = cwd / "stderr.txt";
+    cmd += " >" + shellQuote(out_file.string()) + " 2>" + shellQuote(err_file.string());
+    int status = std::system(cmd.c_str());
+    BenchResult r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out_file);
+    r.err = slurp(err_file);
+    std::filesystem::remove(out_file);
+    std::filesystem::remove(err_file);
+    return r;
+}
+
+// A parsed CSV: header names -> column index, rows of strings (no quoted commas in
+// the columns tests read).
+struct Csv {
+    std::vector<std::string> header;
+    std::vector<std::vector<std::string>> rows;
+    int col(const std::string& name) const {
+        for (size_t i = 0; i < header.size(); ++i)
+            if (header[i] == name) return int(i);
+        return -1;
+    }
+    std::string at(size_t row, const std::string& name) const {
+        int c = col(name);
+        return c < 0 || size_t(c) >= rows[row].size() ? std::string("<missing>") : rows[row][size_t(c)];
+    }
+};
+
+inline std::vector<std::string> splitCsvLine(const std::string& line) {
+    std::vector<std::string> cells;
+    std::string cur;
+    bool quoted = false;
+    for (size_t i = 0; i < line.size(); ++i) {
+        char c = line[i];
+        if (quoted) {
+            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
+            else if (c == '"') quoted = false;
+            else cur += c;
+        } else if (c == '"') {
+            quoted = true;
+        } else if (c == ',') {
+            cells.push_back(cur);
+            cur.clear();
+        } else {
+            cur += c;
+        }
+    }
+    cells.push_back(cur);
+    return cells;
+}
+
+inline Csv readCsv(const std::filesystem::path& p) {
+    Csv csv;
+    std::istringstream in(slurp(p));
+    std::string line;
+    bool first = true;
+    while (std::getline(in, line)) {
+        if (line.empty()) continue;
+        if (first) csv.header = splitCsvLine(line), first = false;
+        else csv.rows.push_back(splitCsvLine(line));
+    }
+    return csv;
+}
+
+inline nlohmann::json readJson(const std::filesystem::path& p) { return nlohmann::json::parse(slurp(p)); }
+
+}  // namespace cbr::test
