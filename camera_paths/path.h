@@ -18,7 +18,8 @@ struct Keyframe {
     double time = 0;                         // seconds, strictly increasing
     glm::dvec3 position{0};
     std::optional<glm::dvec3> target;        // look-at target, or ...
-    std::optional<glm::dquat> orientation;   // ... an orientation (w, x, y, z normalised)
+    std::optional<glm::dquat> orientation;   // ... an orientation (w, x, y, z normalised);
+                                             // neither (code only): looks down -Z
     double fov_y_deg = 60;                   // vertical field of view
     double near = 0.05;
     double far = 500;
@@ -41,7 +42,8 @@ struct CameraPose {
     double fov_y_rad = 1.0471975511965976;
     double near = 0.05;
     double far = 500;
-    bool cut = false;                        // a cut lies in (previous frame time, this time]
+    bool cut = false;                        // a cut lies in (previous frame time, this time];
+                                             // set by sampleFrames, never by samplePose
     glm::dmat4 view() const;                 // world -> view
 };
 
@@ -56,25 +58,37 @@ struct BuiltinContext {
     Bounds bounds;
     int width = 960;
     int height = 540;
-    std::string scene_name;                  // "atrium" gets a hand-placed flythrough
+    std::string scene_name;                  // "atrium": cameras walk its central aisle;
+                                             // other scenes are viewed from outside the bounds
 };
 
 // Parses a path document. `source` names the file in error messages. Bad input throws
 // std::invalid_argument with one line: "<source>: <JSON pointer>: <what is wrong>;
 // expected <what is accepted>".
 CameraPath parsePath(const nlohmann::json& doc, const std::string& source);
-// Reads and parses a file; JSON syntax errors name the file, line and column.
+// Reads and parses a file; JSON syntax errors name the file, line and column, duplicate
+// keys their JSON pointer. The path's name is the document's "name" or the file stem.
 CameraPath loadPath(const std::filesystem::path& file);
+// The path as a document parsePath accepts (every keyframe field written out), for run
+// metadata and hashing; nothing here writes files.
+nlohmann::json toJson(const CameraPath& path);
 
-// Samples the path at time t (seconds from the first key; clamped to the path).
+// Camera-to-world rotation looking from eye at target with +Y up (glm::lookAt's
+// convention); looking straight up or down keeps +X as the camera's right.
+glm::dquat lookAtOrientation(const glm::dvec3& eye, const glm::dvec3& target);
+
+// Samples the path at time t, in seconds on the keyframes' clock (the times frameTimes
+// returns; equal to seconds from the first key when it is at 0), clamped to the path.
 // Positions: linear or centripetal Catmull-Rom; orientations: slerp. Interpolation
 // never crosses a cut: segments on either side are interpolated independently.
 CameraPose samplePose(const CameraPath& path, double t);
 
-// Frame i is at time i / fps exactly. Number of frames in the path: floor(duration * fps) + 1.
+// Frame i is at time t0 + i / fps exactly (t0: the first key's time). Number of frames in
+// the path: floor(duration * fps) + 1 (0 without keyframes).
 int frameCount(const CameraPath& path);
 // Frame times: frames <= 0 gives the path's own length with t_i = t0 + i / fps; frames = N
-// samples the whole path evenly, t_i = t0 + i * duration / (N - 1) (t0 alone for N = 1).
+// samples the whole path evenly, t_i = t0 + i * duration / (N - 1) (t0 alone for N = 1; the
+// last time is the last key's exactly).
 std::vector<double> frameTimes(const CameraPath& path, int frames);
 // Poses at those times; the cut flag of frame i is set when a cut keyframe's time lies in
 // (t_{i-1}, t_i] (never on frame 0).
