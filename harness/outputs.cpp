@@ -353,6 +353,13 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
         for (const auto& [p, reason] : vr.left_out) passes.push_back({{"name", p}, {"ran", false}, {"reason", reason}});
         json v = {{"name", vr.name}, {"status", vr.status}, {"pipeline", "forward"}, {"passes", passes}};
         if (!vr.note.empty()) v["note"] = vr.note;
+        if (vr.alignment) {
+            const auto& a = *vr.alignment;
+            auto finite = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
+            v["frame_alignment"] = {{"frame", a.frame}, {"psnr_db_same", finite(a.psnr_same)},
+                                    {"psnr_db_prev", finite(a.psnr_prev)}, {"psnr_db_next", finite(a.psnr_next)},
+                                    {"ok", a.ok}};
+        }
         const auto& sm = summaries[i];
         if (sm.frames > 0) {
             v["gpu_ms_median"] = sm.gpu_ms_median;

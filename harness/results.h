@@ -35,8 +35,17 @@ struct FrameRow {
     std::string note;
 };
 
+// metrics.md: once per sequence, PSNR(R_t, V_t) must beat PSNR(R_t, V_t-1) and
+// PSNR(R_t, V_t+1) on a moving path, or the variant's frames are misaligned in time.
+struct AlignmentCheck {
+    int frame = 0;
+    double psnr_same = 0, psnr_prev = 0, psnr_next = 0;
+    bool ok = false;
+};
+
 struct VariantRun {
     std::string name;
+    std::optional<AlignmentCheck> alignment;
     std::string status = "ok";
     std::string note;
     std::vector<std::string> passes_ran;

@@ -151,6 +151,27 @@ void scoreFrame(FrameRow& row, const std::vector<uint8_t>& reference, const std:
     }
 }
 
+bool moving(const std::vector<paths::CameraPose>& poses, size_t mid) {
+    auto differs = [](const paths::CameraPose& a, const paths::CameraPose& b) {
+        return a.position != b.position || a.orientation != b.orientation || a.fov_y_rad != b.fov_y_rad;
+    };
+    return differs(poses[mid - 1], poses[mid]) && differs(poses[mid], poses[mid + 1]);
+}
+
+AlignmentCheck checkAlignment(const std::vector<uint8_t>& variant, const std::vector<uint8_t>& ref_prev,
+                              const std::vector<uint8_t>& ref_same, const std::vector<uint8_t>& ref_next, int w, int h,
+                              int frame) {
+    auto image = [&](const std::vector<uint8_t>& rgba) { return metrics::fromRgba8(rgba.data(), w, h, size_t(w) * 4); };
+    auto v = image(variant);
+    AlignmentCheck a;
+    a.frame = frame;
+    a.psnr_same = metrics::psnr(image(ref_same), v);
+    a.psnr_prev = metrics::psnr(image(ref_prev), v);
+    a.psnr_next = metrics::psnr(image(ref_next), v);
+    a.ok = a.psnr_same > a.psnr_prev && a.psnr_same > a.psnr_next;
+    return a;
+}
+
 }  // namespace
 
 void parseResolution(const std::string& text, uint32_t& width, uint32_t& height) {
@@ -186,6 +207,9 @@ int runBenchmark(const RunOptions& options) {
 
     const int w = int(p.settings.width), h = int(p.settings.height);
     std::vector<std::shared_ptr<const std::vector<uint8_t>>> reference(p.poses.size());
+    // The alignment check looks at the middle frame of a path of at least 3 frames.
+    const size_t mid = p.poses.size() / 2;
+    std::vector<std::shared_ptr<const std::vector<uint8_t>>> mid_images(p.order.size());
     unsigned hw = std::thread::hardware_concurrency();
     WorkerPool workers(std::max(1u, hw / 2));
     Progress progress(int(p.order.size() * p.poses.size()) * options.repeat);
@@ -246,6 +270,7 @@ int runBenchmark(const RunOptions& options) {
                 if (fr.rgba.empty()) return;
                 auto image = std::make_shared<const std::vector<uint8_t>>(std::move(fr.rgba));
                 size_t i = size_t(fr.index);
+                if (i == mid) mid_images[vi] = image;
                 if (name == "full") {
                     reference[i] = image;
                     row.quality.mse = 0.0;  // the reference against itself
@@ -307,6 +332,12 @@ int runBenchmark(const RunOptions& options) {
         }
     }
     workers.wait();
+    if (p.poses.size() >= 3 && moving(p.poses, mid))
+        for (size_t vi = 0; vi < p.order.size(); ++vi)
+            if (p.order[vi]->name != "full" && mid_images[vi] && reference[mid - 1] && reference[mid] && reference[mid + 1])
+                results.variants[vi].alignment =
+                    checkAlignment(*mid_images[vi], *reference[mid - 1], *reference[mid], *reference[mid + 1], w, h,
+                                   int(mid));
     renderers.clear();
     gpu::destroyGpuScene(ctx, gpu_scene);
     results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

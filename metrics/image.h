@@ -27,7 +27,12 @@ struct Image {
 Image fromRgba8(const uint8_t* rgba, int width, int height, size_t row_stride_bytes);
 // 8-bit RGB -> RGB double.
 Image fromRgb8(const uint8_t* rgb, int width, int height);
-// BT.709 luma Y = 0.2126 R + 0.7152 G + 0.0722 B (one channel).
+// BT.709 luma Y = 0.2126 R + 0.7152 G + 0.0722 B (one channel). A one-channel image
+// is returned unchanged.
 Image luma(const Image& rgb);
+// The one luma formula, shared by luma() and the SSIM pass that scores luma alongside
+// RGB. Evaluated left to right like numpy's 0.2126*r + 0.7152*g + 0.0722*b, so values
+// match scikit-image test references bit for bit.
+inline double bt709Luma(double r, double g, double b) { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
 
 }  // namespace cbr::metrics

@@ -6,16 +6,20 @@
 namespace cbr::metrics {
 
 // Mean squared error over all pixels and channels. Throws std::invalid_argument
-// when the shapes differ.
+// when the shapes differ, the image is empty, has other than 1 or 3 channels, data
+// does not hold width * height * channels values, or a value is NaN or infinite
+// (the same checks guard psnr, ssim and ssimMap).
 double mse(const Image& a, const Image& b);
 
 // PSNR = 10 log10(1 / mse) for [0,1] data; +infinity when mse == 0 (identical images).
+// Throws std::invalid_argument for a negative, NaN or infinite mse.
 double psnrFromMse(double mse);
 double psnr(const Image& a, const Image& b);
 
 struct SsimResult {
     double ssim = 0;  // plain mean of per-channel SSIM (scikit-image channel_axis convention)
-    double luma_ssim = 0;  // SSIM of BT.709 luma, reported besides, labelled
+    double luma_ssim = 0;  // SSIM of BT.709 luma, reported besides, labelled;
+                           // equal to ssim for one-channel inputs
 };
 
 // Wang et al. 2004 exactly: Gaussian 11x11 window, sigma 1.5, K1 0.01, K2 0.03, L 1,

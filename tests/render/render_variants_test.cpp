@@ -99,6 +99,9 @@ TEST(RenderVariants, QualityIsScoredAgainstFull) {
         EXPECT_LT(ssim, 1.0) << v;
         EXPECT_GT(ssim, 0.3) << v;
     }
+    // Frames are aligned in time: drr's middle frame matches full's same frame best.
+    for (const auto& v : r.run["variants"])
+        if (v["name"] == "drr") EXPECT_TRUE(v["frame_alignment"]["ok"].get<bool>()) << v.dump();
     // Scores recompute from the saved PNGs (metrics.md): frame 3 of drr.
     auto ref = metrics::readPng(r.dir / "frames" / "full_0003.png");
     auto drr = metrics::readPng(r.dir / "frames" / "drr_0003.png");
@@ -116,6 +119,32 @@ TEST(RenderVariants, QualityIsScoredAgainstFull) {
         }
 }
 
+TEST(RenderVariants, DynamicResolutionFollowsItsTargetWithinBounds) {
+    // A target no frame can meet drives the scale down in steps of at most 0.05 to the
+    // 0.5 bound; one every frame meets keeps it at 1. Every frame's scale is recorded.
+    auto low = runSmall("drr-low", "atrium", "orbit", {"--variants", "drr", "--drr-target-ms", "0.000001"});
+    auto high = runSmall("drr-high", "atrium", "orbit", {"--variants", "drr", "--drr-target-ms", "1000000"});
+    ASSERT_EQ(low.result.exit_code, 0) << low.result.err;
+    ASSERT_EQ(high.result.exit_code, 0) << high.result.err;
+    auto scales = [](const SmallRun& r) {
+        std::vector<double> s;
+        for (size_t i = 0; i < r.frames.rows.size(); ++i)
+            if (r.frames.at(i, "variant") == "drr" && r.frames.at(i, "repeat") == "0")
+                s.push_back(std::stod(r.frames.at(i, "render_scale")));
+        return s;
+    };
+    auto ls = scales(low), hs = scales(high);
+    ASSERT_EQ(ls.size(), 6u);
+    for (size_t i = 1; i < ls.size(); ++i) {
+        EXPECT_LE(ls[i], ls[i - 1] + 1e-12);
+        EXPECT_GE(ls[i - 1] - ls[i], -1e-12);
+        EXPECT_LE(ls[i - 1] - ls[i], 0.05 + 1e-12);
+        EXPECT_GE(ls[i], 0.5 - 1e-12);
+    }
+    EXPECT_LT(ls.back(), ls.front());
+    for (double s : hs) EXPECT_DOUBLE_EQ(s, 1.0);
+}
+
 TEST(RenderVariants, SceneWithoutTransparencyRunsNoTransparentPass) {
     auto r = runSmall("blocks", "blocks", "static");
     ASSERT_EQ(r.result.exit_code, 0) << r.result.err;
@@ -130,11 +159,20 @@ TEST(RenderVariants, SceneWithoutTransparencyRunsNoTransparentPass) {
     EXPECT_EQ(r.frames.col("gpu_ms_transparent"), -1);
 }
 
-TEST(RenderVariants, ShadingCostKeepsTheImage) {
+TEST(RenderVariants, DeterministicAndShadingCostKeepsTheImage) {
     auto a = runSmall("det-a", "atrium", "flythrough", {"--variants", "full"});
     auto b = runSmall("det-b", "atrium", "flythrough", {"--variants", "full", "--shading-cost", "4"});
+    auto c = runSmall("det-c", "atrium", "flythrough", {"--variants", "full"});
     ASSERT_EQ(a.result.exit_code, 0) << a.result.err;
     ASSERT_EQ(b.result.exit_code, 0) << b.result.err;
+    ASSERT_EQ(c.result.exit_code, 0) << c.result.err;
+    // Deterministic: the same frame renders the same image every time.
+    for (int f = 0; f < 6; ++f) {
+        char name[32];
+        std::snprintf(name, sizeof name, "full_%04d.png", f);
+        EXPECT_EQ(metrics::readPng(a.dir / "frames" / name).pixels, metrics::readPng(c.dir / "frames" / name).pixels)
+            << name;
+    }
     // Cost 1 and cost 4 must agree to within 8-bit rounding of a re-ordered light sum.
     for (int f : {0, 5}) {
         char name[32];
