@@ -49,12 +49,15 @@ void CsvTable::addRow(const std::map<std::string, Cell>& row) {
 
 std::string CsvTable::str() const {
     std::string out;
-    for (size_t i = 0; i < columns_.size(); ++i) out += (i ? "," : "") + csvEscape(columns_[i]);
-    out += '\n';
-    for (const auto& row : rows_) {
-        for (size_t i = 0; i < row.size(); ++i) out += (i ? "," : "") + csvEscape(row[i]);
+    auto line = [&out](const std::vector<std::string>& cells) {
+        for (size_t i = 0; i < cells.size(); ++i) {
+            if (i) out += ',';
+            out += csvEscape(cells[i]);
+        }
         out += '\n';
-    }
+    };
+    line(columns_);
+    for (const auto& row : rows_) line(row);
     return out;
 }
 
