@@ -1,4 +1,4 @@
-// glTF 2.0 through tinygltf: checked accessors, flattened node tree, materials, textures, lights.
+// glTF 2.0 through tinygltf: checked accessors, triangle primitives, flattened node tree, lights.
 //
 // Everything read from a buffer is bounds-checked first and every float is checked to be
 // finite, so no NaN/Inf vertex, out-of-range index or dangling reference reaches the GPU.
@@ -7,48 +7,16 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
-#include <map>
-#include <optional>
 #include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
-#include <tiny_gltf.h>
 
-#include "renderer/scene/gltf_validate.h"
-#include "renderer/scene/scene.h"
+#include "renderer/scene/gltf_internal.h"
 
 namespace cbr::scene {
 namespace {
-
-struct Context {
-    std::string file;
-    const tinygltf::Model& model;
-    Scene& scene;
-    std::map<std::pair<int, bool>, int> textures;  // (image, sRGB) -> Scene texture
-    std::vector<int> materials;                    // glTF material -> Scene material, -1 until used
-    int default_material = -1;
-    std::vector<std::optional<std::vector<int>>> meshes;  // glTF mesh -> Scene meshes
-    int skipped_primitives = 0;                           // points and lines
-};
-
-[[noreturn]] void fail(const Context& ctx, const std::string& where, const std::string& what, const std::string& expected) {
-    gltfFail(ctx.file, where, what, expected);
-}
-
-std::string at(const char* array, size_t index) {
-    std::string pointer("/");  // built by appending: GCC 12 warns falsely on "literal" + string&&
-    pointer += array;
-    pointer += '/';
-    pointer += std::to_string(index);
-    return pointer;
-}
-
-std::string indexRange(const char* array, size_t count) {
-    return count ? "an index into /" + std::string(array) + " (0.." + std::to_string(count - 1) + ")"
-                 : "no reference: /" + std::string(array) + " is empty";
-}
 
 // ---- accessors -------------------------------------------------------------------------
 
@@ -93,25 +61,25 @@ std::string typeName(int type) {
 
 // Checks type, component type, and that every element lies inside its buffer view and
 // buffer, before anything is read.
-View viewAccessor(const Context& ctx, int index, const std::string& used_by, int type,
+View viewAccessor(const GltfContext& ctx, int index, const std::string& used_by, int type,
                   std::initializer_list<int> component_types) {
     const auto& accessors = ctx.model.accessors;
     if (index < 0 || size_t(index) >= accessors.size())
-        fail(ctx, used_by, "accessor " + std::to_string(index) + " does not exist", indexRange("accessors", accessors.size()));
+        gltfError(ctx, used_by, "accessor " + std::to_string(index) + " does not exist", gltfIndexRange("accessors", accessors.size()));
     const tinygltf::Accessor& a = accessors[size_t(index)];
     View view;
-    view.pointer = at("accessors", size_t(index));
+    view.pointer = gltfAt("accessors", size_t(index));
     view.used_by = used_by;
     const std::string context = " (used by " + used_by + ")";
-    if (a.sparse.isSparse) fail(ctx, view.pointer + "/sparse", "sparse accessors are not supported" + context, "a plain accessor");
-    if (a.type != type) fail(ctx, view.pointer + "/type", "is " + typeName(a.type) + context, typeName(type));
+    if (a.sparse.isSparse) gltfError(ctx, view.pointer + "/sparse", "sparse accessors are not supported" + context, "a plain accessor");
+    if (a.type != type) gltfError(ctx, view.pointer + "/type", "is " + typeName(a.type) + context, typeName(type));
     if (std::find(component_types.begin(), component_types.end(), a.componentType) == component_types.end()) {
         std::string accepted;
         for (int t : component_types) accepted += (accepted.empty() ? "" : " or ") + componentName(t);
-        fail(ctx, view.pointer + "/componentType", "is " + componentName(a.componentType) + context, accepted);
+        gltfError(ctx, view.pointer + "/componentType", "is " + componentName(a.componentType) + context, accepted);
     }
     if (a.count == 0 || a.count > (size_t(1) << 31))
-        fail(ctx, view.pointer + "/count", "is " + std::to_string(a.count) + context, "1 to 2^31 elements");
+        gltfError(ctx, view.pointer + "/count", "is " + std::to_string(a.count) + context, "1 to 2^31 elements");
     view.count = a.count;
     view.components = type == TINYGLTF_TYPE_SCALAR ? 1 : type;
     view.component_type = a.componentType;
@@ -122,29 +90,29 @@ View viewAccessor(const Context& ctx, int index, const std::string& used_by, int
 
     const auto& views = ctx.model.bufferViews;
     if (size_t(a.bufferView) >= views.size())
-        fail(ctx, view.pointer + "/bufferView", std::to_string(a.bufferView) + " does not exist", indexRange("bufferViews", views.size()));
+        gltfError(ctx, view.pointer + "/bufferView", std::to_string(a.bufferView) + " does not exist", gltfIndexRange("bufferViews", views.size()));
     const tinygltf::BufferView& bv = views[size_t(a.bufferView)];
-    const std::string bv_pointer = at("bufferViews", size_t(a.bufferView));
+    const std::string bv_pointer = gltfAt("bufferViews", size_t(a.bufferView));
     if (bv.buffer < 0 || size_t(bv.buffer) >= ctx.model.buffers.size())
-        fail(ctx, bv_pointer + "/buffer", std::to_string(bv.buffer) + " does not exist", indexRange("buffers", ctx.model.buffers.size()));
+        gltfError(ctx, bv_pointer + "/buffer", std::to_string(bv.buffer) + " does not exist", gltfIndexRange("buffers", ctx.model.buffers.size()));
     const std::vector<unsigned char>& data = ctx.model.buffers[size_t(bv.buffer)].data;
     if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
-        fail(ctx, bv_pointer, "bytes " + std::to_string(bv.byteOffset) + ".." + std::to_string(bv.byteOffset + bv.byteLength) +
+        gltfError(ctx, bv_pointer, "bytes " + std::to_string(bv.byteOffset) + ".." + std::to_string(bv.byteOffset + bv.byteLength) +
                                   " lie outside /buffers/" + std::to_string(bv.buffer) + " (" + std::to_string(data.size()) + " bytes)",
              "a view inside its buffer");
     if (bv.byteStride != 0) {
         if (bv.byteStride < element)
-            fail(ctx, bv_pointer + "/byteStride", std::to_string(bv.byteStride) + " is less than one element of " + view.pointer +
+            gltfError(ctx, bv_pointer + "/byteStride", std::to_string(bv.byteStride) + " is less than one element of " + view.pointer +
                                                       " (" + std::to_string(element) + " bytes)" + context,
                  "a stride of at least " + std::to_string(element));
         if (type == TINYGLTF_TYPE_SCALAR && used_by.ends_with("/indices") && bv.byteStride != element)
-            fail(ctx, bv_pointer + "/byteStride", "is set on an index buffer view" + context, "no byteStride for indices");
+            gltfError(ctx, bv_pointer + "/byteStride", "is set on an index buffer view" + context, "no byteStride for indices");
         view.stride = bv.byteStride;
     }
     // Overflow-safe: count <= 2^31 and stride <= 252, so the product fits in size_t.
     const size_t needed = view.stride * (view.count - 1) + element;
     if (a.byteOffset > bv.byteLength || needed > bv.byteLength - a.byteOffset)
-        fail(ctx, view.pointer, std::to_string(view.count) + " elements of " + std::to_string(element) + " bytes (stride " +
+        gltfError(ctx, view.pointer, std::to_string(view.count) + " elements of " + std::to_string(element) + " bytes (stride " +
                                     std::to_string(view.stride) + ") from byteOffset " + std::to_string(a.byteOffset) +
                                     " need " + std::to_string(a.byteOffset + needed) + " bytes but " + bv_pointer + " has " +
                                     std::to_string(bv.byteLength) + context,
@@ -153,7 +121,7 @@ View viewAccessor(const Context& ctx, int index, const std::string& used_by, int
     return view;
 }
 
-std::vector<float> readFloats(const Context& ctx, const View& view) {
+std::vector<float> readFloats(const GltfContext& ctx, const View& view) {
     std::vector<float> out(view.count * size_t(view.components), 0.0f);
     if (!view.data) return out;
     for (size_t i = 0; i < view.count; ++i) {
@@ -170,7 +138,7 @@ std::vector<float> readFloats(const Context& ctx, const View& view) {
                 value = float(v) / 65535.0f;
             }
             if (!std::isfinite(value))
-                fail(ctx, view.pointer, "element " + std::to_string(i) + " has a non-finite component (" + std::to_string(value) +
+                gltfError(ctx, view.pointer, "element " + std::to_string(i) + " has a non-finite component (" + std::to_string(value) +
                                             ") (used by " + view.used_by + ")",
                      "finite numbers (no NaN or infinity)");
             out[i * size_t(view.components) + size_t(c)] = value;
@@ -192,128 +160,16 @@ std::vector<uint32_t> readIndices(const View& view) {
     return out;
 }
 
-// ---- textures and materials -------------------------------------------------------------
-
-// Decoded images may have 1-4 channels of 8 or 16 bits; the renderer takes RGBA8.
-int sceneTexture(Context& ctx, int index, bool srgb, const std::string& used_by) {
-    const auto& textures = ctx.model.textures;
-    if (index < 0 || size_t(index) >= textures.size())
-        fail(ctx, used_by + "/index", std::to_string(index) + " does not exist", indexRange("textures", textures.size()));
-    const int source = textures[size_t(index)].source;
-    const std::string tex_pointer = at("textures", size_t(index));
-    if (source < 0)
-        fail(ctx, tex_pointer, "has no source image", "a source (image extensions such as KHR_texture_basisu are not supported)");
-    if (size_t(source) >= ctx.model.images.size())
-        fail(ctx, tex_pointer + "/source", std::to_string(source) + " does not exist", indexRange("images", ctx.model.images.size()));
-    // One image used both as colour (sRGB) and as data (linear) becomes two textures.
-    if (auto it = ctx.textures.find({source, srgb}); it != ctx.textures.end()) return it->second;
-
-    const tinygltf::Image& image = ctx.model.images[size_t(source)];
-    const std::string pointer = at("images", size_t(source));
-    const int w = image.width, h = image.height, channels = image.component, bits = image.bits;
-    if (w <= 0 || h <= 0 || w > 16384 || h > 16384 || channels < 1 || channels > 4 || (bits != 8 && bits != 16))
-        fail(ctx, pointer, "decoded to " + std::to_string(w) + "x" + std::to_string(h) + " with " + std::to_string(channels) +
-                               " channels of " + std::to_string(bits) + " bits",
-             "an image up to 16384x16384 with 1 to 4 channels of 8 or 16 bits");
-    const size_t pixels = size_t(w) * size_t(h), bytes_per_channel = size_t(bits / 8);
-    if (image.image.size() != pixels * size_t(channels) * bytes_per_channel)
-        fail(ctx, pointer, "decoded pixel data has " + std::to_string(image.image.size()) + " bytes",
-             std::to_string(pixels * size_t(channels) * bytes_per_channel) + " bytes for its size");
-    Texture texture;
-    texture.name = !image.name.empty() ? image.name : !image.uri.empty() && image.uri.rfind("data:", 0) != 0 ? image.uri
-                                                                                                             : "image " + std::to_string(source);
-    texture.width = w;
-    texture.height = h;
-    texture.srgb = srgb;
-    texture.rgba8.resize(pixels * 4);
-    auto channel = [&](size_t pixel, int c) -> uint8_t {
-        const uint8_t* p = image.image.data() + (pixel * size_t(channels) + size_t(c)) * bytes_per_channel;
-        if (bits == 8) return *p;
-        uint16_t v;
-        std::memcpy(&v, p, 2);
-        return uint8_t((uint32_t(v) * 255u + 32767u) / 65535u);
-    };
-    for (size_t i = 0; i < pixels; ++i) {
-        uint8_t* out = &texture.rgba8[i * 4];
-        if (channels <= 2) {  // grey (+ alpha)
-            out[0] = out[1] = out[2] = channel(i, 0);
-            out[3] = channels == 2 ? channel(i, 1) : 255;
-        } else {
-            for (int c = 0; c < 3; ++c) out[c] = channel(i, c);
-            out[3] = channels == 4 ? channel(i, 3) : 255;
-        }
-    }
-    ctx.scene.textures.push_back(std::move(texture));
-    const int result = int(ctx.scene.textures.size()) - 1;
-    ctx.textures[{source, srgb}] = result;
-    return result;
-}
-
-float finiteFactor(const Context& ctx, double value, const std::string& where) {
-    if (!std::isfinite(value)) fail(ctx, where, "is not finite", "a finite number");
-    return float(value);
-}
-
-int sceneMaterial(Context& ctx, int index, const std::string& used_by) {
-    if (index < 0) {  // glTF's default material: white, metallic 1, roughness 1
-        if (ctx.default_material < 0) {
-            Material m;
-            m.name = "default";
-            ctx.scene.materials.push_back(m);
-            ctx.default_material = int(ctx.scene.materials.size()) - 1;
-        }
-        return ctx.default_material;
-    }
-    const auto& materials = ctx.model.materials;
-    if (size_t(index) >= materials.size())
-        fail(ctx, used_by + "/material", std::to_string(index) + " does not exist", indexRange("materials", materials.size()));
-    if (ctx.materials[size_t(index)] >= 0) return ctx.materials[size_t(index)];
-
-    const tinygltf::Material& src = materials[size_t(index)];
-    const std::string p = at("materials", size_t(index));
-    const auto& pbr = src.pbrMetallicRoughness;
-    Material m;
-    m.name = src.name.empty() ? "material " + std::to_string(index) : src.name;
-    if (pbr.baseColorFactor.size() == 4)
-        for (int c = 0; c < 4; ++c) m.base_color_factor[c] = finiteFactor(ctx, pbr.baseColorFactor[size_t(c)], p + "/pbrMetallicRoughness/baseColorFactor");
-    m.metallic_factor = finiteFactor(ctx, pbr.metallicFactor, p + "/pbrMetallicRoughness/metallicFactor");
-    m.roughness_factor = finiteFactor(ctx, pbr.roughnessFactor, p + "/pbrMetallicRoughness/roughnessFactor");
-    if (src.emissiveFactor.size() == 3)
-        for (int c = 0; c < 3; ++c) m.emissive_factor[c] = finiteFactor(ctx, src.emissiveFactor[size_t(c)], p + "/emissiveFactor");
-    if (auto it = src.extensions.find("KHR_materials_emissive_strength"); it != src.extensions.end() &&
-                                                                            it->second.Has("emissiveStrength"))
-        m.emissive_factor *= finiteFactor(ctx, it->second.Get("emissiveStrength").GetNumberAsDouble(),
-                                          p + "/extensions/KHR_materials_emissive_strength/emissiveStrength");
-    m.normal_scale = finiteFactor(ctx, src.normalTexture.scale, p + "/normalTexture/scale");
-    m.occlusion_strength = finiteFactor(ctx, src.occlusionTexture.strength, p + "/occlusionTexture/strength");
-    m.alpha_cutoff = finiteFactor(ctx, src.alphaCutoff, p + "/alphaCutoff");
-    if (src.alphaMode == "MASK") m.alpha_mode = AlphaMode::Mask;
-    else if (src.alphaMode == "BLEND") m.alpha_mode = AlphaMode::Blend;
-    else if (src.alphaMode.empty() || src.alphaMode == "OPAQUE") m.alpha_mode = AlphaMode::Opaque;
-    else fail(ctx, p + "/alphaMode", "is \"" + src.alphaMode + "\"", "\"OPAQUE\", \"MASK\" or \"BLEND\"");
-    m.double_sided = src.doubleSided;
-    if (pbr.baseColorTexture.index >= 0)
-        m.base_color_texture = sceneTexture(ctx, pbr.baseColorTexture.index, true, p + "/pbrMetallicRoughness/baseColorTexture");
-    if (pbr.metallicRoughnessTexture.index >= 0)
-        m.metallic_roughness_texture = sceneTexture(ctx, pbr.metallicRoughnessTexture.index, false, p + "/pbrMetallicRoughness/metallicRoughnessTexture");
-    if (src.normalTexture.index >= 0) m.normal_texture = sceneTexture(ctx, src.normalTexture.index, false, p + "/normalTexture");
-    if (src.occlusionTexture.index >= 0) m.occlusion_texture = sceneTexture(ctx, src.occlusionTexture.index, false, p + "/occlusionTexture");
-    if (src.emissiveTexture.index >= 0) m.emissive_texture = sceneTexture(ctx, src.emissiveTexture.index, true, p + "/emissiveTexture");
-    ctx.scene.materials.push_back(std::move(m));
-    ctx.materials[size_t(index)] = int(ctx.scene.materials.size()) - 1;
-    return ctx.materials[size_t(index)];
-}
-
 // ---- primitives ------------------------------------------------------------------------
 
 // Strips and fans become lists with the winding glTF 2.0 (section 3.7.2.1) defines.
-std::vector<uint32_t> toTriangleList(const Context& ctx, int mode, const std::vector<uint32_t>& in, const std::string& p) {
+std::vector<uint32_t> toTriangleList(const GltfContext& ctx, int mode, const std::vector<uint32_t>& in, const std::string& p) {
     const std::string what = std::to_string(in.size()) + (p.ends_with("indices") ? " indices" : " vertices");
     if (mode == TINYGLTF_MODE_TRIANGLES) {
-        if (in.size() % 3 != 0) fail(ctx, p, what + " is not a multiple of 3", "whole triangles (TRIANGLES mode)");
+        if (in.size() % 3 != 0) gltfError(ctx, p, what + " is not a multiple of 3", "whole triangles (TRIANGLES mode)");
         return in;
     }
-    if (in.size() < 3) fail(ctx, p, what + " make no triangle", "at least 3 for a strip or fan");
+    if (in.size() < 3) gltfError(ctx, p, what + " make no triangle", "at least 3 for a strip or fan");
     std::vector<uint32_t> out;
     out.reserve((in.size() - 2) * 3);
     for (size_t i = 0; i + 2 < in.size(); ++i) {
@@ -325,19 +181,19 @@ std::vector<uint32_t> toTriangleList(const Context& ctx, int mode, const std::ve
     return out;
 }
 
-int loadPrimitive(Context& ctx, size_t mesh_index, size_t prim_index) {
+int loadPrimitive(GltfContext& ctx, size_t mesh_index, size_t prim_index) {
     const tinygltf::Mesh& mesh = ctx.model.meshes[mesh_index];
     const tinygltf::Primitive& prim = mesh.primitives[prim_index];
-    const std::string p = at("meshes", mesh_index) + "/primitives/" + std::to_string(prim_index);
+    const std::string p = gltfAt("meshes", mesh_index) + "/primitives/" + std::to_string(prim_index);
     const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
     if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
         ++ctx.skipped_primitives;
         return -1;
     }
-    if (mode > TINYGLTF_MODE_TRIANGLE_FAN) fail(ctx, p + "/mode", "is " + std::to_string(mode), "0 to 6");
+    if (mode > TINYGLTF_MODE_TRIANGLE_FAN) gltfError(ctx, p + "/mode", "is " + std::to_string(mode), "0 to 6");
 
     const auto position_it = prim.attributes.find("POSITION");
-    if (position_it == prim.attributes.end()) fail(ctx, p + "/attributes", "has no POSITION", "a POSITION accessor (VEC3, FLOAT)");
+    if (position_it == prim.attributes.end()) gltfError(ctx, p + "/attributes", "has no POSITION", "a POSITION accessor (VEC3, FLOAT)");
     const View positions_view = viewAccessor(ctx, position_it->second, p + "/attributes/POSITION", TINYGLTF_TYPE_VEC3,
                                              {TINYGLTF_COMPONENT_TYPE_FLOAT});
     const std::vector<float> positions = readFloats(ctx, positions_view);
@@ -348,10 +204,10 @@ int loadPrimitive(Context& ctx, size_t mesh_index, size_t prim_index) {
         const std::string where = p + "/attributes/" + name;
         const View view = viewAccessor(ctx, it->second, where, type, component_types);
         if (view.count != vertex_count)
-            fail(ctx, where, "has " + std::to_string(view.count) + " elements but POSITION has " + std::to_string(vertex_count),
+            gltfError(ctx, where, "has " + std::to_string(view.count) + " elements but POSITION has " + std::to_string(vertex_count),
                  "the same count for every attribute");
         if (view.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !view.normalized)
-            fail(ctx, view.pointer + "/normalized", "is false for an integer " + std::string(name), "normalized: true");
+            gltfError(ctx, view.pointer + "/normalized", "is false for an integer " + std::string(name), "normalized: true");
         return readFloats(ctx, view);
     };
     const std::vector<float> normals = attribute("NORMAL", TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
@@ -369,7 +225,7 @@ int loadPrimitive(Context& ctx, size_t mesh_index, size_t prim_index) {
         indices = readIndices(view);
         for (size_t i = 0; i < indices.size(); ++i)
             if (indices[i] >= vertex_count)
-                fail(ctx, index_pointer, "index " + std::to_string(indices[i]) + " at position " + std::to_string(i) + " of " +
+                gltfError(ctx, index_pointer, "index " + std::to_string(indices[i]) + " at position " + std::to_string(i) + " of " +
                                              view.pointer + " is out of range (POSITION has " + std::to_string(vertex_count) + " vertices)",
                      "indices below " + std::to_string(vertex_count));
     } else {
@@ -403,14 +259,14 @@ int loadPrimitive(Context& ctx, size_t mesh_index, size_t prim_index) {
     Scene& scene = ctx.scene;
     if (scene.vertices.size() + vertex_count > size_t(std::numeric_limits<int32_t>::max()) ||
         scene.indices.size() + triangles.size() > size_t(std::numeric_limits<uint32_t>::max()))
-        fail(ctx, p, "the scene exceeds 2^31 vertices or 2^32 indices", "a smaller scene");
+        gltfError(ctx, p, "the scene exceeds 2^31 vertices or 2^32 indices", "a smaller scene");
     Mesh out;
     out.name = (mesh.name.empty() ? "mesh " + std::to_string(mesh_index) : mesh.name) +
                (mesh.primitives.size() > 1 ? "#" + std::to_string(prim_index) : "");
     out.first_index = uint32_t(scene.indices.size());
     out.index_count = uint32_t(triangles.size());
     out.vertex_offset = int32_t(scene.vertices.size());
-    out.material = sceneMaterial(ctx, prim.material, p);
+    out.material = gltfMaterial(ctx, prim.material, p);
     out.bounds_min = glm::vec3(std::numeric_limits<float>::max());
     out.bounds_max = glm::vec3(-std::numeric_limits<float>::max());
     for (const Vertex& v : vertices) {
@@ -423,7 +279,7 @@ int loadPrimitive(Context& ctx, size_t mesh_index, size_t prim_index) {
     return int(scene.meshes.size()) - 1;
 }
 
-const std::vector<int>& sceneMeshes(Context& ctx, size_t mesh_index) {
+const std::vector<int>& sceneMeshes(GltfContext& ctx, size_t mesh_index) {
     if (!ctx.meshes[mesh_index]) {
         std::vector<int> list;
         for (size_t i = 0; i < ctx.model.meshes[mesh_index].primitives.size(); ++i)
@@ -435,8 +291,8 @@ const std::vector<int>& sceneMeshes(Context& ctx, size_t mesh_index) {
 
 // ---- nodes -----------------------------------------------------------------------------
 
-glm::mat4 localTransform(const Context& ctx, const tinygltf::Node& node, size_t index) {
-    const std::string p = at("nodes", index);
+glm::mat4 localTransform(const GltfContext& ctx, const tinygltf::Node& node, size_t index) {
+    const std::string p = gltfAt("nodes", index);
     glm::dmat4 local(1.0);
     if (node.matrix.size() == 16) {
         local = glm::make_mat4(node.matrix.data());  // both column-major
@@ -445,7 +301,7 @@ glm::mat4 localTransform(const Context& ctx, const tinygltf::Node& node, size_t 
             local = glm::translate(local, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
         if (node.rotation.size() == 4) {
             const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
-            if (!(glm::length(q) > 1e-12)) fail(ctx, p + "/rotation", "is a zero quaternion", "a unit quaternion (x, y, z, w)");
+            if (!(glm::length(q) > 1e-12)) gltfError(ctx, p + "/rotation", "is a zero quaternion", "a unit quaternion (x, y, z, w)");
             local = local * glm::mat4_cast(glm::normalize(q));
         }
         if (node.scale.size() == 3) local = glm::scale(local, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
@@ -453,21 +309,21 @@ glm::mat4 localTransform(const Context& ctx, const tinygltf::Node& node, size_t 
     const glm::mat4 result(local);
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(result[c][r])) fail(ctx, p, "has a non-finite transform", "finite matrix, translation, rotation and scale");
+            if (!std::isfinite(result[c][r])) gltfError(ctx, p, "has a non-finite transform", "finite matrix, translation, rotation and scale");
     return result;
 }
 
 // glTF nodes form strict trees: one parent at most, no cycles (RecursiveNodes has one).
-std::vector<int> checkTree(const Context& ctx) {
+std::vector<int> checkTree(const GltfContext& ctx) {
     const auto& nodes = ctx.model.nodes;
     std::vector<int> parent(nodes.size(), -1);
     for (size_t i = 0; i < nodes.size(); ++i)
         for (size_t k = 0; k < nodes[i].children.size(); ++k) {
             const int c = nodes[i].children[k];
-            const std::string where = at("nodes", i) + "/children/" + std::to_string(k);
-            if (c < 0 || size_t(c) >= nodes.size()) fail(ctx, where, std::to_string(c) + " does not exist", indexRange("nodes", nodes.size()));
+            const std::string where = gltfAt("nodes", i) + "/children/" + std::to_string(k);
+            if (c < 0 || size_t(c) >= nodes.size()) gltfError(ctx, where, std::to_string(c) + " does not exist", gltfIndexRange("nodes", nodes.size()));
             if (parent[size_t(c)] >= 0)
-                fail(ctx, where, "node " + std::to_string(c) + " already has parent node " + std::to_string(parent[size_t(c)]),
+                gltfError(ctx, where, "node " + std::to_string(c) + " already has parent node " + std::to_string(parent[size_t(c)]),
                      "a tree (each node has at most one parent)");
             parent[size_t(c)] = int(i);
         }
@@ -481,20 +337,20 @@ std::vector<int> checkTree(const Context& ctx) {
             n = parent[size_t(n)];
         }
         if (n >= 0 && state[size_t(n)] == 1)
-            fail(ctx, at("nodes", size_t(n)), "is its own ancestor (the children lists form a cycle)",
+            gltfError(ctx, gltfAt("nodes", size_t(n)), "is its own ancestor (the children lists form a cycle)",
                  "a tree (no node may be its own ancestor)");
         for (size_t w : walk) state[w] = 2;
     }
     return parent;
 }
 
-void addLight(Context& ctx, const tinygltf::Node& node, size_t node_index, const glm::mat4& world) {
+void addLight(GltfContext& ctx, const tinygltf::Node& node, size_t node_index, const glm::mat4& world) {
     const auto it = node.extensions.find("KHR_lights_punctual");
     if (it == node.extensions.end() || !it->second.Has("light")) return;
     const int index = it->second.Get("light").GetNumberAsInt();
-    const std::string where = at("nodes", node_index) + "/extensions/KHR_lights_punctual/light";
+    const std::string where = gltfAt("nodes", node_index) + "/extensions/KHR_lights_punctual/light";
     if (index < 0 || size_t(index) >= ctx.model.lights.size())
-        fail(ctx, where, std::to_string(index) + " does not exist", "an index into /extensions/KHR_lights_punctual/lights");
+        gltfError(ctx, where, std::to_string(index) + " does not exist", "an index into /extensions/KHR_lights_punctual/lights");
     const tinygltf::Light& src = ctx.model.lights[size_t(index)];
     Light light;
     // Spot lights are lit as point lights: the renderer has no cone.
@@ -502,7 +358,7 @@ void addLight(Context& ctx, const tinygltf::Node& node, size_t node_index, const
     light.position = glm::vec3(world[3]);
     const glm::vec3 direction = glm::mat3(world) * glm::vec3(0, 0, -1);
     if (light.type == Light::Type::Directional && !(glm::length(direction) > 1e-12f))
-        fail(ctx, at("nodes", node_index), "a directional light's node has a degenerate rotation", "an invertible transform");
+        gltfError(ctx, gltfAt("nodes", node_index), "a directional light's node has a degenerate rotation", "an invertible transform");
     light.direction = light.type == Light::Type::Directional ? glm::normalize(direction) : glm::vec3(0, -1, 0);
     if (src.color.size() == 3) light.color = glm::vec3(float(src.color[0]), float(src.color[1]), float(src.color[2]));
     light.intensity = float(src.intensity);
@@ -510,7 +366,7 @@ void addLight(Context& ctx, const tinygltf::Node& node, size_t node_index, const
     ctx.scene.lights.push_back(light);
 }
 
-void flattenNodes(Context& ctx) {
+void flattenNodes(GltfContext& ctx) {
     const auto& model = ctx.model;
     const std::vector<int> parent = checkTree(ctx);
     std::vector<int> roots;
@@ -518,14 +374,14 @@ void flattenNodes(Context& ctx) {
     const int scene_index = model.defaultScene >= 0 ? model.defaultScene : model.scenes.empty() ? -1 : 0;
     if (scene_index >= 0) {
         if (size_t(scene_index) >= model.scenes.size())
-            fail(ctx, "/scene", std::to_string(scene_index) + " does not exist", indexRange("scenes", model.scenes.size()));
-        roots_pointer = at("scenes", size_t(scene_index)) + "/nodes";
+            gltfError(ctx, "/scene", std::to_string(scene_index) + " does not exist", gltfIndexRange("scenes", model.scenes.size()));
+        roots_pointer = gltfAt("scenes", size_t(scene_index)) + "/nodes";
         roots = model.scenes[size_t(scene_index)].nodes;
         for (size_t k = 0; k < roots.size(); ++k) {
             if (roots[k] < 0 || size_t(roots[k]) >= model.nodes.size())
-                fail(ctx, roots_pointer + "/" + std::to_string(k), std::to_string(roots[k]) + " does not exist", indexRange("nodes", model.nodes.size()));
+                gltfError(ctx, roots_pointer + "/" + std::to_string(k), std::to_string(roots[k]) + " does not exist", gltfIndexRange("nodes", model.nodes.size()));
             if (parent[size_t(roots[k])] >= 0)
-                fail(ctx, roots_pointer + "/" + std::to_string(k), "node " + std::to_string(roots[k]) + " is a child of node " +
+                gltfError(ctx, roots_pointer + "/" + std::to_string(k), "node " + std::to_string(roots[k]) + " is a child of node " +
                                                                        std::to_string(parent[size_t(roots[k])]),
                      "root nodes only");
         }
@@ -543,14 +399,14 @@ void flattenNodes(Context& ctx) {
         const glm::mat4 world = parent_world * localTransform(ctx, node, size_t(index));
         if (node.mesh >= 0) {
             if (size_t(node.mesh) >= model.meshes.size())
-                fail(ctx, at("nodes", size_t(index)) + "/mesh", std::to_string(node.mesh) + " does not exist", indexRange("meshes", model.meshes.size()));
+                gltfError(ctx, gltfAt("nodes", size_t(index)) + "/mesh", std::to_string(node.mesh) + " does not exist", gltfIndexRange("meshes", model.meshes.size()));
             for (int mesh : sceneMeshes(ctx, size_t(node.mesh))) ctx.scene.instances.push_back({mesh, world, {}});
         }
         addLight(ctx, node, size_t(index), world);
         for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.emplace_back(*c, world);
     }
     if (ctx.scene.instances.empty())
-        fail(ctx, roots_pointer, "no triangles to draw" +
+        gltfError(ctx, roots_pointer, "no triangles to draw" +
                                      (ctx.skipped_primitives ? " (" + std::to_string(ctx.skipped_primitives) + " point/line primitives skipped)" : std::string()),
              "at least one mesh primitive with mode TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN under the scene's nodes");
 }
@@ -614,7 +470,7 @@ Scene loadGltf(const std::filesystem::path& file) {
     Scene scene;
     scene.name = file.stem().string();
     scene.source = label;
-    Context ctx{label, model, scene, {}, std::vector<int>(model.materials.size(), -1), -1,
+    GltfContext ctx{label, model, scene, {}, std::vector<int>(model.materials.size(), -1), -1,
                 std::vector<std::optional<std::vector<int>>>(model.meshes.size()), 0};
     flattenNodes(ctx);
     finalizeScene(scene);

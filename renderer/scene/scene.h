@@ -109,6 +109,10 @@ struct Scene {
 };
 
 // Model matrix of an instance at time t (seconds): the animation applied to `model`.
+// With a = radians_per_second * t: Orbit gives translate(center + radius * (cos a * u +
+// sin a * v)) * model, where u is the world axis least aligned with `axis` (x first on
+// ties) made perpendicular to it and v = axis x u (so +y orbits start at +x and turn
+// right-handed); Spin gives rotate(a about `axis` through center) * model.
 glm::mat4 instanceTransform(const Instance& instance, double t);
 
 // glTF 2.0 (.gltf or .glb) through tinygltf. Bad input throws std::invalid_argument with

@@ -1,0 +1,51 @@
+// Shared by the glTF loader's files (not part of cbr_scene's interface): load context, error helpers.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "renderer/scene/gltf_validate.h"
+#include "renderer/scene/scene.h"
+
+namespace cbr::scene {
+
+struct GltfContext {
+    std::string file;
+    const tinygltf::Model& model;
+    Scene& scene;
+    std::map<std::pair<int, bool>, int> textures;  // (image, sRGB) -> Scene texture
+    std::vector<int> materials;                    // glTF material -> Scene material, -1 until used
+    int default_material = -1;
+    std::vector<std::optional<std::vector<int>>> meshes;  // glTF mesh -> Scene meshes
+    int skipped_primitives = 0;                           // points and lines
+};
+
+[[noreturn]] inline void gltfError(const GltfContext& ctx, const std::string& where, const std::string& what,
+                                   const std::string& expected) {
+    gltfFail(ctx.file, where, what, expected);
+}
+
+// "/array/index" as a JSON pointer.
+inline std::string gltfAt(const char* array, size_t index) {
+    std::string pointer("/");  // built by appending: GCC 12 warns falsely on "literal" + string&&
+    pointer += array;
+    pointer += '/';
+    pointer += std::to_string(index);
+    return pointer;
+}
+
+inline std::string gltfIndexRange(const char* array, size_t count) {
+    return count ? "an index into /" + std::string(array) + " (0.." + std::to_string(count - 1) + ")"
+                 : "no reference: /" + std::string(array) + " is empty";
+}
+
+// Scene texture for a glTF texture index, decoded to RGBA8; sRGB for colour, linear for data.
+int gltfTexture(GltfContext& ctx, int index, bool srgb, const std::string& used_by);
+// Scene material for a glTF material index; -1 gives glTF's default material.
+int gltfMaterial(GltfContext& ctx, int index, const std::string& used_by);
+
+}  // namespace cbr::scene

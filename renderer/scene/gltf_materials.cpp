@@ -1,0 +1,123 @@
+// glTF materials and textures: metallic-roughness factors and maps, alpha modes, RGBA8 conversion.
+#include <cmath>
+#include <cstring>
+
+#include "renderer/scene/gltf_internal.h"
+
+namespace cbr::scene {
+
+// Decoded images may have 1-4 channels of 8 or 16 bits; the renderer takes RGBA8.
+int gltfTexture(GltfContext& ctx, int index, bool srgb, const std::string& used_by) {
+    const auto& textures = ctx.model.textures;
+    if (index < 0 || size_t(index) >= textures.size())
+        gltfError(ctx, used_by + "/index", std::to_string(index) + " does not exist", gltfIndexRange("textures", textures.size()));
+    const int source = textures[size_t(index)].source;
+    const std::string tex_pointer = gltfAt("textures", size_t(index));
+    if (source < 0)
+        gltfError(ctx, tex_pointer, "has no source image", "a source (image extensions such as KHR_texture_basisu are not supported)");
+    if (size_t(source) >= ctx.model.images.size())
+        gltfError(ctx, tex_pointer + "/source", std::to_string(source) + " does not exist", gltfIndexRange("images", ctx.model.images.size()));
+    // One image used both as colour (sRGB) and as data (linear) becomes two textures.
+    if (auto it = ctx.textures.find({source, srgb}); it != ctx.textures.end()) return it->second;
+
+    const tinygltf::Image& image = ctx.model.images[size_t(source)];
+    const std::string pointer = gltfAt("images", size_t(source));
+    const int w = image.width, h = image.height, channels = image.component, bits = image.bits;
+    if (w <= 0 || h <= 0 || w > 16384 || h > 16384 || channels < 1 || channels > 4 || (bits != 8 && bits != 16))
+        gltfError(ctx, pointer, "decoded to " + std::to_string(w) + "x" + std::to_string(h) + " with " + std::to_string(channels) +
+                               " channels of " + std::to_string(bits) + " bits",
+             "an image up to 16384x16384 with 1 to 4 channels of 8 or 16 bits");
+    const size_t pixels = size_t(w) * size_t(h), bytes_per_channel = size_t(bits / 8);
+    if (image.image.size() != pixels * size_t(channels) * bytes_per_channel)
+        gltfError(ctx, pointer, "decoded pixel data has " + std::to_string(image.image.size()) + " bytes",
+             std::to_string(pixels * size_t(channels) * bytes_per_channel) + " bytes for its size");
+    Texture texture;
+    texture.name = !image.name.empty() ? image.name : !image.uri.empty() && image.uri.rfind("data:", 0) != 0 ? image.uri
+                                                                                                             : "image " + std::to_string(source);
+    texture.width = w;
+    texture.height = h;
+    texture.srgb = srgb;
+    texture.rgba8.resize(pixels * 4);
+    auto channel = [&](size_t pixel, int c) -> uint8_t {
+        const uint8_t* p = image.image.data() + (pixel * size_t(channels) + size_t(c)) * bytes_per_channel;
+        if (bits == 8) return *p;
+        uint16_t v;
+        std::memcpy(&v, p, 2);
+        return uint8_t((uint32_t(v) * 255u + 32767u) / 65535u);
+    };
+    for (size_t i = 0; i < pixels; ++i) {
+        uint8_t* out = &texture.rgba8[i * 4];
+        if (channels <= 2) {  // grey (+ alpha)
+            out[0] = out[1] = out[2] = channel(i, 0);
+            out[3] = channels == 2 ? channel(i, 1) : 255;
+        } else {
+            for (int c = 0; c < 3; ++c) out[c] = channel(i, c);
+            out[3] = channels == 4 ? channel(i, 3) : 255;
+        }
+    }
+    ctx.scene.textures.push_back(std::move(texture));
+    const int result = int(ctx.scene.textures.size()) - 1;
+    ctx.textures[{source, srgb}] = result;
+    return result;
+}
+
+namespace {
+
+float finiteFactor(const GltfContext& ctx, double value, const std::string& where) {
+    if (!std::isfinite(value)) gltfError(ctx, where, "is not finite", "a finite number");
+    return float(value);
+}
+
+}  // namespace
+
+int gltfMaterial(GltfContext& ctx, int index, const std::string& used_by) {
+    if (index < 0) {  // glTF's default material: white, metallic 1, roughness 1
+        if (ctx.default_material < 0) {
+            Material m;
+            m.name = "default";
+            ctx.scene.materials.push_back(m);
+            ctx.default_material = int(ctx.scene.materials.size()) - 1;
+        }
+        return ctx.default_material;
+    }
+    const auto& materials = ctx.model.materials;
+    if (size_t(index) >= materials.size())
+        gltfError(ctx, used_by + "/material", std::to_string(index) + " does not exist", gltfIndexRange("materials", materials.size()));
+    if (ctx.materials[size_t(index)] >= 0) return ctx.materials[size_t(index)];
+
+    const tinygltf::Material& src = materials[size_t(index)];
+    const std::string p = gltfAt("materials", size_t(index));
+    const auto& pbr = src.pbrMetallicRoughness;
+    Material m;
+    m.name = src.name.empty() ? "material " + std::to_string(index) : src.name;
+    if (pbr.baseColorFactor.size() == 4)
+        for (int c = 0; c < 4; ++c) m.base_color_factor[c] = finiteFactor(ctx, pbr.baseColorFactor[size_t(c)], p + "/pbrMetallicRoughness/baseColorFactor");
+    m.metallic_factor = finiteFactor(ctx, pbr.metallicFactor, p + "/pbrMetallicRoughness/metallicFactor");
+    m.roughness_factor = finiteFactor(ctx, pbr.roughnessFactor, p + "/pbrMetallicRoughness/roughnessFactor");
+    if (src.emissiveFactor.size() == 3)
+        for (int c = 0; c < 3; ++c) m.emissive_factor[c] = finiteFactor(ctx, src.emissiveFactor[size_t(c)], p + "/emissiveFactor");
+    if (auto it = src.extensions.find("KHR_materials_emissive_strength"); it != src.extensions.end() &&
+                                                                            it->second.Has("emissiveStrength"))
+        m.emissive_factor *= finiteFactor(ctx, it->second.Get("emissiveStrength").GetNumberAsDouble(),
+                                          p + "/extensions/KHR_materials_emissive_strength/emissiveStrength");
+    m.normal_scale = finiteFactor(ctx, src.normalTexture.scale, p + "/normalTexture/scale");
+    m.occlusion_strength = finiteFactor(ctx, src.occlusionTexture.strength, p + "/occlusionTexture/strength");
+    m.alpha_cutoff = finiteFactor(ctx, src.alphaCutoff, p + "/alphaCutoff");
+    if (src.alphaMode == "MASK") m.alpha_mode = AlphaMode::Mask;
+    else if (src.alphaMode == "BLEND") m.alpha_mode = AlphaMode::Blend;
+    else if (src.alphaMode.empty() || src.alphaMode == "OPAQUE") m.alpha_mode = AlphaMode::Opaque;
+    else gltfError(ctx, p + "/alphaMode", "is \"" + src.alphaMode + "\"", "\"OPAQUE\", \"MASK\" or \"BLEND\"");
+    m.double_sided = src.doubleSided;
+    if (pbr.baseColorTexture.index >= 0)
+        m.base_color_texture = gltfTexture(ctx, pbr.baseColorTexture.index, true, p + "/pbrMetallicRoughness/baseColorTexture");
+    if (pbr.metallicRoughnessTexture.index >= 0)
+        m.metallic_roughness_texture = gltfTexture(ctx, pbr.metallicRoughnessTexture.index, false, p + "/pbrMetallicRoughness/metallicRoughnessTexture");
+    if (src.normalTexture.index >= 0) m.normal_texture = gltfTexture(ctx, src.normalTexture.index, false, p + "/normalTexture");
+    if (src.occlusionTexture.index >= 0) m.occlusion_texture = gltfTexture(ctx, src.occlusionTexture.index, false, p + "/occlusionTexture");
+    if (src.emissiveTexture.index >= 0) m.emissive_texture = gltfTexture(ctx, src.emissiveTexture.index, true, p + "/emissiveTexture");
+    ctx.scene.materials.push_back(std::move(m));
+    ctx.materials[size_t(index)] = int(ctx.scene.materials.size()) - 1;
+    return ctx.materials[size_t(index)];
+}
+
+}  // namespace cbr::scene
