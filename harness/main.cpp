@@ -73,6 +73,13 @@ int main(int argc, char** argv) {
     run->add_option("--shading-cost", o.shading_cost, "fragment shading about K times more expensive, same image")
         ->capture_default_str();
     run->add_option("--exposure", o.exposure, "exposure multiplier before tone mapping")->capture_default_str();
+    run->add_option("--cbr-route", o.cbr_route, "checkerboard route: auto, msaa-jitter, msaa-locations, multiview")
+        ->capture_default_str();
+    run->add_option("--cbr-lod-bias", o.cbr_lod_bias, "texture LOD bias of checkerboard scene passes")
+        ->capture_default_str();
+    run->add_option("--cso-tolerance", o.cso_tolerance, "cbr-cso depth tolerance (relative, or scene units)")
+        ->capture_default_str();
+    run->add_option("--cso-mode", o.cso_mode, "cbr-cso tolerance mode: relative or absolute")->capture_default_str();
 
     try {
         app.parse(argc, argv);

@@ -25,6 +25,10 @@ struct RunOptions {
     double drr_target_ms = 0;
     int shading_cost = 1;
     double exposure = 1.0;
+    std::string cbr_route = "auto";
+    double cbr_lod_bias = -0.5;
+    double cso_tolerance = 0.05;
+    std::string cso_mode = "relative";
     std::vector<std::string> argv;    // the command line, for run.json
 };
 

@@ -19,6 +19,15 @@ namespace {
 
 using reports::Cell;
 
+// Per-frame statistic names (checkerboard pixel classes) in order of first appearance.
+std::vector<std::string> statColumns(const RunResults& r) {
+    std::vector<std::string> names;
+    for (const auto& row : r.rows)
+        for (const auto& [name, value] : row.stats)
+            if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    return names;
+}
+
 // Pass names in order of first appearance across variants: the per-pass columns.
 std::vector<std::string> passColumns(const RunResults& r) {
     std::vector<std::string> names;
@@ -81,6 +90,8 @@ void writeFramesCsv(const std::filesystem::path& file, const RunResults& r, uint
                                      "render_scale", "gpu_ms",        "timing_ok",    "psnr_db",
                                      "ssim",         "ssim_luma",     "mse",          "fs_invocations",
                                      "status",       "note"};
+    std::vector<std::string> stats = statColumns(r);
+    cols.insert(cols.end(), stats.begin(), stats.end());
     for (const auto& p : passes) cols.push_back("gpu_ms_" + p);
     // Invocation columns only for passes that report them (graphics passes, where the
     // device has pipeline statistics).
@@ -114,6 +125,7 @@ void writeFramesCsv(const std::filesystem::path& file, const RunResults& r, uint
             m["ssim"] = optional(row.quality.ssim);
             m["ssim_luma"] = optional(row.quality.ssim_luma);
             m["mse"] = optional(row.quality.mse);
+            for (const auto& [name, value] : row.stats) m[name] = value;
             long long fs = 0;
             bool any = false;
             for (const auto& pt : row.passes) {
@@ -147,8 +159,8 @@ std::vector<VariantSummary> summarize(const RunResults& r) {
         s.note = vr.note;
         std::vector<double> ms, psnr, ssim, ssim_luma, mse, fs;
         std::vector<std::vector<double>> per_rep(size_t(r.repeats)), ratios(size_t(r.repeats));
-        std::map<std::string, std::vector<double>> pass_ms;
-        std::vector<std::string> pass_order;
+        std::map<std::string, std::vector<double>> pass_ms, stat_values;
+        std::vector<std::string> pass_order, stat_order;
         std::vector<double> widths, heights;
         for (const auto& row : r.rows) {
             if (row.variant != vr.name || row.status != "ok") continue;
@@ -158,6 +170,10 @@ std::vector<VariantSummary> summarize(const RunResults& r) {
             heights.push_back(row.render_height);
             auto f = full_ms.find({row.repeat, row.frame});
             if (f != full_ms.end() && row.gpu_ms > 0) ratios[size_t(row.repeat)].push_back(f->second / row.gpu_ms);
+            for (const auto& [name, value] : row.stats) {
+                if (!stat_values.count(name)) stat_order.push_back(name);
+                stat_values[name].push_back(value);
+            }
             double frame_fs = 0;
             bool any_fs = false;
             for (const auto& pt : row.passes) {
@@ -219,6 +235,7 @@ std::vector<VariantSummary> summarize(const RunResults& r) {
         s.render_width = uint32_t(median(widths));
         s.render_height = uint32_t(median(heights));
         for (const auto& name : pass_order) s.pass_ms_median.push_back({name, median(pass_ms[name])});
+        for (const auto& name : stat_order) s.stats_mean.push_back({name, mean(stat_values[name])});
         out.push_back(s);
     }
     return out;
@@ -237,6 +254,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                                      "psnr_db_min",    "psnr_db_p5",     "ssim_mean",       "ssim_min",
                                      "ssim_luma_mean", "fs_invocations_median", "note"};
     for (const auto& p : passes) cols.push_back("gpu_ms_" + p + "_median");
+    for (const auto& st : statColumns(r)) cols.push_back(st + "_mean");
     reports::CsvTable table(cols);
     for (const auto& s : summaries) {
         std::map<std::string, Cell> m;
@@ -265,6 +283,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
             m["ssim_luma_mean"] = optional(s.ssim_luma_mean);
             m["fs_invocations_median"] = optional(s.fs_invocations_median);
             for (const auto& [name, v] : s.pass_ms_median) m["gpu_ms_" + name + "_median"] = v;
+            for (const auto& [name, v] : s.stats_mean) m[name + "_mean"] = v;
         }
         table.addRow(m);
     }
@@ -306,7 +325,10 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                      {"variant_order", r.order},
                      {"shading_cost", s.shading_cost},
                      {"exposure", s.exposure},
-                     {"lod_bias", s.lod_bias},
+                     {"cbr_route", s.cbr_route},
+                     {"cbr_lod_bias", s.cbr_lod_bias},
+                     {"cso_tolerance", s.cso_tolerance},
+                     {"cso_mode", s.cso_absolute ? "absolute" : "relative"},
                      {"drr_scale", s.drr_scale},
                      {"drr_filter", s.drr_filter == render::DrrFilter::Bilinear ? "bilinear" : "catmull-rom"},
                      {"drr_target_ms", s.drr_control.target_ms},
@@ -353,6 +375,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
         for (const auto& [p, reason] : vr.left_out) passes.push_back({{"name", p}, {"ran", false}, {"reason", reason}});
         json v = {{"name", vr.name}, {"status", vr.status}, {"pipeline", "forward"}, {"passes", passes}};
         if (!vr.note.empty()) v["note"] = vr.note;
+        for (const auto& [key, value] : vr.description) v[key] = value;
         if (vr.alignment) {
             const auto& a = *vr.alignment;
             auto finite = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };

@@ -40,6 +40,7 @@ struct VariantSummary {
     std::optional<double> fs_invocations_median;
     uint32_t render_width = 0, render_height = 0;
     std::vector<std::pair<std::string, double>> pass_ms_median;
+    std::vector<std::pair<std::string, double>> stats_mean;  // e.g. px_reused over all frames
 };
 
 std::vector<VariantSummary> summarize(const RunResults& results);

@@ -30,6 +30,7 @@ struct FrameRow {
     double gpu_ms = 0;
     bool timing_ok = true;
     std::vector<render::PassTime> passes;
+    std::vector<std::pair<std::string, double>> stats;  // e.g. px_shaded (checkerboard classes)
     Quality quality;                // rep 0 only: rendering is deterministic
     std::string status = "ok";      // ok | failed | skipped
     std::string note;
@@ -50,6 +51,7 @@ struct VariantRun {
     std::string note;
     std::vector<std::string> passes_ran;
     std::vector<std::pair<std::string, std::string>> left_out;  // (pass, reason)
+    std::vector<std::pair<std::string, std::string>> description;  // route and such, for run.json
 };
 
 struct RunResults {

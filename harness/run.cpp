@@ -96,6 +96,20 @@ Prepared prepare(const RunOptions& o) {
         throw std::invalid_argument("--drr-target-ms: expected a positive number of milliseconds (or 0: fixed scale)");
     if (!(o.exposure > 0 && std::isfinite(o.exposure)))
         throw std::invalid_argument("--exposure: expected a positive finite number");
+    if (!std::isfinite(o.cbr_lod_bias) || std::abs(o.cbr_lod_bias) > 16)
+        throw std::invalid_argument("--cbr-lod-bias: expected a finite bias in [-16, 16] (the paper's -0.5; -1 matches full-res derivatives)");
+    if (!(o.cso_tolerance > 0 && std::isfinite(o.cso_tolerance)))
+        throw std::invalid_argument("--cso-tolerance " + std::to_string(o.cso_tolerance) + ": expected a positive finite number");
+    if (o.cso_mode != "relative" && o.cso_mode != "absolute")
+        throw std::invalid_argument("--cso-mode " + o.cso_mode + ": expected relative or absolute");
+    if (o.cbr_route != "auto" && o.cbr_route != "msaa-jitter" && o.cbr_route != "msaa-locations" &&
+        o.cbr_route != "multiview" && o.cbr_route != "layers")
+        throw std::invalid_argument("--cbr-route " + o.cbr_route +
+                                    ": unknown route; expected auto, msaa-jitter, msaa-locations, multiview or layers");
+    p.settings.cbr_route = o.cbr_route;
+    p.settings.cbr_lod_bias = float(o.cbr_lod_bias);
+    p.settings.cso_tolerance = o.cso_tolerance;
+    p.settings.cso_absolute = o.cso_mode == "absolute";
     if (o.drr_filter == "bilinear")
         p.settings.drr_filter = render::DrrFilter::Bilinear;
     else if (o.drr_filter == "catmull-rom")
@@ -149,6 +163,19 @@ void scoreFrame(FrameRow& row, const std::vector<uint8_t>& reference, const std:
     } catch (const std::exception& e) {
         row.quality.note += std::string("metrics failed: ") + e.what();
     }
+}
+
+// Checkerboard pixel classes as colours: shaded grey, reused green, missing-by-parity
+// yellow, occluded red, off-screen blue, reset magenta.
+metrics::Rgba8Image classMapImage(const std::vector<uint8_t>& classes, int w, int h) {
+    static const uint8_t kColours[6][3] = {{96, 96, 96},  {40, 200, 60}, {240, 220, 40},
+                                           {230, 40, 40}, {40, 90, 240}, {220, 60, 220}};
+    metrics::Rgba8Image img{w, h, std::vector<uint8_t>(size_t(w) * h * 4, 255)};
+    for (size_t i = 0; i < classes.size(); ++i) {
+        const uint8_t* c = kColours[classes[i] < 6 ? classes[i] : 0];
+        std::copy(c, c + 3, img.pixels.begin() + std::ptrdiff_t(i * 4));
+    }
+    return img;
 }
 
 bool moving(const std::vector<paths::CameraPose>& poses, size_t mid) {
@@ -220,6 +247,7 @@ int runBenchmark(const RunOptions& options) {
         VariantRun& vr = results.variants[vi];
         try {
             renderers[vi] = std::make_unique<render::Renderer>(ctx, gpu_scene, *p.order[vi], p.settings);
+            vr.description = renderers[vi]->describe();
         } catch (const vk::Unsupported& e) {
             vr.status = "skipped";
             vr.note = e.what();
@@ -262,6 +290,7 @@ int runBenchmark(const RunOptions& options) {
                 row.timing_ok = fr.timing_consistent;
                 if (!fr.timing_consistent) row.note = "pass times do not sum to the frame time";
                 row.passes = fr.passes;
+                row.stats = fr.stats;
                 if (rep == 0 && fr.index == 0) {
                     for (const auto& pt : fr.passes) vr.passes_ran.push_back(pt.name);
                     vr.left_out = fr.left_out;
@@ -289,9 +318,13 @@ int runBenchmark(const RunOptions& options) {
                     char file[128];
                     std::snprintf(file, sizeof file, "%s_%04d.png", name.c_str(), fr.index);
                     auto dest = out.path() / "frames" / file;
-                    workers.submit([dest, image, w, h, &row] {
+                    std::snprintf(file, sizeof file, "%s_%04d_class.png", name.c_str(), fr.index);
+                    auto class_dest = out.path() / "frames" / file;
+                    auto classes = std::make_shared<const std::vector<uint8_t>>(std::move(fr.diagnostic));
+                    workers.submit([dest, class_dest, image, classes, w, h, &row] {
                         try {
                             metrics::writePng(dest, {w, h, *image});
+                            if (!classes->empty()) metrics::writePng(class_dest, classMapImage(*classes, w, h));
                         } catch (const std::exception& e) {
                             row.note += std::string("PNG not saved: ") + e.what();
                         }

@@ -32,6 +32,9 @@ struct Renderer::Slot {
     graph::QueryPools queries;
     vk::Buffer frame_ubo;
     vk::Buffer readback;
+    vk::Buffer diagnostic;  // the variant's diagnostic image, when it has one
+    vk::Buffer stats;       // kFrameStats counters, zeroed by the host per frame
+    vk::Buffer instances;   // model and previous model matrix per instance
     VkDescriptorSet frame_set = VK_NULL_HANDLE;
     bool in_flight = false;
     bool has_readback = false;
@@ -65,8 +68,10 @@ Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants:
 
     int n = std::max(1, settings.frames_in_flight);
     std::initializer_list<vk::Binding> frame_bindings = {
-        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT},
-        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT}};
+        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_ALL},
+        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT},
+        {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+        {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT}};
     frame_pool_ = vk::createPool(ctx, frame_bindings, uint32_t(n));
     for (int i = 0; i < n; ++i) {
         auto slot = std::make_unique<Slot>();
@@ -92,10 +97,21 @@ Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants:
                                            true);
         slot->readback = vk::createBuffer(ctx, VkDeviceSize(settings.width) * settings.height * 4,
                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        if (variant_->diagnosticImage())
+            slot->diagnostic = vk::createBuffer(ctx, VkDeviceSize(settings.width) * settings.height,
+                                                VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        slot->stats = vk::createBuffer(ctx, variants::kFrameStats * sizeof(uint32_t),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        slot->instances = vk::createBuffer(ctx, std::max<size_t>(1, scene.cpu->instances.size()) * 2 * sizeof(glm::mat4),
+                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
         slot->frame_set = vk::allocateSet(ctx, frame_pool_, scene.frame_layout);
         vk::writeBuffer(ctx, slot->frame_set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slot->frame_ubo.buffer, 0,
                         sizeof(shaders::FrameUniforms));
         vk::writeBuffer(ctx, slot->frame_set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, lights_.buffer, 0, VK_WHOLE_SIZE);
+        vk::writeBuffer(ctx, slot->frame_set, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, slot->stats.buffer, 0,
+                        VK_WHOLE_SIZE);
+        vk::writeBuffer(ctx, slot->frame_set, 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, slot->instances.buffer, 0,
+                        VK_WHOLE_SIZE);
         slots_.push_back(std::move(slot));
     }
 }
@@ -109,6 +125,9 @@ Renderer::~Renderer() {
         if (slot->queries.statistics) vkDestroyQueryPool(ctx_.device, slot->queries.statistics, nullptr);
         vk::destroyBuffer(ctx_, slot->frame_ubo);
         vk::destroyBuffer(ctx_, slot->readback);
+        vk::destroyBuffer(ctx_, slot->diagnostic);
+        vk::destroyBuffer(ctx_, slot->stats);
+        vk::destroyBuffer(ctx_, slot->instances);
     }
     vkDestroyDescriptorPool(ctx_.device, frame_pool_, nullptr);
     vk::destroyBuffer(ctx_, lights_);
@@ -124,20 +143,6 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
         updateScale(done.back());
     }
 
-    double aspect = double(settings_.width) / double(settings_.height);
-    auto view_proj = [&](const Camera& c) {
-        return glm::mat4(projection(c.fov_y_rad, aspect, c.near, c.far) * c.view);
-    };
-    shaders::FrameUniforms u{};
-    u.view_proj = view_proj(request.camera);
-    u.prev_view_proj = request.history_reset ? u.view_proj : view_proj(request.prev_camera);
-    u.view = glm::mat4(request.camera.view);
-    u.camera_position = glm::vec4(glm::vec3(request.camera.position), 1.0f);
-    u.params = glm::vec4(settings_.lod_bias, settings_.exposure, 0.03f, 0.0f);
-    u.counts = glm::uvec4(light_records_, uint32_t(std::max(1, settings_.shading_cost)), 0, 0);
-    u.background = glm::vec4(scene_.cpu->background, 1.0f);
-    std::memcpy(slot.frame_ubo.mapped, &u, sizeof(u));
-
     auto frame = std::make_shared<passes::SceneFrame>();
     frame->scene = &scene_;
     frame->frame_set = slot.frame_set;
@@ -146,6 +151,12 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
     frame->camera_position = glm::vec3(request.camera.position);
     frame->clear_color = glm::vec4(scene_.cpu->background, 0.0f);
 
+    std::memset(slot.stats.mapped, 0, variants::kFrameStats * sizeof(uint32_t));
+    auto* matrices = static_cast<glm::mat4*>(slot.instances.mapped);
+    for (size_t i = 0; i < frame->models.size(); ++i) {
+        matrices[2 * i] = frame->models[i];
+        matrices[2 * i + 1] = frame->prev_models[i];
+    }
     variants::FrameSetup setup;
     setup.scene_frame = frame;
     setup.request = &request;
@@ -153,18 +164,23 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
     graph::Graph graph;
     variant_->declare(graph, setup);
     graph.setOutputs({&variant_->display()});
-    if (request.readback) passes::addReadbackPass(graph, variant_->display(), slot.readback.buffer);
+    vk::Image* diagnostic = variant_->diagnosticImage();
+    if (request.readback) {
+        passes::addReadbackPass(graph, variant_->display(), slot.readback.buffer);
+        if (diagnostic) passes::addReadbackPass(graph, *diagnostic, slot.diagnostic.buffer);
+    }
+    writeUniforms(slot, request, setup.params);
 
     VK_CHECK(vkResetCommandBuffer(slot.cmd, 0));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(slot.cmd, &begin));
     slot.recorded = graph.record(slot.cmd, slot.queries);
-    if (request.readback) {
-        // The host reads the copy after the fence: make the transfer write visible to it.
+    {
+        // The host reads copies and counters after the fence: make the writes visible to it.
         VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        b.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        b.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+        b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_WRITE_BIT;
         b.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
         b.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
         VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
@@ -241,11 +257,45 @@ FrameResult Renderer::collect(Slot& slot) {
     r.timing_consistent = sum == total && total > 0;
 
     if (slot.has_readback) {
-        size_t bytes = size_t(settings_.width) * settings_.height * 4;
-        r.rgba.resize(bytes);
-        std::memcpy(r.rgba.data(), slot.readback.mapped, bytes);
+        size_t pixels = size_t(settings_.width) * settings_.height;
+        r.rgba.resize(pixels * 4);
+        std::memcpy(r.rgba.data(), slot.readback.mapped, pixels * 4);
+        if (slot.diagnostic.mapped) {
+            r.diagnostic.resize(pixels);
+            std::memcpy(r.diagnostic.data(), slot.diagnostic.mapped, pixels);
+        }
     }
+    auto names = variant_->statNames();
+    const auto* counts = static_cast<const uint32_t*>(slot.stats.mapped);
+    double pixel_count = double(settings_.width) * double(settings_.height);
+    for (size_t i = 0; i < names.size() && i < variants::kFrameStats; ++i)
+        r.stats.push_back({names[i], double(counts[i]) / pixel_count});
     return r;
+}
+
+void Renderer::writeUniforms(Slot& slot, const FrameRequest& request, const variants::FrameParams& params) {
+    double aspect = double(settings_.width) / double(settings_.height);
+    auto proj = [&](const Camera& c) { return projection(c.fov_y_rad, aspect, c.near, c.far); };
+    const Camera& prev = request.history_reset ? request.camera : request.prev_camera;
+    glm::dmat4 view_proj = proj(request.camera) * request.camera.view;
+    glm::dmat4 prev_view_proj = proj(prev) * prev.view;
+    // view depth = B / (d + A) for the reversed-Z projection above.
+    auto depth_ab = [](const Camera& c) {
+        return glm::dvec2(c.near / (c.far - c.near), c.far * c.near / (c.far - c.near));
+    };
+    shaders::FrameUniforms u{};
+    u.view_proj = glm::mat4(view_proj);
+    u.prev_view_proj = glm::mat4(prev_view_proj);
+    u.view = glm::mat4(request.camera.view);
+    u.camera_position = glm::vec4(glm::vec3(request.camera.position), 1.0f);
+    u.params = glm::vec4(params.lod_bias, settings_.exposure, 0.03f, 0.0f);
+    u.counts = glm::uvec4(light_records_, uint32_t(std::max(1, settings_.shading_cost)), 0, 0);
+    u.background = glm::vec4(scene_.cpu->background, 1.0f);
+    u.view_offsets = params.view_offsets;
+    u.reproject = glm::mat4(prev_view_proj * glm::inverse(view_proj));  // composed in double
+    u.depth_params = glm::vec4(glm::vec2(depth_ab(request.camera)), glm::vec2(depth_ab(prev)));
+    u.frame_info = glm::uvec4(params.parity, request.history_reset ? 1u : 0u, settings_.width, settings_.height);
+    std::memcpy(slot.frame_ubo.mapped, &u, sizeof(u));
 }
 
 void Renderer::updateScale(const FrameResult& result) {

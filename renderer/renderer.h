@@ -28,11 +28,13 @@ public:
     // Waits for every frame in flight and returns them.
     std::vector<FrameResult> finish();
     double currentScale() const { return scale_; }
+    std::vector<std::pair<std::string, std::string>> describe() const { return variant_->describe(); }
 
 private:
     struct Slot;
     FrameResult collect(Slot& slot);
     void updateScale(const FrameResult& result);
+    void writeUniforms(Slot& slot, const FrameRequest& request, const variants::FrameParams& params);
 
     vk::Context& ctx_;
     const gpu::GpuScene& scene_;

@@ -26,11 +26,15 @@ struct Settings {
     uint32_t height = 540;
     int shading_cost = 1;       // >= 1; the fragment work is about K times, the image the same
     float exposure = 1.0f;
-    float lod_bias = 0.0f;      // texture LOD bias in scene passes
     double drr_scale = 0.7071;  // per axis: half the pixels
     DrrFilter drr_filter = DrrFilter::CatmullRom;
     DrrControl drr_control;
     int frames_in_flight = 2;
+    // Checkerboard rendering.
+    std::string cbr_route = "auto";  // auto | msaa-jitter | msaa-locations | multiview
+    float cbr_lod_bias = -0.5f;      // the paper's; -1 matches full-res derivatives
+    double cso_tolerance = 0.05;
+    bool cso_absolute = false;       // false: relative to the mean neighbour depth
 };
 
 struct Camera {
@@ -66,6 +70,8 @@ struct FrameResult {
     uint32_t render_height = 0;
     double render_scale = 1;
     std::vector<uint8_t> rgba;         // width * height * 4 when read back
+    std::vector<uint8_t> diagnostic;   // width * height, the variant's diagnostic image, when read back
+    std::vector<std::pair<std::string, double>> stats;  // e.g. px_shaded: fraction of the frame's pixels
     std::vector<std::pair<std::string, std::string>> left_out;  // (pass, reason)
 };
 

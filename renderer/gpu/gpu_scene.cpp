@@ -71,8 +71,10 @@ GpuScene uploadScene(vk::Context& ctx, const scene::Scene& s) {
     constexpr auto kFrag = VK_SHADER_STAGE_FRAGMENT_BIT;
     constexpr auto kAll = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     constexpr auto kSampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    g.frame_layout = vk::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kAll},
-                                               {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kFrag}});
+    g.frame_layout = vk::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kAll | VK_SHADER_STAGE_COMPUTE_BIT},
+                                               {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kFrag},
+                                               {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                                               {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT}});
     std::initializer_list<vk::Binding> material_bindings = {
         {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFrag}, {1, kSampler, kFrag}, {2, kSampler, kFrag},
         {3, kSampler, kFrag}, {4, kSampler, kFrag}, {5, kSampler, kFrag}};

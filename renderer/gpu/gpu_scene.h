@@ -30,7 +30,7 @@ struct GpuScene {
     std::vector<vk::Image> textures;
     vk::Image white_srgb, white_linear, flat_normal;  // stand-ins for absent textures
     VkSampler sampler = VK_NULL_HANDLE;
-    VkDescriptorSetLayout frame_layout = VK_NULL_HANDLE;     // set 0: frame UBO, lights SSBO
+    VkDescriptorSetLayout frame_layout = VK_NULL_HANDLE;     // set 0: frame UBO, lights, frame stats, instance matrices
     VkDescriptorSetLayout material_layout = VK_NULL_HANDLE;  // set 1: material UBO + 5 textures
     VkDescriptorPool pool = VK_NULL_HANDLE;
     std::vector<VkDescriptorSet> material_sets;

@@ -7,23 +7,28 @@
 #include "renderer/vk/context.h"
 #include "renderer/vk/pipelines.h"
 #include "shaders/scene.frag.h"
+#include "shaders/scene_motion.frag.h"
+#include "shaders/scene_sample.frag.h"
+#include "shaders/scene_sample_motion.frag.h"
 #include "shaders/scene.vert.h"
 
 namespace cbr::passes {
 namespace {
 
-struct DrawPush {
-    glm::mat4 model;
-    glm::mat4 prev_model;
-};
-static_assert(sizeof(DrawPush) == 128, "push constants must fit the guaranteed 128 bytes");
-
 enum class AlphaMode : int { Opaque = 0, Mask = 1, Blend = 2 };
 
 VkPipeline createScenePipeline(vk::Context& ctx, VkPipelineLayout layout, const ScenePipelineDesc& desc,
-                               AlphaMode mode) {
+                               AlphaMode mode, bool double_sided) {
     VkShaderModule vert = vk::createShaderModule(ctx, kSpirv_scene_vert, sizeof(kSpirv_scene_vert));
-    VkShaderModule frag = vk::createShaderModule(ctx, kSpirv_scene_frag, sizeof(kSpirv_scene_frag));
+    // Per-sample interpolation (MSAA checkerboard) x motion output: four SPIR-V modules,
+    // because an output with no attachment and a `sample` input are not specialisable.
+    auto module = [&](const uint32_t* code, size_t size) { return vk::createShaderModule(ctx, code, size); };
+    VkShaderModule frag =
+        desc.sample_shading
+            ? (desc.motion ? module(kSpirv_scene_sample_motion_frag, sizeof(kSpirv_scene_sample_motion_frag))
+                           : module(kSpirv_scene_sample_frag, sizeof(kSpirv_scene_sample_frag)))
+            : (desc.motion ? module(kSpirv_scene_motion_frag, sizeof(kSpirv_scene_motion_frag))
+                           : module(kSpirv_scene_frag, sizeof(kSpirv_scene_frag)));
     int32_t alpha_mode = int32_t(mode);
     VkSpecializationMapEntry entry{/* ALPHA_MODE= */ 0, 0, sizeof(int32_t)};
     VkSpecializationInfo spec{1, &entry, sizeof(int32_t), &alpha_mode};
@@ -55,9 +60,20 @@ VkPipeline createScenePipeline(vk::Context& ctx, VkPipelineLayout layout, const 
     VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
     raster.polygonMode = VK_POLYGON_MODE_FILL;
     raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    raster.cullMode = double_sided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
     raster.lineWidth = 1.0f;
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = desc.samples;
+    // Sample-rate shading: each of the two samples is a separately shaded full-res pixel.
+    ms.sampleShadingEnable = desc.sample_shading ? VK_TRUE : VK_FALSE;
+    ms.minSampleShading = desc.sample_shading ? 1.0f : 0.0f;
+    VkPipelineSampleLocationsStateCreateInfoEXT locations{
+        VK_STRUCTURE_TYPE_PIPELINE_SAMPLE_LOCATIONS_STATE_CREATE_INFO_EXT};
+    if (desc.sample_locations) {
+        locations.sampleLocationsEnable = VK_TRUE;
+        locations.sampleLocationsInfo.sType = VK_STRUCTURE_TYPE_SAMPLE_LOCATIONS_INFO_EXT;
+        ms.pNext = &locations;
+    }
     VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     depth.depthTestEnable = VK_TRUE;
     depth.depthWriteEnable = mode == AlphaMode::Blend ? VK_FALSE : VK_TRUE;
@@ -75,16 +91,23 @@ VkPipeline createScenePipeline(vk::Context& ctx, VkPipelineLayout layout, const 
         blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
         blend.alphaBlendOp = VK_BLEND_OP_ADD;
     }
+    VkPipelineColorBlendAttachmentState motion_blend{};
+    motion_blend.colorWriteMask =
+        mode == AlphaMode::Blend ? 0 : VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT;
+    VkPipelineColorBlendAttachmentState blends[2] = {blend, motion_blend};
     VkPipelineColorBlendStateCreateInfo blend_state{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    blend_state.attachmentCount = 1;
-    blend_state.pAttachments = &blend;
-    VkDynamicState dynamic[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR, VK_DYNAMIC_STATE_CULL_MODE};
+    blend_state.attachmentCount = desc.motion ? 2 : 1;
+    blend_state.pAttachments = blends;
+    std::vector<VkDynamicState> dynamic = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    if (desc.sample_locations) dynamic.push_back(VK_DYNAMIC_STATE_SAMPLE_LOCATIONS_EXT);
     VkPipelineDynamicStateCreateInfo dynamic_state{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-    dynamic_state.dynamicStateCount = 3;
-    dynamic_state.pDynamicStates = dynamic;
+    dynamic_state.dynamicStateCount = uint32_t(dynamic.size());
+    dynamic_state.pDynamicStates = dynamic.data();
+    VkFormat formats[2] = {desc.color_format, kMotionFormat};
     VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-    rendering.colorAttachmentCount = 1;
-    rendering.pColorAttachmentFormats = &desc.color_format;
+    rendering.viewMask = desc.view_mask;
+    rendering.colorAttachmentCount = desc.motion ? 2 : 1;
+    rendering.pColorAttachmentFormats = formats;
     rendering.depthAttachmentFormat = desc.depth_format;
 
     VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
@@ -106,41 +129,65 @@ VkPipeline createScenePipeline(vk::Context& ctx, VkPipelineLayout layout, const 
     return pipeline;
 }
 
-void setViewport(VkCommandBuffer cmd, VkExtent2D extent) {
-    VkViewport vp{0, 0, float(extent.width), float(extent.height), 0, 1};
-    VkRect2D scissor{{0, 0}, extent};
+void setViewport(VkCommandBuffer cmd, const SceneFrame& f) {
+    glm::vec2 size = f.viewport_size.x > 0 ? f.viewport_size : glm::vec2(f.viewport.width, f.viewport.height);
+    VkViewport vp{0, 0, size.x, size.y, 0, 1};
+    VkRect2D scissor{{0, 0}, f.viewport};
     vkCmdSetViewport(cmd, 0, 1, &vp);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
-}
-
-void drawItems(VkCommandBuffer cmd, const SceneFrame& f, const std::vector<gpu::DrawItem>& items, VkPipeline pipeline) {
-    const gpu::GpuScene& s = *f.scene;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-    int bound_material = -1;
-    for (const auto& d : items) {
-        if (d.material != bound_material) {
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipelines->layout, 1, 1,
-                                    &s.material_sets[size_t(d.material)], 0, nullptr);
-            bool two_sided = s.cpu->materials[size_t(d.material)].double_sided;
-            vkCmdSetCullMode(cmd, two_sided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
-            bound_material = d.material;
-        }
-        DrawPush push{f.models[size_t(d.instance)], f.prev_models[size_t(d.instance)]};
-        vkCmdPushConstants(cmd, f.pipelines->layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
-        const auto& mesh = s.cpu->meshes[size_t(d.mesh)];
-        vkCmdDrawIndexed(cmd, mesh.index_count, 1, mesh.first_index, mesh.vertex_offset, 0);
+    if (f.sample_locations) {
+        VkSampleLocationEXT locations[2] = {{f.sample_positions[0].x, f.sample_positions[0].y},
+                                            {f.sample_positions[1].x, f.sample_positions[1].y}};
+        VkSampleLocationsInfoEXT info{VK_STRUCTURE_TYPE_SAMPLE_LOCATIONS_INFO_EXT};
+        info.sampleLocationsPerPixel = VK_SAMPLE_COUNT_2_BIT;
+        info.sampleLocationGridSize = {1, 1};
+        info.sampleLocationsCount = 2;
+        info.pSampleLocations = locations;
+        f.set_sample_locations(cmd, &info);
     }
 }
 
-void beginScene(VkCommandBuffer cmd, const SceneFrame& f, vk::Image& color, vk::Image& depth, bool clear) {
-    VkRenderingAttachmentInfo color_att{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    color_att.imageView = color.view;
-    color_att.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    color_att.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
-    color_att.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    color_att.clearValue.color = {{f.clear_color.r, f.clear_color.g, f.clear_color.b, 0.0f}};
+void drawItems(VkCommandBuffer cmd, const SceneFrame& f, const std::vector<gpu::DrawItem>& items,
+               const VkPipeline (&pipelines)[2]) {
+    const gpu::GpuScene& s = *f.scene;
+    int bound_material = -1;
+    VkPipeline bound_pipeline = VK_NULL_HANDLE;
+    for (const auto& d : items) {
+        if (d.material != bound_material) {
+            VkPipeline pipeline = pipelines[s.cpu->materials[size_t(d.material)].double_sided ? 1 : 0];
+            if (pipeline != bound_pipeline) {
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+                bound_pipeline = pipeline;
+            }
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipelines->layout, 1, 1,
+                                    &s.material_sets[size_t(d.material)], 0, nullptr);
+            bound_material = d.material;
+        }
+        const auto& mesh = s.cpu->meshes[size_t(d.mesh)];
+        // firstInstance selects the instance's matrices in the frame set's instance buffer.
+        vkCmdDrawIndexed(cmd, mesh.index_count, 1, mesh.first_index, mesh.vertex_offset, uint32_t(d.instance));
+    }
+}
+
+// layer < 0: the whole image (or all views); else that layer's 2D view.
+void beginScene(VkCommandBuffer cmd, const SceneFrame& f, const SceneTargets& t, bool clear, int layer) {
+    auto view = [layer](const vk::Image* img) { return layer < 0 ? img->view : img->layer_views[size_t(layer)]; };
+    VkRenderingAttachmentInfo color_att[2] = {{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO},
+                                              {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO}};
+    color_att[0].imageView = view(t.color);
+    color_att[0].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color_att[0].loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+    color_att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    color_att[0].clearValue.color = {{f.clear_color.r, f.clear_color.g, f.clear_color.b, 0.0f}};
+    if (t.motion) {
+        color_att[1].imageView = view(t.motion);
+        color_att[1].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        color_att[1].loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+        color_att[1].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        color_att[1].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // sky: no motion
+    }
     VkRenderingAttachmentInfo depth_att{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth_att.imageView = depth.view;
+    depth_att.imageView = view(t.depth);
     depth_att.imageLayout = clear ? VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
     depth_att.loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
     depth_att.storeOp = clear ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_NONE;
@@ -148,17 +195,30 @@ void beginScene(VkCommandBuffer cmd, const SceneFrame& f, vk::Image& color, vk::
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
     info.renderArea = {{0, 0}, f.viewport};
     info.layerCount = 1;
-    info.colorAttachmentCount = 1;
-    info.pColorAttachments = &color_att;
+    info.viewMask = layer < 0 ? t.view_mask : 0;
+    info.colorAttachmentCount = t.motion ? 2 : 1;
+    info.pColorAttachments = color_att;
     info.pDepthAttachment = &depth_att;
     vkCmdBeginRendering(cmd, &info);
-    setViewport(cmd, f.viewport);
+    setViewport(cmd, f);
     const gpu::GpuScene& s = *f.scene;
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.pipelines->layout, 0, 1, &f.frame_set, 0,
                             nullptr);
     VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &s.vertices.buffer, &offset);
     vkCmdBindIndexBuffer(cmd, s.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+    uint32_t push_layer = layer < 0 ? 0u : uint32_t(layer);
+    vkCmdPushConstants(cmd, f.pipelines->layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(uint32_t), &push_layer);
+}
+
+// Runs `body` once per rendering instance: once, or once per layer for sequential layers.
+template <class F>
+void forEachLayer(const SceneTargets& t, F&& body) {
+    if (!t.sequential_layers) {
+        body(-1);
+        return;
+    }
+    for (int layer = 0; layer < int(t.color->layers); ++layer) body(layer);
 }
 
 }  // namespace
@@ -166,46 +226,58 @@ void beginScene(VkCommandBuffer cmd, const SceneFrame& f, vk::Image& color, vk::
 ScenePipelines createScenePipelines(vk::Context& ctx, const gpu::GpuScene& scene, const ScenePipelineDesc& desc) {
     ScenePipelines p;
     VkDescriptorSetLayout sets[2] = {scene.frame_layout, scene.material_layout};
-    VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(DrawPush)};
+    VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(uint32_t)};
     VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     info.setLayoutCount = 2;
     info.pSetLayouts = sets;
     info.pushConstantRangeCount = 1;
     info.pPushConstantRanges = &push;
     VK_CHECK(vkCreatePipelineLayout(ctx.device, &info, nullptr, &p.layout));
-    p.opaque = createScenePipeline(ctx, p.layout, desc, AlphaMode::Opaque);
-    // A feature costs only when the scene has it: no MASK or BLEND material, no pipeline.
-    if (!scene.masked.empty()) p.masked = createScenePipeline(ctx, p.layout, desc, AlphaMode::Mask);
-    if (!scene.blend.empty()) p.blend = createScenePipeline(ctx, p.layout, desc, AlphaMode::Blend);
+    // A feature costs only when the scene has it: no MASK or BLEND material (or no
+    // double-sided one), no pipeline.
+    auto wanted = [&](const std::vector<gpu::DrawItem>& items, bool double_sided) {
+        return std::any_of(items.begin(), items.end(), [&](const gpu::DrawItem& d) {
+            return scene.cpu->materials[size_t(d.material)].double_sided == double_sided;
+        });
+    };
+    for (int two = 0; two < 2; ++two) {
+        if (wanted(scene.opaque, two)) p.opaque[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Opaque, two);
+        if (wanted(scene.masked, two)) p.masked[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Mask, two);
+        if (wanted(scene.blend, two)) p.blend[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Blend, two);
+    }
     return p;
 }
 
 void destroyScenePipelines(vk::Context& ctx, ScenePipelines& p) {
-    for (VkPipeline pipeline : {p.opaque, p.masked, p.blend})
-        if (pipeline) vkDestroyPipeline(ctx.device, pipeline, nullptr);
+    for (int two = 0; two < 2; ++two)
+        for (VkPipeline pipeline : {p.opaque[two], p.masked[two], p.blend[two]})
+            if (pipeline) vkDestroyPipeline(ctx.device, pipeline, nullptr);
     if (p.layout) vkDestroyPipelineLayout(ctx.device, p.layout, nullptr);
     p = {};
 }
 
-void addOpaquePass(graph::Graph& graph, vk::Image& color, vk::Image& depth, std::shared_ptr<const SceneFrame> frame) {
+void addOpaquePass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame) {
     graph::Pass pass;
     pass.name = "opaque";
-    pass.uses = {{&color, graph::Use::ColorWrite}, {&depth, graph::Use::DepthWrite}};
-    pass.record = [frame, &color, &depth](VkCommandBuffer cmd) {
-        beginScene(cmd, *frame, color, depth, true);
-        if (!frame->scene->opaque.empty()) drawItems(cmd, *frame, frame->scene->opaque, frame->pipelines->opaque);
-        if (!frame->scene->masked.empty()) drawItems(cmd, *frame, frame->scene->masked, frame->pipelines->masked);
-        vkCmdEndRendering(cmd);
+    pass.uses = {{targets.color, graph::Use::ColorWrite}, {targets.depth, graph::Use::DepthWrite}};
+    if (targets.motion) pass.uses.push_back({targets.motion, graph::Use::ColorWrite});
+    pass.record = [frame, targets](VkCommandBuffer cmd) {
+        forEachLayer(targets, [&](int layer) {
+            beginScene(cmd, *frame, targets, true, layer);
+            if (!frame->scene->opaque.empty()) drawItems(cmd, *frame, frame->scene->opaque, frame->pipelines->opaque);
+            if (!frame->scene->masked.empty()) drawItems(cmd, *frame, frame->scene->masked, frame->pipelines->masked);
+            vkCmdEndRendering(cmd);
+        });
     };
     graph.addPass(std::move(pass));
 }
 
-void addTransparentPass(graph::Graph& graph, vk::Image& color, vk::Image& depth,
-                        std::shared_ptr<const SceneFrame> frame) {
+void addTransparentPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame) {
     graph::Pass pass;
     pass.name = "transparent";
-    pass.uses = {{&color, graph::Use::ColorReadWrite}, {&depth, graph::Use::DepthTest}};
-    pass.record = [frame, &color, &depth](VkCommandBuffer cmd) {
+    pass.uses = {{targets.color, graph::Use::ColorReadWrite}, {targets.depth, graph::Use::DepthTest}};
+    if (targets.motion) pass.uses.push_back({targets.motion, graph::Use::ColorReadWrite});
+    pass.record = [frame, targets](VkCommandBuffer cmd) {
         // Back to front by the distance of each instance's bounds centre: correct for
         // separate panes, which is what blended scenes here contain.
         const auto& s = *frame->scene;
@@ -220,9 +292,11 @@ void addTransparentPass(graph::Graph& graph, vk::Image& color, vk::Image& depth,
         std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
         std::vector<gpu::DrawItem> items;
         for (const auto& [dist, d] : sorted) items.push_back(d);
-        beginScene(cmd, *frame, color, depth, false);
-        drawItems(cmd, *frame, items, frame->pipelines->blend);
-        vkCmdEndRendering(cmd);
+        forEachLayer(targets, [&](int layer) {
+            beginScene(cmd, *frame, targets, false, layer);
+            drawItems(cmd, *frame, items, frame->pipelines->blend);
+            vkCmdEndRendering(cmd);
+        });
     };
     graph.addPass(std::move(pass));
 }

@@ -16,17 +16,34 @@ class Context;
 
 namespace cbr::passes {
 
+constexpr VkFormat kMotionFormat = VK_FORMAT_R32G32_SFLOAT;  // full precision, never floored
+
 struct ScenePipelineDesc {
     VkFormat color_format = VK_FORMAT_R16G16B16A16_SFLOAT;
     VkFormat depth_format = VK_FORMAT_D32_SFLOAT;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    bool sample_shading = false;   // one invocation per sample, inputs at the sample (checkerboard MSAA)
+    uint32_t view_mask = 0;        // multiview: 0b11 renders both checkerboard views
+    bool motion = false;           // second attachment: motion vectors (kMotionFormat)
+    bool sample_locations = false; // VK_EXT_sample_locations set per frame (dynamic state)
 };
 
+// The attachments of the scene passes; `motion` may be null.
+struct SceneTargets {
+    vk::Image* color = nullptr;
+    vk::Image* motion = nullptr;
+    vk::Image* depth = nullptr;
+    uint32_t view_mask = 0;          // multiview: both layers in one pass
+    bool sequential_layers = false;  // the two layers one after the other (no multiview)
+};
+
+// Indexed [double_sided]. Cull mode is baked in rather than dynamic: lavapipe (Mesa 22.3)
+// loses dynamic cull-mode changes between the views of a multiview pass.
 struct ScenePipelines {
     VkPipelineLayout layout = VK_NULL_HANDLE;
-    VkPipeline opaque = VK_NULL_HANDLE;
-    VkPipeline masked = VK_NULL_HANDLE;  // only when the scene has MASK materials
-    VkPipeline blend = VK_NULL_HANDLE;   // only when the scene has BLEND materials
+    VkPipeline opaque[2] = {};
+    VkPipeline masked[2] = {};  // only when the scene has MASK materials
+    VkPipeline blend[2] = {};   // only when the scene has BLEND materials
 };
 
 ScenePipelines createScenePipelines(vk::Context& ctx, const gpu::GpuScene& scene, const ScenePipelineDesc& desc);
@@ -42,13 +59,18 @@ struct SceneFrame {
     std::vector<glm::mat4> prev_models;  // per instance, previous frame
     glm::vec3 camera_position{0};
     VkExtent2D viewport{};               // rendered region, at the top-left of the targets
+    glm::vec2 viewport_size{0};          // viewport width/height (fractional for odd checkerboard sizes)
     glm::vec4 clear_color{0};
+    // VK_EXT_sample_locations positions for this frame (2 samples), when the pipeline uses them.
+    bool sample_locations = false;
+    glm::vec2 sample_positions[2] = {};
+    PFN_vkCmdSetSampleLocationsEXT set_sample_locations = nullptr;
 };
 
-// Clears colour and depth, draws opaque then alpha-tested geometry.
-void addOpaquePass(graph::Graph& graph, vk::Image& color, vk::Image& depth, std::shared_ptr<const SceneFrame> frame);
-// Blended draws, back to front, depth-tested against the opaque depth, not written.
-void addTransparentPass(graph::Graph& graph, vk::Image& color, vk::Image& depth,
-                        std::shared_ptr<const SceneFrame> frame);
+// Clears the targets, draws opaque then alpha-tested geometry.
+void addOpaquePass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame);
+// Blended draws, back to front, depth-tested against the opaque depth, not written;
+// motion vectors stay those of the opaque surface behind.
+void addTransparentPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame);
 
 }  // namespace cbr::passes

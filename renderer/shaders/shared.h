@@ -20,6 +20,11 @@ struct FrameUniforms {
     vec4 params;           // x texture LOD bias, y exposure, z ambient, w unused
     uvec4 counts;          // x light records (lights x shading cost), y shading cost
     vec4 background;       // linear clear colour
+    // Checkerboard rendering (zero elsewhere):
+    vec4 view_offsets;     // clip-space xy offsets of view/sample 0 (xy) and view 1 (zw)
+    mat4 reproject;        // current unjittered clip -> previous clip (static geometry)
+    vec4 depth_params;     // view depth = B / (d + A): x A, y B (current), z A, w B (previous)
+    uvec4 frame_info;      // x parity (0 even, 1 odd), y history reset, z width, w height
 };
 
 struct MaterialUniforms {
@@ -42,7 +47,7 @@ struct GpuLight {
 #define CBR_TEX_OCCLUSION 16u
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameUniforms) == 3 * 64 + 4 * 16);
+static_assert(sizeof(FrameUniforms) == 4 * 64 + 7 * 16);
 static_assert(sizeof(MaterialUniforms) == 4 * 16);
 static_assert(sizeof(GpuLight) == 3 * 16);
 }  // namespace cbr::shaders

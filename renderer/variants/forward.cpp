@@ -59,9 +59,10 @@ public:
         setup.scene_frame->viewport = render;
         setup.scene_frame->pipelines = &pipelines_;
         std::shared_ptr<const passes::SceneFrame> frame = setup.scene_frame;
-        passes::addOpaquePass(graph, color_, depth_, frame);
+        passes::SceneTargets targets{&color_, nullptr, &depth_, 0};
+        passes::addOpaquePass(graph, targets, frame);
         if (!scene_.blend.empty())
-            passes::addTransparentPass(graph, color_, depth_, frame);
+            passes::addTransparentPass(graph, targets, frame);
         else
             graph.leaveOut("transparent", "scene has no BLEND materials");
         if (scaled_) passes::addUpscalePass(graph, upscale_, color_, render, upscaled_);

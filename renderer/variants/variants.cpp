@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 
+#include "renderer/variants/checkerboard.h"
 #include "renderer/variants/forward.h"
 
 namespace cbr::variants {
@@ -11,6 +12,8 @@ namespace {
 constexpr Variant kVariants[] = {
     {"full", "native resolution, one sample per pixel (the reference)", buildFull},
     {"drr", "dynamic resolution: scaled render, upscaled to output size", buildDynamicResolution},
+    {"cbr-aso", "checkerboard, assume shading occluded on quarter-res motion", buildCheckerboardAso},
+    {"cbr-cso", "checkerboard, check shading occlusion with a view-space depth test", buildCheckerboardCso},
 };
 
 }  // namespace

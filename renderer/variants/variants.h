@@ -5,6 +5,8 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "renderer/graph/graph.h"
 #include "renderer/passes/scene_pass.h"
@@ -16,12 +18,24 @@ class Context;
 
 namespace cbr::variants {
 
+// Per-frame values a variant decides and the renderer writes into FrameUniforms.
+struct FrameParams {
+    float lod_bias = 0;
+    glm::vec4 view_offsets{0};  // clip-space offsets of view (or sample set) 0 and 1
+    uint32_t parity = 0;
+};
+
 // What a variant needs to declare one frame's passes.
 struct FrameSetup {
     std::shared_ptr<passes::SceneFrame> scene_frame;  // filled by the variant (viewport) then shared
     const render::FrameRequest* request = nullptr;
     double render_scale = 1;
+    FrameParams params;               // out
 };
+
+// Per-frame counters a variant may fill (checkerboard pixel classes): the frame set's
+// binding 2, zeroed by the host per frame, read back with the frame.
+constexpr uint32_t kFrameStats = 8;
 
 // A variant's persistent resources (targets, pipelines) and its per-frame pass declaration.
 class VariantRenderer {
@@ -33,6 +47,12 @@ public:
     virtual VkExtent2D renderExtent(double scale) const = 0;
     virtual bool scaled() const { return false; }        // renders below output size
     virtual bool dynamicScale() const { return false; }  // the scale follows the GPU time
+    // Names of the counters this variant fills in the stats buffer (empty: none).
+    virtual std::vector<std::string> statNames() const { return {}; }
+    // An extra full-res R8_UINT image worth saving beside the display image (class map).
+    virtual vk::Image* diagnosticImage() { return nullptr; }
+    // How the variant runs on this device, for run.json (e.g. the checkerboard route and why).
+    virtual std::vector<std::pair<std::string, std::string>> describe() const { return {}; }
 };
 
 using BuildFn = std::unique_ptr<VariantRenderer> (*)(vk::Context&, const gpu::GpuScene&, const render::Settings&);

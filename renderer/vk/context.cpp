@@ -261,6 +261,29 @@ Context::Context(const ContextOptions& options) {
     VkPhysicalDeviceFeatures2 e2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &e11};
     e2.features.pipelineStatisticsQuery = f2.features.pipelineStatisticsQuery;
     e2.features.sampleRateShading = f2.features.sampleRateShading;
+    // The checkerboard scene pass blends colour but never its motion attachment.
+    if (!f2.features.independentBlend) throw Unsupported("device " + description.name + " lacks independentBlend");
+    e2.features.independentBlend = VK_TRUE;
+
+    // VK_EXT_sample_locations: the `msaa-locations` checkerboard route, where it allows 2 samples.
+    std::vector<const char*> extensions;
+    {
+        uint32_t n = 0;
+        vkEnumerateDeviceExtensionProperties(physical, nullptr, &n, nullptr);
+        std::vector<VkExtensionProperties> available(n);
+        vkEnumerateDeviceExtensionProperties(physical, nullptr, &n, available.data());
+        for (const auto& e : available)
+            if (std::strcmp(e.extensionName, VK_EXT_SAMPLE_LOCATIONS_EXTENSION_NAME) == 0) {
+                VkPhysicalDeviceSampleLocationsPropertiesEXT sl{
+                    VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SAMPLE_LOCATIONS_PROPERTIES_EXT};
+                VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &sl};
+                vkGetPhysicalDeviceProperties2(physical, &p2);
+                if (sl.sampleLocationSampleCounts & VK_SAMPLE_COUNT_2_BIT) {
+                    extensions.push_back(VK_EXT_SAMPLE_LOCATIONS_EXTENSION_NAME);
+                    caps.sample_locations_2x = true;
+                }
+            }
+    }
 
     float priority = 1.0f;
     VkDeviceQueueCreateInfo qinfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -270,6 +293,8 @@ Context::Context(const ContextOptions& options) {
     VkDeviceCreateInfo dinfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &e2};
     dinfo.queueCreateInfoCount = 1;
     dinfo.pQueueCreateInfos = &qinfo;
+    dinfo.enabledExtensionCount = uint32_t(extensions.size());
+    dinfo.ppEnabledExtensionNames = extensions.data();
     VK_CHECK(vkCreateDevice(physical, &dinfo, nullptr, &device));
     vkGetDeviceQueue(device, queue_family, 0, &queue);
 

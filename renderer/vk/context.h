@@ -40,6 +40,7 @@ struct DeviceCaps {
     VkSampleCountFlags color_sample_counts = 0;
     VkSampleCountFlags depth_sample_counts = 0;
     uint32_t max_image_dimension_2d = 0;
+    bool sample_locations_2x = false;  // VK_EXT_sample_locations enabled and allows 2 samples
 };
 
 struct ValidationCounts {

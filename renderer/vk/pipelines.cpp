@@ -78,13 +78,14 @@ void writeBuffer(Context& ctx, VkDescriptorSet set, uint32_t binding, VkDescript
 
 ComputeKernel createComputeKernel(Context& ctx, const uint32_t* spirv, size_t size_bytes,
                                   std::initializer_list<Binding> bindings, uint32_t push_bytes,
-                                  std::vector<SpecConstant> spec) {
+                                  std::vector<SpecConstant> spec, VkDescriptorSetLayout shared_set0) {
     ComputeKernel k;
     k.set_layout = createSetLayout(ctx, bindings);
+    VkDescriptorSetLayout layouts[2] = {shared_set0, k.set_layout};
     VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes};
     VkPipelineLayoutCreateInfo linfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    linfo.setLayoutCount = 1;
-    linfo.pSetLayouts = &k.set_layout;
+    linfo.setLayoutCount = shared_set0 ? 2 : 1;
+    linfo.pSetLayouts = shared_set0 ? layouts : &k.set_layout;
     linfo.pushConstantRangeCount = push_bytes ? 1 : 0;
     linfo.pPushConstantRanges = &push;
     VK_CHECK(vkCreatePipelineLayout(ctx.device, &linfo, nullptr, &k.layout));

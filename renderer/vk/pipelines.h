@@ -41,9 +41,12 @@ struct ComputeKernel {
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkPipeline pipeline = VK_NULL_HANDLE;
 };
+// With `shared_set0`, the kernel's own bindings are set 1 and set 0 is that layout (the
+// renderer's per-frame set); otherwise its bindings are set 0.
 ComputeKernel createComputeKernel(Context& ctx, const uint32_t* spirv, size_t size_bytes,
                                   std::initializer_list<Binding> bindings, uint32_t push_bytes,
-                                  std::vector<SpecConstant> spec = {});
+                                  std::vector<SpecConstant> spec = {},
+                                  VkDescriptorSetLayout shared_set0 = VK_NULL_HANDLE);
 void destroyComputeKernel(Context& ctx, ComputeKernel& kernel);
 
 VkSampler createSampler(Context& ctx, VkFilter filter, VkSamplerAddressMode address, float max_lod);

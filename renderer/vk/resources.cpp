@@ -120,11 +120,21 @@ Image createImage(Context& ctx, const ImageDesc& desc) {
     vinfo.format = desc.format;
     vinfo.subresourceRange = {img.aspect, 0, desc.mip_levels, 0, desc.layers};
     VK_CHECK(vkCreateImageView(ctx.device, &vinfo, nullptr, &img.view));
+    if (desc.layers > 1 && desc.mip_levels == 1) {
+        vinfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        for (uint32_t layer = 0; layer < desc.layers; ++layer) {
+            vinfo.subresourceRange = {img.aspect, 0, 1, layer, 1};
+            VkImageView v;
+            VK_CHECK(vkCreateImageView(ctx.device, &vinfo, nullptr, &v));
+            img.layer_views.push_back(v);
+        }
+    }
     return img;
 }
 
 void destroyImage(Context& ctx, Image& img) {
     if (img.view) vkDestroyImageView(ctx.device, img.view, nullptr);
+    for (VkImageView v : img.layer_views) vkDestroyImageView(ctx.device, v, nullptr);
     if (img.image) vkDestroyImage(ctx.device, img.image, nullptr);
     if (img.memory) vkFreeMemory(ctx.device, img.memory, nullptr);
     img = {};

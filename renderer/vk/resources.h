@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -24,6 +25,7 @@ struct Image {
     VkImage image = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
+    std::vector<VkImageView> layer_views;  // one 2D view per layer of an array image
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkExtent2D extent{};
     uint32_t mip_levels = 1;

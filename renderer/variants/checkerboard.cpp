@@ -1,0 +1,242 @@
+// Checkerboard variants: quarter-res sample sets for frames N and N-1, the scene passes
+// with the route's sample pattern, the reconstruction, the tone map.
+#include "renderer/variants/checkerboard.h"
+
+#include <stdexcept>
+
+#include "renderer/passes/cbr_resolve_pass.h"
+#include "renderer/passes/tonemap_pass.h"
+#include "renderer/shaders/cbr_pattern.h"
+#include "renderer/vk/check.h"
+#include "renderer/vk/context.h"
+
+namespace cbr::variants {
+namespace {
+
+constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+// The quadrant (qx, qy) that sample/view `s` covers in a frame of `parity`.
+glm::ivec2 quadrantOf(int route, int parity, int s) {
+    for (int q = 0; q < 4; ++q)
+        if (shaders::kCbrPattern[((route * 2 + parity) * 4 + q) * 3] == s) return {q & 1, q >> 1};
+    throw vk::Error("checkerboard pattern table has no quadrant for sample " + std::to_string(s));
+}
+
+class CheckerboardVariant final : public VariantRenderer {
+public:
+    CheckerboardVariant(vk::Context& ctx, const gpu::GpuScene& scene, const render::Settings& s, bool cso)
+        : ctx_(ctx), scene_(scene), settings_(s), cso_(cso) {
+        route_ = chooseRoute(ctx, s.cbr_route);
+        msaa_ = route_.route != CBR_ROUTE_MULTIVIEW;
+        has_motion_ = scene.cpu->info.animated_instances > 0;
+        quarter_ = {(s.width + 1) / 2, (s.height + 1) / 2};
+        uint32_t layers = msaa_ ? 1 : 2;
+        VkSampleCountFlagBits samples = msaa_ ? VK_SAMPLE_COUNT_2_BIT : VK_SAMPLE_COUNT_1_BIT;
+        auto target = [&](const char* name, int i, VkFormat format, VkImageUsageFlags usage) {
+            return vk::createImage(ctx, {std::string(name) + std::to_string(i), format, quarter_,
+                                         usage | VK_IMAGE_USAGE_SAMPLED_BIT, 1, layers, samples});
+        };
+        for (int i = 0; i < 2; ++i) {
+            sets_[i].color = target("cbr_color", i, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+            sets_[i].depth = target("cbr_depth", i, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+            if (has_motion_)
+                sets_[i].motion = target("cbr_motion", i, passes::kMotionFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+        }
+        VkExtent2D full{s.width, s.height};
+        hdr_ = vk::createImage(ctx, {"hdr", kHdrFormat, full, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+        class_ = vk::createImage(ctx, {"cbr_class", VK_FORMAT_R8_UINT, full,
+                                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+        display_ = vk::createImage(ctx, {"display", VK_FORMAT_R8G8B8A8_UNORM, full,
+                                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+        passes::ScenePipelineDesc desc;
+        desc.samples = samples;
+        desc.sample_shading = msaa_;
+        desc.view_mask = msaa_ || route_.sequential_layers ? 0 : 0b11;
+        desc.motion = has_motion_;
+        desc.sample_locations = route_.route == CBR_ROUTE_MSAA_LOCATIONS;
+        pipelines_ = passes::createScenePipelines(ctx, scene, desc);
+        passes::CbrResolveDesc rdesc;
+        rdesc.route = route_.route;
+        rdesc.check_occlusion = cso_;
+        rdesc.cso_absolute = s.cso_absolute;
+        rdesc.cso_tolerance = float(s.cso_tolerance);
+        rdesc.has_motion = has_motion_;
+        resolve_ = passes::createCbrResolve(ctx, rdesc, scene.frame_layout, sets_, hdr_, class_, msaa_);
+        tonemap_ = passes::createTonemap(ctx, hdr_, display_);
+        if (desc.sample_locations)
+            set_sample_locations_ = reinterpret_cast<PFN_vkCmdSetSampleLocationsEXT>(
+                vkGetDeviceProcAddr(ctx.device, "vkCmdSetSampleLocationsEXT"));
+    }
+
+    ~CheckerboardVariant() override {
+        vkDeviceWaitIdle(ctx_.device);
+        passes::destroyTonemap(ctx_, tonemap_);
+        passes::destroyCbrResolve(ctx_, resolve_);
+        passes::destroyScenePipelines(ctx_, pipelines_);
+        for (auto& set : sets_)
+            for (vk::Image* img : {&set.color, &set.depth, &set.motion}) vk::destroyImage(ctx_, *img);
+        for (vk::Image* img : {&hdr_, &class_, &display_}) vk::destroyImage(ctx_, *img);
+    }
+
+    VkExtent2D renderExtent(double) const override { return quarter_; }
+
+    void declare(graph::Graph& graph, FrameSetup& setup) override {
+        const render::FrameRequest& req = *setup.request;
+        // Frame i of the path has parity i & 1, so results do not depend on the warm-up.
+        int parity = req.index >= 0 ? (req.index & 1) : (warmup_counter_++ & 1);
+        int current = parity;  // the sample set written this frame; the other holds N-1
+        auto& frame = *setup.scene_frame;
+        frame.viewport = quarter_;
+        // The logical image is W/2 x H/2 quarter pixels: fractional for odd sizes.
+        frame.viewport_size = glm::vec2(settings_.width * 0.5f, settings_.height * 0.5f);
+        frame.pipelines = &pipelines_;
+        if (route_.route == CBR_ROUTE_MSAA_LOCATIONS) {
+            auto [s0, s1] = samplePositions(parity);
+            frame.sample_locations = true;
+            frame.sample_positions[0] = s0;
+            frame.sample_positions[1] = s1;
+            frame.set_sample_locations = set_sample_locations_;
+        }
+        setup.params.lod_bias = settings_.cbr_lod_bias;
+        setup.params.parity = uint32_t(parity);
+        setup.params.view_offsets = viewOffsets(route_.route, parity, settings_.width, settings_.height);
+
+        std::shared_ptr<const passes::SceneFrame> shared = setup.scene_frame;
+        passes::CheckerboardSet& set = sets_[current];
+        passes::SceneTargets targets{&set.color, has_motion_ ? &set.motion : nullptr, &set.depth,
+                                     msaa_ || route_.sequential_layers ? 0u : 0b11u, route_.sequential_layers};
+        passes::addOpaquePass(graph, targets, shared);
+        if (!scene_.blend.empty())
+            passes::addTransparentPass(graph, targets, shared);
+        else
+            graph.leaveOut("transparent", "scene has no BLEND materials");
+        passes::addCbrResolvePass(graph, resolve_, frame.frame_set, sets_, current, hdr_, class_);
+        passes::addTonemapPass(graph, tonemap_, hdr_, display_, settings_.exposure);
+    }
+
+    vk::Image& display() override { return display_; }
+    vk::Image* diagnosticImage() override { return &class_; }
+
+    std::vector<std::string> statNames() const override {
+        return {"px_shaded", "px_reused", "px_missing_parity", "px_occluded", "px_offscreen", "px_reset"};
+    }
+
+    std::vector<std::pair<std::string, std::string>> describe() const override {
+        std::vector<std::pair<std::string, std::string>> d = {
+            {"route", route_.name},
+            {"route_reason", route_.reason},
+            {"quarter_resolution", std::to_string(quarter_.width) + "x" + std::to_string(quarter_.height)},
+            {"lod_bias", std::to_string(settings_.cbr_lod_bias)},
+            {"occlusion_rule", cso_ ? "CSO: view-space depth test" : "ASO: any quarter-res motion is missing"},
+            {"motion", has_motion_ ? "per-pixel motion vectors from the scene pass (moving objects present)"
+                                   : "camera motion from depth reprojection (static scene)"},
+            {"fill", "tone-mapped average of frame N's cardinal neighbours, weights 1/(1+luma)"},
+            {"lost_border", route_.route == CBR_ROUTE_MSAA_JITTER
+                                ? "top-right quadrants of the last quarter-res column (full-res column 2*ceil(W/2)-1) "
+                                  "are never shaded; filled from neighbours"
+                                : "none"}};
+        if (cso_) {
+            d.push_back({"cso_tolerance", std::to_string(settings_.cso_tolerance)});
+            d.push_back({"cso_mode", settings_.cso_absolute ? "absolute" : "relative"});
+        }
+        return d;
+    }
+
+private:
+    vk::Context& ctx_;
+    const gpu::GpuScene& scene_;
+    render::Settings settings_;
+    bool cso_;
+    RouteChoice route_;
+    bool msaa_ = false;
+    bool has_motion_ = false;
+    VkExtent2D quarter_{};
+    passes::CheckerboardSet sets_[2];
+    vk::Image hdr_, class_, display_;
+    passes::ScenePipelines pipelines_;
+    passes::CbrResolve resolve_;
+    passes::Tonemap tonemap_;
+    PFN_vkCmdSetSampleLocationsEXT set_sample_locations_ = nullptr;
+    int warmup_counter_ = 0;
+};
+
+}  // namespace
+
+const char* routeNames() { return "auto, msaa-jitter, msaa-locations, multiview, layers"; }
+
+RouteChoice chooseRoute(const vk::Context& ctx, const std::string& requested) {
+    const auto& caps = ctx.caps;
+    bool msaa2 = (caps.color_sample_counts & VK_SAMPLE_COUNT_2_BIT) && (caps.depth_sample_counts & VK_SAMPLE_COUNT_2_BIT);
+    bool msaa_ok = msaa2 && caps.sample_rate_shading;
+    std::string why_not_msaa = !msaa2 ? "the device offers no 2x MSAA for colour and depth"
+                                      : "the device has no sample-rate shading";
+    if (requested == "auto") {
+        if (msaa_ok)
+            return {CBR_ROUTE_MSAA_JITTER, "msaa-jitter", "auto: 2x MSAA with sample-rate shading is available"};
+        // lavapipe (Mesa 22.3) drops near-plane-clipped triangles from view 1 of a
+        // multiview pass (a camera inside the scene loses walls in one sample set):
+        // render the two layers in two passes there; same sample positions.
+        if (ctx.description.is_lavapipe)
+            return {CBR_ROUTE_MULTIVIEW, "layers",
+                    "auto: " + why_not_msaa + "; lavapipe's multiview loses near-clipped triangles in view 1, so the "
+                    "two layers are rendered in two passes",
+                    true};
+        if (!caps.multiview) throw vk::Unsupported("checkerboard: no 2x MSAA and no multiview on this device");
+        return {CBR_ROUTE_MULTIVIEW, "multiview", "auto: " + why_not_msaa + "; two views into a 2-layer target"};
+    }
+    if (requested == "layers")
+        return {CBR_ROUTE_MULTIVIEW, "layers", "requested: two passes, one per layer", true};
+    if (requested == "msaa-jitter") {
+        if (!msaa_ok) throw vk::Unsupported("--cbr-route msaa-jitter: " + why_not_msaa);
+        return {CBR_ROUTE_MSAA_JITTER, "msaa-jitter", "requested"};
+    }
+    if (requested == "msaa-locations") {
+        if (!msaa_ok) throw vk::Unsupported("--cbr-route msaa-locations: " + why_not_msaa);
+        if (!caps.sample_locations_2x)
+            throw vk::Unsupported("--cbr-route msaa-locations: VK_EXT_sample_locations with 2 samples is not available");
+        return {CBR_ROUTE_MSAA_LOCATIONS, "msaa-locations", "requested"};
+    }
+    if (requested == "multiview") {
+        if (!caps.multiview) throw vk::Unsupported("--cbr-route multiview: the device has no multiview");
+        return {CBR_ROUTE_MULTIVIEW, "multiview", "requested"};
+    }
+    throw std::invalid_argument("--cbr-route " + requested + ": unknown route; expected one of " + routeNames());
+}
+
+glm::vec4 viewOffsets(int route, int parity, uint32_t width, uint32_t height) {
+    // One quarter-res pixel is 2 / (W / 2) = 4 / W in NDC across the W/2-wide viewport.
+    glm::vec2 qpx(4.0f / float(width), 4.0f / float(height));
+    if (route == CBR_ROUTE_MSAA_JITTER) {
+        // Odd frames: the image moves one full-res pixel (half a quarter pixel) right.
+        glm::vec2 o = parity ? glm::vec2(0.5f * qpx.x, 0.0f) : glm::vec2(0.0f);
+        return {o, o};
+    }
+    if (route == CBR_ROUTE_MSAA_LOCATIONS) return glm::vec4(0.0f);
+    // Multiview: view s samples its quarter pixel's centre; shift the image so that the
+    // centre lands on its quadrant's full-res pixel centre, (q + 0.5) / 2.
+    glm::vec2 o[2];
+    for (int s = 0; s < 2; ++s) {
+        glm::ivec2 q = quadrantOf(route, parity, s);
+        o[s] = (0.5f - (glm::vec2(q) + 0.5f) * 0.5f) * qpx;
+    }
+    return {o[0], o[1]};
+}
+
+std::pair<glm::vec2, glm::vec2> samplePositions(int parity) {
+    glm::vec2 p[2];
+    for (int s = 0; s < 2; ++s) p[s] = (glm::vec2(quadrantOf(CBR_ROUTE_MSAA_LOCATIONS, parity, s)) + 0.5f) * 0.5f;
+    return {p[0], p[1]};
+}
+
+std::unique_ptr<VariantRenderer> buildCheckerboardAso(vk::Context& ctx, const gpu::GpuScene& scene,
+                                                      const render::Settings& s) {
+    return std::make_unique<CheckerboardVariant>(ctx, scene, s, false);
+}
+
+std::unique_ptr<VariantRenderer> buildCheckerboardCso(vk::Context& ctx, const gpu::GpuScene& scene,
+                                                      const render::Settings& s) {
+    return std::make_unique<CheckerboardVariant>(ctx, scene, s, true);
+}
+
+}  // namespace cbr::variants
