@@ -79,6 +79,9 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     run->add_option("--cso-tolerance", o.cso_tolerance, "cbr-cso depth tolerance (relative, or scene units)")
         ->capture_default_str();
+    run->add_option("--debug-shading", o.debug_shading,
+                    "none, or pixel-id: colours encode the full-res pixel each sample lands on (tests)")
+        ->capture_default_str();
     run->add_option("--cso-mode", o.cso_mode, "cbr-cso tolerance mode: relative or absolute")->capture_default_str();
 
     try {

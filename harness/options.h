@@ -29,6 +29,7 @@ struct RunOptions {
     double cbr_lod_bias = -0.5;
     double cso_tolerance = 0.05;
     std::string cso_mode = "relative";
+    std::string debug_shading = "none";  // none | pixel-id
     std::vector<std::string> argv;    // the command line, for run.json
 };
 

@@ -329,6 +329,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                      {"cbr_lod_bias", s.cbr_lod_bias},
                      {"cso_tolerance", s.cso_tolerance},
                      {"cso_mode", s.cso_absolute ? "absolute" : "relative"},
+                     {"debug_shading", s.debug_pixel_id ? "pixel-id" : "none"},
                      {"drr_scale", s.drr_scale},
                      {"drr_filter", s.drr_filter == render::DrrFilter::Bilinear ? "bilinear" : "catmull-rom"},
                      {"drr_target_ms", s.drr_control.target_ms},

@@ -106,6 +106,9 @@ Prepared prepare(const RunOptions& o) {
         o.cbr_route != "multiview" && o.cbr_route != "layers")
         throw std::invalid_argument("--cbr-route " + o.cbr_route +
                                     ": unknown route; expected auto, msaa-jitter, msaa-locations, multiview or layers");
+    if (o.debug_shading != "none" && o.debug_shading != "pixel-id")
+        throw std::invalid_argument("--debug-shading " + o.debug_shading + ": expected none or pixel-id");
+    p.settings.debug_pixel_id = o.debug_shading == "pixel-id";
     p.settings.cbr_route = o.cbr_route;
     p.settings.cbr_lod_bias = float(o.cbr_lod_bias);
     p.settings.cso_tolerance = o.cso_tolerance;

@@ -288,7 +288,7 @@ void Renderer::writeUniforms(Slot& slot, const FrameRequest& request, const vari
     u.prev_view_proj = glm::mat4(prev_view_proj);
     u.view = glm::mat4(request.camera.view);
     u.camera_position = glm::vec4(glm::vec3(request.camera.position), 1.0f);
-    u.params = glm::vec4(params.lod_bias, settings_.exposure, 0.03f, 0.0f);
+    u.params = glm::vec4(params.lod_bias, settings_.exposure, 0.03f, settings_.debug_pixel_id ? 1.0f : 0.0f);
     u.counts = glm::uvec4(light_records_, uint32_t(std::max(1, settings_.shading_cost)), 0, 0);
     u.background = glm::vec4(scene_.cpu->background, 1.0f);
     u.view_offsets = params.view_offsets;

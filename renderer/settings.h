@@ -35,6 +35,7 @@ struct Settings {
     float cbr_lod_bias = -0.5f;      // the paper's; -1 matches full-res derivatives
     double cso_tolerance = 0.05;
     bool cso_absolute = false;       // false: relative to the mean neighbour depth
+    bool debug_pixel_id = false;     // colours encode the full-res pixel each sample lands on
 };
 
 struct Camera {

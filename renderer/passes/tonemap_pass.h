@@ -15,6 +15,8 @@ struct Tonemap {
 
 Tonemap createTonemap(vk::Context& ctx, vk::Image& hdr, vk::Image& display);
 void destroyTonemap(vk::Context& ctx, Tonemap& t);
-void addTonemapPass(graph::Graph& graph, const Tonemap& t, vk::Image& hdr, vk::Image& display, float exposure);
+// pass_through: the HDR values already are display values (debug pixel-id mode).
+void addTonemapPass(graph::Graph& graph, const Tonemap& t, vk::Image& hdr, vk::Image& display, float exposure,
+                    bool pass_through = false);
 
 }  // namespace cbr::passes

@@ -52,7 +52,26 @@ vec3 perturbNormal(vec3 n, vec3 p, vec2 uv, vec3 tangent_normal) {
     return normalize(mat3(t * inv, b * inv, n) * tangent_normal);
 }
 
+// Test mode (`--debug-shading pixel-id`): the colour encodes the full-res pixel whose
+// centre this sample lies on, from the unjittered clip position: R = x & 255,
+// G = y & 255, B = (x >> 8 & 7) | (y >> 8 & 7) << 3 | off-centre << 6. The tone map
+// passes it through, so a saved PNG shows where every sample landed.
+vec4 pixelIdColour() {
+    vec2 pixel = (in_clip.xy / in_clip.w * 0.5 + 0.5) * vec2(frame.frame_info.zw) - 0.5;
+    ivec2 id = ivec2(round(pixel));
+    bool off_centre = any(greaterThan(abs(pixel - vec2(id)), vec2(0.01)));
+    int b = ((id.x >> 8) & 7) | (((id.y >> 8) & 7) << 3) | (off_centre ? 64 : 0);
+    return vec4(float(id.x & 255), float(id.y & 255), float(b), 255.0) / 255.0;
+}
+
 void main() {
+    if (frame.params.w != 0.0) {
+        out_color = pixelIdColour();
+#ifdef CBR_WRITE_MOTION
+        out_motion = vec2(0.0);
+#endif
+        return;
+    }
     float bias = frame.params.x;
     uint flags = material.flags.x;
     vec4 base = material.base_color;

@@ -17,7 +17,7 @@ struct FrameUniforms {
     mat4 prev_view_proj;   // the previous frame's, for motion
     mat4 view;             // world -> view
     vec4 camera_position;  // xyz world
-    vec4 params;           // x texture LOD bias, y exposure, z ambient, w unused
+    vec4 params;           // x texture LOD bias, y exposure, z ambient, w debug pixel-id mode
     uvec4 counts;          // x light records (lights x shading cost), y shading cost
     vec4 background;       // linear clear colour
     // Checkerboard rendering (zero elsewhere):

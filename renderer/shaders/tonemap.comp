@@ -7,6 +7,7 @@ layout(set = 0, binding = 1, rgba8) uniform writeonly image2D display;
 
 layout(push_constant) uniform Params {
     float exposure;
+    uint pass_through;  // debug pixel-id mode: the colour already is the display value
 } params;
 
 vec3 acesFitted(vec3 x) {
@@ -22,6 +23,10 @@ void main() {
     ivec2 size = imageSize(display);
     if (p.x >= size.x || p.y >= size.y) return;
     vec3 c = max(texelFetch(hdr, p, 0).rgb, vec3(0.0));
+    if (params.pass_through != 0u) {
+        imageStore(display, p, vec4(floor(c * 255.0 + 0.5) / 255.0, 1.0));
+        return;
+    }
     // A NaN from a degenerate input must not become a random 8-bit value.
     if (any(isnan(c)) || any(isinf(c))) c = vec3(1.0, 0.0, 1.0);
     vec3 display_rgb = srgbEncode(acesFitted(c * params.exposure));

@@ -112,7 +112,7 @@ public:
         else
             graph.leaveOut("transparent", "scene has no BLEND materials");
         passes::addCbrResolvePass(graph, resolve_, frame.frame_set, sets_, current, hdr_, class_);
-        passes::addTonemapPass(graph, tonemap_, hdr_, display_, settings_.exposure);
+        passes::addTonemapPass(graph, tonemap_, hdr_, display_, settings_.exposure, settings_.debug_pixel_id);
     }
 
     vk::Image& display() override { return display_; }

@@ -66,7 +66,7 @@ public:
         else
             graph.leaveOut("transparent", "scene has no BLEND materials");
         if (scaled_) passes::addUpscalePass(graph, upscale_, color_, render, upscaled_);
-        passes::addTonemapPass(graph, tonemap_, scaled_ ? upscaled_ : color_, display_, settings_.exposure);
+        passes::addTonemapPass(graph, tonemap_, scaled_ ? upscaled_ : color_, display_, settings_.exposure, settings_.debug_pixel_id);
     }
 
     vk::Image& display() override { return display_; }

@@ -44,10 +44,19 @@ inline std::string shellQuote(const std::string& s) {
 }
 
 inline BenchResult runBench(const std::vector<std::string>& args, const std::filesystem::path& cwd) {
-    std::string cmd = "cd " + shellQuote(cwd.string()) + " && " + shellQuote(CBR_BENCH_EXE);
-    for (const auto& a : args) cmd += " " + shellQuote(a);
+    std::string cmd = "cd ";
+    cmd += shellQuote(cwd.string());
+    cmd += " && ";
+    cmd += shellQuote(CBR_BENCH_EXE);
+    for (const auto& a : args) {
+        cmd += ' ';
+        cmd += shellQuote(a);
+    }
     auto out_file = cwd / "stdout.txt", err_file = cwd / "stderr.txt";
-    cmd += " >" + shellQuote(out_file.string()) + " 2>" + shellQuote(err_file.string());
+    cmd += " >";
+    cmd += shellQuote(out_file.string());
+    cmd += " 2>";
+    cmd += shellQuote(err_file.string());
     int status = std::system(cmd.c_str());
     BenchResult r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

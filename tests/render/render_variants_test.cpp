@@ -101,7 +101,9 @@ TEST(RenderVariants, QualityIsScoredAgainstFull) {
     }
     // Frames are aligned in time: drr's middle frame matches full's same frame best.
     for (const auto& v : r.run["variants"])
-        if (v["name"] == "drr") EXPECT_TRUE(v["frame_alignment"]["ok"].get<bool>()) << v.dump();
+        if (v["name"] == "drr") {
+            EXPECT_TRUE(v["frame_alignment"]["ok"].get<bool>()) << v.dump();
+        }
     // Scores recompute from the saved PNGs (metrics.md): frame 3 of drr.
     auto ref = metrics::readPng(r.dir / "frames" / "full_0003.png");
     auto drr = metrics::readPng(r.dir / "frames" / "drr_0003.png");
@@ -109,8 +111,9 @@ TEST(RenderVariants, QualityIsScoredAgainstFull) {
     auto b = metrics::fromRgba8(drr.pixels.data(), drr.width, drr.height, size_t(drr.width) * 4);
     double psnr = metrics::psnr(a, b);
     for (size_t i = 0; i < r.frames.rows.size(); ++i)
-        if (r.frames.at(i, "variant") == "drr" && r.frames.at(i, "repeat") == "0" && r.frames.at(i, "frame") == "3")
+        if (r.frames.at(i, "variant") == "drr" && r.frames.at(i, "repeat") == "0" && r.frames.at(i, "frame") == "3") {
             EXPECT_NEAR(std::stod(r.frames.at(i, "psnr_db")), psnr, 1e-5);
+        }
     // drr renders half the pixels at the default scale.
     for (size_t i = 0; i < r.summary.rows.size(); ++i)
         if (r.summary.at(i, "variant") == "drr") {
