@@ -15,7 +15,10 @@ namespace {
 
 std::vector<std::string> allVariantsArg() {
     std::string s;
-    for (const auto& v : variants::allVariants()) s += (s.empty() ? "" : ",") + std::string(v.name);
+    for (const auto& v : variants::allVariants()) {
+        if (!s.empty()) s += ',';
+        s += v.name;
+    }
     return {"--variants", s};
 }
 
