@@ -5,7 +5,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
+
 #include "camera_paths/path.h"
+#include "metrics/image_io.h"
+#include "metrics/metrics.h"
 #include "harness/options.h"
 #include "harness/run.h"
 #include "renderer/scene/scene.h"
@@ -24,6 +28,28 @@ int listDevices() {
         std::printf("%-5d %-40s %-28s %s%s\n", d.index, d.name.c_str(),
                     (d.driver_name + " " + d.driver_info).substr(0, 28).c_str(), d.api_version.c_str(),
                     d.is_lavapipe ? "  (default)" : "");
+    return 0;
+}
+
+// `cbrbench score`: the suite's metrics on saved images, so any number can be recomputed.
+int scoreImages(const std::string& ref_file, const std::string& img_file, const std::string& crop) {
+    auto ref = cbr::metrics::readPng(ref_file);
+    auto img = cbr::metrics::readPng(img_file);
+    if (ref.width != img.width || ref.height != img.height)
+        throw std::invalid_argument(img_file + ": " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                                    "; expected the reference's size " + std::to_string(ref.width) + "x" +
+                                    std::to_string(ref.height));
+    int x = 0, y = 0, w = ref.width, h = ref.height;
+    if (!crop.empty() && (std::sscanf(crop.c_str(), "%d,%d,%d,%d", &x, &y, &w, &h) != 4 || x < 0 || y < 0 || w < 11 ||
+                          h < 11 || x + w > ref.width || y + h > ref.height))
+        throw std::invalid_argument("--crop " + crop + ": expected X,Y,W,H inside the image, W and H at least 11");
+    size_t stride = size_t(ref.width) * 4, offset = size_t(y) * stride + size_t(x) * 4;
+    auto a = cbr::metrics::fromRgba8(ref.pixels.data() + offset, w, h, stride);
+    auto b = cbr::metrics::fromRgba8(img.pixels.data() + offset, w, h, stride);
+    double psnr = cbr::metrics::psnr(a, b);
+    auto s = cbr::metrics::ssim(a, b);
+    std::printf("psnr_db %s\nssim %.6f\nssim_luma %.6f\n", std::isinf(psnr) ? "inf" : std::to_string(psnr).c_str(), s.ssim,
+                s.luma_ssim);
     return 0;
 }
 
@@ -50,6 +76,11 @@ int main(int argc, char** argv) {
     auto* paths = app.add_subcommand("paths", "list the built-in camera paths");
     auto* variants = app.add_subcommand("variants", "list the rendering variants");
     auto* run = app.add_subcommand("run", "render a flythrough through the variants; write CSV and JSON");
+    auto* score = app.add_subcommand("score", "PSNR and SSIM of an image against a reference (PNG files)");
+    std::string score_ref, score_img, score_crop;
+    score->add_option("REFERENCE", score_ref, "reference PNG")->required();
+    score->add_option("IMAGE", score_img, "PNG to score")->required();
+    score->add_option("--crop", score_crop, "score only X,Y,W,H (e.g. to leave out a border column)");
 
     cbr::harness::RunOptions o;
     std::string variant_list;
@@ -112,6 +143,7 @@ int main(int argc, char** argv) {
                 std::printf("%-8s %s\n", std::string(v.name).c_str(), std::string(v.description).c_str());
             return 0;
         }
+        if (*score) return scoreImages(score_ref, score_img, score_crop);
         o.variants = splitList(variant_list);
         o.argv.assign(argv, argv + argc);
         return cbr::harness::runBenchmark(o);
