@@ -33,6 +33,7 @@ struct Renderer::Slot {
     vk::Buffer frame_ubo;
     vk::Buffer readback;
     vk::Buffer diagnostic;  // the variant's diagnostic image, when it has one
+    vk::Buffer analysis;    // the analysis pass's output, when enabled
     vk::Buffer stats;       // kFrameStats counters, zeroed by the host per frame
     vk::Buffer instances;   // model and previous model matrix per instance
     VkDescriptorSet frame_set = VK_NULL_HANDLE;
@@ -65,6 +66,17 @@ Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants:
     light_records_ = uint32_t(lights.size());
     lights_ = vk::uploadBuffer(ctx, lights.data(), lights.size() * sizeof(shaders::GpuLight),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+
+    if (settings.analysis) {
+        VkExtent2D full{settings.width, settings.height};
+        analysis_ = vk::createImage(ctx, {"analysis", passes::kAnalysisFormat, full,
+                                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+        analysis_depth_ = vk::createImage(ctx, {"analysis_depth", VK_FORMAT_D32_SFLOAT, full,
+                                                VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
+        passes::ScenePipelineDesc desc;
+        desc.analysis = true;
+        analysis_pipelines_ = passes::createScenePipelines(ctx, scene, desc);
+    }
 
     int n = std::max(1, settings.frames_in_flight);
     std::initializer_list<vk::Binding> frame_bindings = {
@@ -100,6 +112,9 @@ Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants:
         if (variant_->diagnosticImage())
             slot->diagnostic = vk::createBuffer(ctx, VkDeviceSize(settings.width) * settings.height,
                                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        if (settings.analysis)
+            slot->analysis = vk::createBuffer(ctx, VkDeviceSize(settings.width) * settings.height * 16,
+                                              VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         slot->stats = vk::createBuffer(ctx, variants::kFrameStats * sizeof(uint32_t),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
         slot->instances = vk::createBuffer(ctx, std::max<size_t>(1, scene.cpu->instances.size()) * 2 * sizeof(glm::mat4),
@@ -126,11 +141,15 @@ Renderer::~Renderer() {
         vk::destroyBuffer(ctx_, slot->frame_ubo);
         vk::destroyBuffer(ctx_, slot->readback);
         vk::destroyBuffer(ctx_, slot->diagnostic);
+        vk::destroyBuffer(ctx_, slot->analysis);
         vk::destroyBuffer(ctx_, slot->stats);
         vk::destroyBuffer(ctx_, slot->instances);
     }
     vkDestroyDescriptorPool(ctx_.device, frame_pool_, nullptr);
     vk::destroyBuffer(ctx_, lights_);
+    passes::destroyScenePipelines(ctx_, analysis_pipelines_);
+    vk::destroyImage(ctx_, analysis_);
+    vk::destroyImage(ctx_, analysis_depth_);
     variant_.reset();
 }
 
@@ -168,6 +187,18 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
     if (request.readback) {
         passes::addReadbackPass(graph, variant_->display(), slot.readback.buffer);
         if (diagnostic) passes::addReadbackPass(graph, *diagnostic, slot.diagnostic.buffer);
+        if (settings_.analysis) {
+            // Unjittered, full size, after every timed pass: never part of a frame's GPU time.
+            auto analysis_frame = std::make_shared<passes::SceneFrame>(*frame);
+            analysis_frame->pipelines = &analysis_pipelines_;
+            analysis_frame->viewport = {settings_.width, settings_.height};
+            analysis_frame->viewport_size = glm::vec2(0.0f);
+            analysis_frame->sample_locations = false;
+            analysis_frame->clear_color = glm::vec4(0.0f);  // no surface: depth 0
+            passes::SceneTargets targets{&analysis_, nullptr, &analysis_depth_, 0, false, true};
+            passes::addAnalysisPass(graph, targets, analysis_frame);
+            passes::addReadbackPass(graph, analysis_, slot.analysis.buffer);
+        }
     }
     writeUniforms(slot, request, setup.params);
 
@@ -260,6 +291,10 @@ FrameResult Renderer::collect(Slot& slot) {
         size_t pixels = size_t(settings_.width) * settings_.height;
         r.rgba.resize(pixels * 4);
         std::memcpy(r.rgba.data(), slot.readback.mapped, pixels * 4);
+        if (slot.analysis.mapped) {
+            r.analysis.resize(pixels * 4);
+            std::memcpy(r.analysis.data(), slot.analysis.mapped, pixels * 16);
+        }
         if (slot.diagnostic.mapped) {
             r.diagnostic.resize(pixels);
             std::memcpy(r.diagnostic.data(), slot.diagnostic.mapped, pixels);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "renderer/gpu/gpu_scene.h"
+#include "renderer/passes/scene_pass.h"
 #include "renderer/settings.h"
 #include "renderer/variants/variants.h"
 #include "renderer/vk/resources.h"
@@ -36,6 +37,9 @@ private:
     void updateScale(const FrameResult& result);
     void writeUniforms(Slot& slot, const FrameRequest& request, const variants::FrameParams& params);
 
+    // The untimed analysis pass (motion and depths at output size, for the crawl metric).
+    vk::Image analysis_, analysis_depth_;
+    passes::ScenePipelines analysis_pipelines_;
     vk::Context& ctx_;
     const gpu::GpuScene& scene_;
     Settings settings_;

@@ -36,6 +36,7 @@ struct Settings {
     double cso_tolerance = 0.05;
     bool cso_absolute = false;       // false: relative to the mean neighbour depth
     bool debug_pixel_id = false;     // colours encode the full-res pixel each sample lands on
+    bool analysis = false;           // quality frames also read back motion and depths (edge crawl)
 };
 
 struct Camera {
@@ -72,6 +73,7 @@ struct FrameResult {
     double render_scale = 1;
     std::vector<uint8_t> rgba;         // width * height * 4 when read back
     std::vector<uint8_t> diagnostic;   // width * height, the variant's diagnostic image, when read back
+    std::vector<float> analysis;       // width * height * 4: motion.xy, view depth, previous view depth
     std::vector<std::pair<std::string, double>> stats;  // e.g. px_shaded: fraction of the frame's pixels
     std::vector<std::pair<std::string, std::string>> left_out;  // (pass, reason)
 };

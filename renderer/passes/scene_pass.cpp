@@ -6,6 +6,7 @@
 #include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
 #include "renderer/vk/pipelines.h"
+#include "shaders/analysis.frag.h"
 #include "shaders/scene.frag.h"
 #include "shaders/scene_motion.frag.h"
 #include "shaders/scene_sample.frag.h"
@@ -24,7 +25,8 @@ VkPipeline createScenePipeline(vk::Context& ctx, VkPipelineLayout layout, const 
     // because an output with no attachment and a `sample` input are not specialisable.
     auto module = [&](const uint32_t* code, size_t size) { return vk::createShaderModule(ctx, code, size); };
     VkShaderModule frag =
-        desc.sample_shading
+        desc.analysis ? module(kSpirv_analysis_frag, sizeof(kSpirv_analysis_frag))
+        : desc.sample_shading
             ? (desc.motion ? module(kSpirv_scene_sample_motion_frag, sizeof(kSpirv_scene_sample_motion_frag))
                            : module(kSpirv_scene_sample_frag, sizeof(kSpirv_scene_sample_frag)))
             : (desc.motion ? module(kSpirv_scene_motion_frag, sizeof(kSpirv_scene_motion_frag))
@@ -103,7 +105,7 @@ VkPipeline createScenePipeline(vk::Context& ctx, VkPipelineLayout layout, const 
     VkPipelineDynamicStateCreateInfo dynamic_state{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
     dynamic_state.dynamicStateCount = uint32_t(dynamic.size());
     dynamic_state.pDynamicStates = dynamic.data();
-    VkFormat formats[2] = {desc.color_format, kMotionFormat};
+    VkFormat formats[2] = {desc.analysis ? kAnalysisFormat : desc.color_format, kMotionFormat};
     VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
     rendering.viewMask = desc.view_mask;
     rendering.colorAttachmentCount = desc.motion ? 2 : 1;
@@ -207,7 +209,8 @@ void beginScene(VkCommandBuffer cmd, const SceneFrame& f, const SceneTargets& t,
     VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &s.vertices.buffer, &offset);
     vkCmdBindIndexBuffer(cmd, s.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
-    uint32_t push_layer = layer < 0 ? 0u : uint32_t(layer);
+    constexpr uint32_t kNoOffset = 2;  // scene.vert
+    uint32_t push_layer = t.unjittered ? kNoOffset : layer < 0 ? 0u : uint32_t(layer);
     vkCmdPushConstants(cmd, f.pipelines->layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(uint32_t), &push_layer);
 }
 
@@ -243,7 +246,8 @@ ScenePipelines createScenePipelines(vk::Context& ctx, const gpu::GpuScene& scene
     for (int two = 0; two < 2; ++two) {
         if (wanted(scene.opaque, two)) p.opaque[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Opaque, two);
         if (wanted(scene.masked, two)) p.masked[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Mask, two);
-        if (wanted(scene.blend, two)) p.blend[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Blend, two);
+        if (wanted(scene.blend, two) && !desc.analysis)
+            p.blend[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Blend, two);
     }
     return p;
 }
@@ -268,6 +272,20 @@ void addOpaquePass(graph::Graph& graph, const SceneTargets& targets, std::shared
             if (!frame->scene->masked.empty()) drawItems(cmd, *frame, frame->scene->masked, frame->pipelines->masked);
             vkCmdEndRendering(cmd);
         });
+    };
+    graph.addPass(std::move(pass));
+}
+
+void addAnalysisPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame) {
+    graph::Pass pass;
+    pass.name = "analysis";
+    pass.timed = false;
+    pass.uses = {{targets.color, graph::Use::ColorWrite}, {targets.depth, graph::Use::DepthWrite}};
+    pass.record = [frame, targets](VkCommandBuffer cmd) {
+        beginScene(cmd, *frame, targets, true, -1);
+        if (!frame->scene->opaque.empty()) drawItems(cmd, *frame, frame->scene->opaque, frame->pipelines->opaque);
+        if (!frame->scene->masked.empty()) drawItems(cmd, *frame, frame->scene->masked, frame->pipelines->masked);
+        vkCmdEndRendering(cmd);
     };
     graph.addPass(std::move(pass));
 }

@@ -26,7 +26,10 @@ struct ScenePipelineDesc {
     uint32_t view_mask = 0;        // multiview: 0b11 renders both checkerboard views
     bool motion = false;           // second attachment: motion vectors (kMotionFormat)
     bool sample_locations = false; // VK_EXT_sample_locations set per frame (dynamic state)
+    bool analysis = false;         // analysis.frag into kAnalysisFormat: opaque and masked only
 };
+
+constexpr VkFormat kAnalysisFormat = VK_FORMAT_R32G32B32A32_SFLOAT;  // motion.xy, depth, previous depth
 
 // The attachments of the scene passes; `motion` may be null.
 struct SceneTargets {
@@ -35,6 +38,7 @@ struct SceneTargets {
     vk::Image* depth = nullptr;
     uint32_t view_mask = 0;          // multiview: both layers in one pass
     bool sequential_layers = false;  // the two layers one after the other (no multiview)
+    bool unjittered = false;         // ignore the checkerboard view offsets (analysis pass)
 };
 
 // Indexed [double_sided]. Cull mode is baked in rather than dynamic: lavapipe (Mesa 22.3)
@@ -69,6 +73,9 @@ struct SceneFrame {
 
 // Clears the targets, draws opaque then alpha-tested geometry.
 void addOpaquePass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame);
+// Untimed `analysis` pass: motion and depths of the unjittered full-res image for the
+// edge-crawl metric; `targets.color` is a kAnalysisFormat image.
+void addAnalysisPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame);
 // Blended draws, back to front, depth-tested against the opaque depth, not written;
 // motion vectors stay those of the opaque surface behind.
 void addTransparentPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame);

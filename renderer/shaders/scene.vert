@@ -11,8 +11,10 @@ layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
 // (Not push constants: lavapipe replays multiview draws with the last pushed values.)
 layout(std430, set = 0, binding = 3) readonly buffer Instances { mat4 instance_matrices[]; };
 
-// The checkerboard `layers` route renders layer 1 in a second pass without multiview.
+// The checkerboard `layers` route renders layer 1 in a second pass without multiview;
+// kNoOffset: the unjittered image (the analysis pass of a checkerboard frame).
 layout(push_constant) uniform Draw { uint layer; } draw;
+const uint kNoOffset = 2u;
 
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
@@ -37,6 +39,8 @@ void main() {
     out_prev_clip = frame.prev_view_proj * (prev_model * vec4(in_position, 1.0));
     // Checkerboard: each view (or the jittered frame) sees the image shifted so that its
     // sample positions land on full-res pixel centres (cbr_pattern.h).
-    vec2 offset = gl_ViewIndex + draw.layer == 0 ? frame.view_offsets.xy : frame.view_offsets.zw;
+    vec2 offset = draw.layer == kNoOffset          ? vec2(0.0)
+                  : gl_ViewIndex + draw.layer == 0 ? frame.view_offsets.xy
+                                                   : frame.view_offsets.zw;
     gl_Position = vec4(clip.xy + offset * clip.w, clip.zw);
 }
