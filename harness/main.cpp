@@ -6,9 +6,12 @@
 #include <CLI/CLI.hpp>
 
 #include <cmath>
+#include <filesystem>
 
 #include "camera_paths/path.h"
+#include "metrics/cost.h"
 #include "metrics/image_io.h"
+#include "reports/report.h"
 #include "metrics/metrics.h"
 #include "harness/options.h"
 #include "harness/run.h"
@@ -76,6 +79,14 @@ int main(int argc, char** argv) {
     auto* paths = app.add_subcommand("paths", "list the built-in camera paths");
     auto* variants = app.add_subcommand("variants", "list the rendering variants");
     auto* run = app.add_subcommand("run", "render a flythrough through the variants; write CSV and JSON");
+    auto* report = app.add_subcommand("report", "rebuild DIR/report.html from the files in DIR, without rendering");
+    std::string report_dir;
+    report->add_option("DIR", report_dir, "a run's output directory")->required();
+    auto* metric_cost = app.add_subcommand("metric-cost", "benchmark: PSNR, SSIM and ECI milliseconds per frame");
+    std::string cost_res = "1920x1080";
+    int cost_frames = 10;
+    metric_cost->add_option("--res", cost_res, "frame size WIDTHxHEIGHT")->capture_default_str();
+    metric_cost->add_option("--frames", cost_frames, "timed frames (median reported)")->capture_default_str();
     auto* score = app.add_subcommand("score", "PSNR and SSIM of an image against a reference (PNG files)");
     std::string score_ref, score_img, score_crop;
     score->add_option("REFERENCE", score_ref, "reference PNG")->required();
@@ -113,6 +124,9 @@ int main(int argc, char** argv) {
     run->add_option("--debug-shading", o.debug_shading,
                     "none, or pixel-id: colours encode the full-res pixel each sample lands on (tests)")
         ->capture_default_str();
+    run->add_option("--reference", o.reference, "what variants are scored against: full or ssaa")
+        ->capture_default_str();
+    run->add_option("--ssaa", o.ssaa, "samples per axis of the ssaa reference (box filter)")->capture_default_str();
     run->add_option("--cso-mode", o.cso_mode, "cbr-cso tolerance mode: relative or absolute")->capture_default_str();
 
     try {
@@ -144,6 +158,22 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (*score) return scoreImages(score_ref, score_img, score_crop);
+        if (*report) {
+            if (!std::filesystem::is_directory(report_dir))
+                throw std::invalid_argument("report " + report_dir + ": not a directory; expected a run's output directory");
+            cbr::reports::writeReport(report_dir);
+            std::printf("report: %s\n", (std::filesystem::path(report_dir) / "report.html").c_str());
+            return 0;
+        }
+        if (*metric_cost) {
+            uint32_t w = 0, h = 0;
+            cbr::harness::parseResolution(cost_res, w, h);
+            auto c = cbr::metrics::measureMetricCost(int(w), int(h), cost_frames);
+            std::printf("metric cost per %ux%u frame (median of %d, %d threads): psnr %.1f ms, ssim %.1f ms, eci %.1f ms, "
+                        "total %.1f ms\n",
+                        w, h, cost_frames, c.threads, c.psnr_ms, c.ssim_ms, c.eci_ms, c.psnr_ms + c.ssim_ms + c.eci_ms);
+            return 0;
+        }
         o.variants = splitList(variant_list);
         o.argv.assign(argv, argv + argc);
         return cbr::harness::runBenchmark(o);

@@ -88,7 +88,8 @@ void writeFramesCsv(const std::filesystem::path& file, const RunResults& r, uint
     std::vector<std::string> cols = {"variant",      "repeat",        "frame",        "time_s",
                                      "width",        "height",        "render_width", "render_height",
                                      "render_scale", "gpu_ms",        "timing_ok",    "psnr_db",
-                                     "ssim",         "ssim_luma",     "mse",          "fs_invocations",
+                                     "ssim",         "ssim_luma",     "mse",          "eci",
+                                     "flicker_ratio", "crawl_valid_fraction", "fs_invocations",
                                      "status",       "note"};
     std::vector<std::string> stats = statColumns(r);
     cols.insert(cols.end(), stats.begin(), stats.end());
@@ -125,6 +126,9 @@ void writeFramesCsv(const std::filesystem::path& file, const RunResults& r, uint
             m["ssim"] = optional(row.quality.ssim);
             m["ssim_luma"] = optional(row.quality.ssim_luma);
             m["mse"] = optional(row.quality.mse);
+            m["eci"] = optional(row.quality.eci);
+            m["flicker_ratio"] = optional(row.quality.flicker_ratio);
+            m["crawl_valid_fraction"] = optional(row.quality.crawl_valid_fraction);
             for (const auto& [name, value] : row.stats) m[name] = value;
             long long fs = 0;
             bool any = false;
@@ -157,7 +161,8 @@ std::vector<VariantSummary> summarize(const RunResults& r) {
         s.variant = vr.name;
         s.status = vr.status;
         s.note = vr.note;
-        std::vector<double> ms, psnr, ssim, ssim_luma, mse, fs;
+        std::vector<double> ms, psnr, ssim, ssim_luma, mse, fs, eci, flicker;
+        double crawl_num = 0, crawl_den = 0;
         std::vector<std::vector<double>> per_rep(size_t(r.repeats)), ratios(size_t(r.repeats));
         std::map<std::string, std::vector<double>> pass_ms, stat_values;
         std::vector<std::string> pass_order, stat_order;
@@ -189,6 +194,12 @@ std::vector<VariantSummary> summarize(const RunResults& r) {
             if (row.quality.psnr_db) psnr.push_back(*row.quality.psnr_db);
             if (row.quality.ssim) ssim.push_back(*row.quality.ssim);
             if (row.quality.ssim_luma) ssim_luma.push_back(*row.quality.ssim_luma);
+            if (row.quality.eci) {
+                eci.push_back(*row.quality.eci);
+                crawl_num += row.quality.crawl_numerator;
+                crawl_den += row.quality.crawl_denominator;
+            }
+            if (row.quality.flicker_ratio) flicker.push_back(*row.quality.flicker_ratio);
         }
         if (ms.empty()) {
             if (s.status == "ok") s.status = "failed", s.note = "no frame completed";
@@ -231,6 +242,14 @@ std::vector<VariantSummary> summarize(const RunResults& r) {
             s.ssim_min = *std::min_element(ssim.begin(), ssim.end());
         }
         if (!ssim_luma.empty()) s.ssim_luma_mean = mean(ssim_luma);
+        if (!eci.empty()) {
+            // Sequence ECI pools numerators and denominators (metrics.md); crawl comes in
+            // bursts, so p95 and max besides.
+            s.eci = crawl_den > 0 ? std::sqrt(crawl_num / crawl_den) : 0.0;
+            s.eci_p95 = percentile(eci, 95);
+            s.eci_max = *std::max_element(eci.begin(), eci.end());
+        }
+        if (!flicker.empty()) s.flicker_ratio_mean = mean(flicker);
         if (!fs.empty()) s.fs_invocations_median = median(fs);
         s.render_width = uint32_t(median(widths));
         s.render_height = uint32_t(median(heights));
@@ -252,7 +271,8 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                                      "gpu_ms_p95",     "gpu_ms_p99",     "gpu_ms_mean",     "gpu_ms_cv",
                                      "speedup_vs_full", "speedup_ci_low", "speedup_ci_high", "psnr_db_mean",
                                      "psnr_db_min",    "psnr_db_p5",     "ssim_mean",       "ssim_min",
-                                     "ssim_luma_mean", "fs_invocations_median", "note"};
+                                     "ssim_luma_mean", "eci",            "eci_p95",         "eci_max",
+                                     "flicker_ratio_mean", "fs_invocations_median", "note"};
     for (const auto& p : passes) cols.push_back("gpu_ms_" + p + "_median");
     for (const auto& st : statColumns(r)) cols.push_back(st + "_mean");
     reports::CsvTable table(cols);
@@ -281,6 +301,10 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
             m["ssim_mean"] = optional(s.ssim_mean);
             m["ssim_min"] = optional(s.ssim_min);
             m["ssim_luma_mean"] = optional(s.ssim_luma_mean);
+            m["eci"] = optional(s.eci);
+            m["eci_p95"] = optional(s.eci_p95);
+            m["eci_max"] = optional(s.eci_max);
+            m["flicker_ratio_mean"] = optional(s.flicker_ratio_mean);
             m["fs_invocations_median"] = optional(s.fs_invocations_median);
             for (const auto& [name, v] : s.pass_ms_median) m["gpu_ms_" + name + "_median"] = v;
             for (const auto& [name, v] : s.stats_mean) m[name + "_mean"] = v;
@@ -366,8 +390,17 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                     {"psnr", "10 log10(1/MSE), MSE over all pixels and RGB channels; sequence PSNR from the mean MSE"},
                     {"ssim", "Wang et al. 2004: Gaussian 11x11 sigma 1.5, K1 0.01, K2 0.03, L 1, population "
                              "statistics, 5-pixel border excluded, mean of per-channel SSIM"},
+                    {"eci", "edge crawl index: luma blurred with sigma 1, e = Y(V) - Y(R), e_t against e_t-1 "
+                            "warped with the renderer's motion vectors (bilinear), on reference edges (Sobel of blurred "
+                            "reference luma > 0.02, dilated 1 px), 4 px margin, disocclusions (5% view-depth mismatch) "
+                            "and pairs across cuts excluded; sequence ECI pools numerators and denominators"},
+                    {"reference_kind", rc.options.reference == "ssaa"
+                                           ? "ssaa: " + std::to_string(rc.options.ssaa) + "x" +
+                                                 std::to_string(rc.options.ssaa) + " samples per pixel, box filter in HDR"
+                                           : std::string("full")},
                     {"image_io", metrics::imageIoBackend()},
                     {"scored_repeat", 0}};
+    if (!r.reference_ms.empty()) j["metrics"]["reference_gpu_ms_median"] = median(r.reference_ms);
     json variants = json::array();
     for (size_t i = 0; i < r.variants.size(); ++i) {
         const auto& vr = r.variants[i];
@@ -391,6 +424,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
             v["psnr_db"] = number(sm.psnr_db);
             v["psnr_db_is_inf"] = sm.psnr_db && std::isinf(*sm.psnr_db);
             v["ssim_mean"] = number(sm.ssim_mean);
+            v["eci"] = number(sm.eci);
             v["render_width"] = sm.render_width;
             v["render_height"] = sm.render_height;
         }
@@ -410,6 +444,8 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                        {"first_messages", messages}};
     std::vector<std::string> files = {"frames.csv", "summary.csv", "run.json"};
     if (rc.options.save_frames) files.push_back("frames/");
+    files.insert(files.end(), r.worst_files.begin(), r.worst_files.end());
+    files.push_back("report.html");
     j["files"] = files;
     reports::writeTextAtomically(dir / "run.json", j.dump(2) + "\n");
 }
@@ -417,8 +453,8 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
 void printSummary(std::ostream& out, const std::filesystem::path& dir, const RunContext& rc) {
     auto summaries = summarize(rc.results);
     char line[256];
-    std::snprintf(line, sizeof line, "%-10s %-8s %10s %10s %9s %10s %8s\n", "variant", "status", "render",
-                  "gpu_ms", "speedup", "psnr_db", "ssim");
+    std::snprintf(line, sizeof line, "%-10s %-8s %10s %10s %9s %10s %8s %8s\n", "variant", "status", "render",
+                  "gpu_ms", "speedup", "psnr_db", "ssim", "eci");
     out << "cbrbench: " << rc.scene.name << " / " << rc.path.name << " at " << rc.settings.width << "x"
         << rc.settings.height << ", " << rc.results.frames << " frames x " << rc.results.repeats << " repeats on "
         << rc.ctx.description.name << "\n" << line;
@@ -431,16 +467,17 @@ void printSummary(std::ostream& out, const std::filesystem::path& dir, const Run
     };
     for (const auto& s : summaries) {
         std::string render = std::to_string(s.render_width) + "x" + std::to_string(s.render_height);
-        std::snprintf(line, sizeof line, "%-10s %-8s %10s %10s %9s %10s %8s\n", s.variant.c_str(), s.status.c_str(),
+        std::snprintf(line, sizeof line, "%-10s %-8s %10s %10s %9s %10s %8s %8s\n", s.variant.c_str(), s.status.c_str(),
                       s.frames ? render.c_str() : "-",
                       s.frames ? fmt(s.gpu_ms_median, "%.3f").c_str() : "-", fmt(s.speedup, "%.3fx").c_str(),
-                      fmt(s.psnr_db, "%.2f").c_str(), fmt(s.ssim_mean, "%.4f").c_str());
+                      fmt(s.psnr_db, "%.2f").c_str(), fmt(s.ssim_mean, "%.4f").c_str(), fmt(s.eci, "%.4f").c_str());
         out << line;
     }
     auto& val = rc.ctx.validation;
     if (rc.ctx.validation_enabled)
         out << "validation messages: " << val.errors.load() + val.warnings.load() << " (" << val.errors.load()
             << " errors, " << val.warnings.load() << " warnings)\n";
+    out << "report:  " << (dir / "report.html").string() << "\n";
     out << "results: " << dir.string() << "/ (summary.csv, frames.csv, run.json"
         << (rc.options.save_frames ? ", frames/" : "") << ")\n";
 }

@@ -16,6 +16,10 @@ struct Quality {
     std::optional<double> psnr_db;  // +inf for identical images
     std::optional<double> ssim;
     std::optional<double> ssim_luma;
+    std::optional<double> eci;              // edge crawl index (metrics.md); none without a frame pair
+    std::optional<double> flicker_ratio;
+    std::optional<double> crawl_valid_fraction;
+    double crawl_numerator = 0, crawl_denominator = 0;  // for the pooled sequence ECI
     std::string note;               // why a metric is missing
 };
 
@@ -61,6 +65,8 @@ struct RunResults {
     int frames = 0;
     int repeats = 0;
     double seconds = 0;         // wall time of the run
+    std::vector<double> reference_ms;        // the ssaa reference's frame times (not a variant)
+    std::vector<std::string> worst_files;    // worst/<variant>_<kind>_<what>.png
 };
 
 }  // namespace cbr::harness

@@ -11,6 +11,7 @@
 
 #include "camera_paths/path.h"
 #include "harness/outputs.h"
+#include "harness/quality.h"
 #include "harness/results.h"
 #include "harness/worker_pool.h"
 #include "metrics/image_io.h"
@@ -22,6 +23,7 @@
 #include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
 #include "reports/output_dir.h"
+#include "reports/report.h"
 
 namespace cbr::harness {
 namespace {
@@ -109,6 +111,11 @@ Prepared prepare(const RunOptions& o) {
     if (o.debug_shading != "none" && o.debug_shading != "pixel-id")
         throw std::invalid_argument("--debug-shading " + o.debug_shading + ": expected none or pixel-id");
     p.settings.debug_pixel_id = o.debug_shading == "pixel-id";
+    if (o.reference != "full" && o.reference != "ssaa")
+        throw std::invalid_argument("--reference " + o.reference + ": expected full or ssaa");
+    if (o.ssaa < 2 || o.ssaa > 8)
+        throw std::invalid_argument("--ssaa " + std::to_string(o.ssaa) + ": expected 2 to 8 samples per axis");
+    p.settings.analysis = true;  // quality frames carry motion and depth for the edge-crawl metric
     p.settings.cbr_route = o.cbr_route;
     p.settings.cbr_lod_bias = float(o.cbr_lod_bias);
     p.settings.cso_tolerance = o.cso_tolerance;
@@ -152,33 +159,22 @@ Prepared prepare(const RunOptions& o) {
     return p;
 }
 
-void scoreFrame(FrameRow& row, const std::vector<uint8_t>& reference, const std::vector<uint8_t>& image, int w, int h) {
-    try {
-        auto ref = metrics::fromRgba8(reference.data(), w, h, size_t(w) * 4);
-        auto img = metrics::fromRgba8(image.data(), w, h, size_t(w) * 4);
-        double mse = metrics::mse(ref, img);
-        auto s = metrics::ssim(ref, img);
-        row.quality.mse = mse;
-        row.quality.psnr_db = metrics::psnrFromMse(mse);
-        if (std::isfinite(s.ssim)) row.quality.ssim = s.ssim;
-        else row.quality.note += "ssim not finite; ";
-        if (std::isfinite(s.luma_ssim)) row.quality.ssim_luma = s.luma_ssim;
-    } catch (const std::exception& e) {
-        row.quality.note += std::string("metrics failed: ") + e.what();
-    }
-}
-
-// Checkerboard pixel classes as colours: shaded grey, reused green, missing-by-parity
-// yellow, occluded red, off-screen blue, reset magenta.
-metrics::Rgba8Image classMapImage(const std::vector<uint8_t>& classes, int w, int h) {
-    static const uint8_t kColours[6][3] = {{96, 96, 96},  {40, 200, 60}, {240, 220, 40},
-                                           {230, 40, 40}, {40, 90, 240}, {220, 60, 220}};
-    metrics::Rgba8Image img{w, h, std::vector<uint8_t>(size_t(w) * h * 4, 255)};
-    for (size_t i = 0; i < classes.size(); ++i) {
-        const uint8_t* c = kColours[classes[i] < 6 ? classes[i] : 0];
-        std::copy(c, c + 3, img.pixels.begin() + std::ptrdiff_t(i * 4));
-    }
-    return img;
+// Saves a display image (and a class map) as frames/<name>_<frame>.png on a worker.
+void savePng(const std::filesystem::path& out, const std::string& name, int frame, Bytes image, Bytes classes, int w,
+             int h, WorkerPool& workers) {
+    char file[128];
+    std::snprintf(file, sizeof file, "%s_%04d.png", name.c_str(), frame);
+    auto dest = out / "frames" / file;
+    std::snprintf(file, sizeof file, "%s_%04d_class.png", name.c_str(), frame);
+    auto class_dest = out / "frames" / file;
+    workers.submit([dest, class_dest, image, classes, w, h] {
+        try {
+            metrics::writePng(dest, {w, h, *image});
+            if (classes && !classes->empty()) metrics::writePng(class_dest, {w, h, classMapRgba(*classes)});
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "cbrbench: PNG not saved: %s\n", e.what());
+        }
+    });
 }
 
 bool moving(const std::vector<paths::CameraPose>& poses, size_t mid) {
@@ -223,6 +219,15 @@ int runBenchmark(const RunOptions& options) {
         throw std::invalid_argument("--res " + options.resolution + ": above the device limit; expected each side <= " +
                                     std::to_string(max_dim) + " on " + ctx.description.name);
 
+    if (options.reference == "ssaa" && (p.settings.width * uint32_t(options.ssaa) > max_dim ||
+                                        p.settings.height * uint32_t(options.ssaa) > max_dim))
+        throw std::invalid_argument("--ssaa " + std::to_string(options.ssaa) + ": the " + options.resolution +
+                                    " reference would exceed the device limit of " + std::to_string(max_dim) +
+                                    "; expected a smaller factor or resolution");
+    render::Settings ref_settings = p.settings;
+    ref_settings.supersample = options.ssaa;
+    ref_settings.analysis = false;
+
     reports::OutputDir out(p.out);
     if (options.save_frames) std::filesystem::create_directories(out.path() / "frames");
     gpu::GpuScene gpu_scene = gpu::uploadScene(ctx, p.scene);
@@ -236,13 +241,56 @@ int runBenchmark(const RunOptions& options) {
     }
 
     const int w = int(p.settings.width), h = int(p.settings.height);
-    std::vector<std::shared_ptr<const std::vector<uint8_t>>> reference(p.poses.size());
-    // The alignment check looks at the middle frame of a path of at least 3 frames.
-    const size_t mid = p.poses.size() / 2;
-    std::vector<std::shared_ptr<const std::vector<uint8_t>>> mid_images(p.order.size());
     unsigned hw = std::thread::hardware_concurrency();
     WorkerPool workers(std::max(1u, hw / 2));
-    Progress progress(int(p.order.size() * p.poses.size()) * options.repeat);
+    QualityScorer scorer(w, h, p.poses.size(), workers);
+    // The alignment check looks at the middle frame of a path of at least 3 frames.
+    const size_t mid = p.poses.size() / 2;
+    std::vector<Bytes> mid_images(p.order.size());
+    std::vector<Bytes> reference_frames(p.poses.size());
+    Progress progress(int(p.order.size() * p.poses.size()) * options.repeat +
+                      (options.reference == "ssaa" ? int(p.poses.size()) : 0));
+
+    auto request = [&](size_t i, bool readback) {
+        render::FrameRequest req;
+        req.index = int(i);
+        req.time = p.times[i];
+        req.camera = toCamera(p.poses[i]);
+        req.history_reset = i == 0 || p.poses[i].cut;
+        req.prev_time = i == 0 ? p.times[i] : p.times[i - 1];
+        req.prev_camera = i == 0 ? req.camera : toCamera(p.poses[i - 1]);
+        req.readback = readback;
+        return req;
+    };
+    auto warmUp = [&](render::Renderer& renderer) {
+        // Warm-up: the path's first frames, untimed, excluded (timing.md).
+        for (int i = 0; i < options.warmup; ++i) {
+            size_t k = size_t(i) % p.poses.size();
+            render::FrameRequest req = request(k, false);
+            req.index = -1;
+            req.history_reset = true;
+            renderer.submit(req);
+        }
+        renderer.finish();
+    };
+
+    // `--reference ssaa`: a supersampled render is the reference, and `full` is scored too.
+    if (options.reference == "ssaa") {
+        render::Renderer reference(ctx, gpu_scene, variants::supersampledReference(), ref_settings);
+        warmUp(reference);
+        auto keep = [&](render::FrameResult&& fr) {
+            progress.step("reference (ssaa " + std::to_string(options.ssaa) + "x" + std::to_string(options.ssaa) + ")");
+            results.reference_ms.push_back(fr.gpu_ms);
+            auto image = std::make_shared<const std::vector<uint8_t>>(std::move(fr.rgba));
+            reference_frames[size_t(fr.index)] = image;
+            scorer.setReference(size_t(fr.index), image);
+            if (options.save_frames) savePng(out.path(), "reference", fr.index, image, nullptr, w, h, workers);
+        };
+        for (size_t i = 0; i < p.poses.size(); ++i)
+            for (auto& fr : reference.submit(request(i, true))) keep(std::move(fr));
+        for (auto& fr : reference.finish()) keep(std::move(fr));
+    }
+    const bool full_is_reference = options.reference != "ssaa";
 
     // One renderer per variant for the whole run: pipelines and targets are built once.
     std::vector<std::unique_ptr<render::Renderer>> renderers(p.order.size());
@@ -264,24 +312,30 @@ int runBenchmark(const RunOptions& options) {
         for (size_t vi = 0; vi < p.order.size(); ++vi) {
             VariantRun& vr = results.variants[vi];
             const std::string name(p.order[vi]->name);
-            if (vr.status != "ok") {
+            std::vector<bool> done(p.poses.size(), false);
+            auto failRemaining = [&] {
                 // A failed variant becomes rows that say so, not a crash of the run.
                 for (size_t i = 0; i < p.poses.size(); ++i) {
-                    FrameRow row;
+                    if (done[i]) continue;
+                    FrameRow& row = results.rows.emplace_back();
                     row.variant = name;
                     row.repeat = rep;
                     row.frame = int(i);
                     row.time_s = p.times[i];
                     row.status = vr.status;
                     row.note = vr.note;
-                    results.rows.push_back(row);
                 }
+            };
+            if (vr.status != "ok") {
+                failRemaining();
                 continue;
             }
             render::Renderer& renderer = *renderers[vi];
             bool quality = rep == 0;
+            bool is_reference = name == "full" && full_is_reference;
             auto handle = [&](render::FrameResult&& fr) {
                 FrameRow& row = results.rows.emplace_back();
+                done[size_t(fr.index)] = true;
                 row.variant = name;
                 row.repeat = rep;
                 row.frame = fr.index;
@@ -300,86 +354,53 @@ int runBenchmark(const RunOptions& options) {
                 }
                 progress.step("repeat " + std::to_string(rep + 1) + "/" + std::to_string(options.repeat) + " " + name);
                 if (fr.rgba.empty()) return;
-                auto image = std::make_shared<const std::vector<uint8_t>>(std::move(fr.rgba));
                 size_t i = size_t(fr.index);
+                auto image = std::make_shared<const std::vector<uint8_t>>(std::move(fr.rgba));
+                Bytes classes = fr.diagnostic.empty()
+                                    ? nullptr
+                                    : std::make_shared<const std::vector<uint8_t>>(std::move(fr.diagnostic));
                 if (i == mid) mid_images[vi] = image;
-                if (name == "full") {
-                    reference[i] = image;
-                    row.quality.mse = 0.0;  // the reference against itself
-                    row.quality.psnr_db = metrics::psnrFromMse(0.0);
-                    row.quality.ssim = 1.0;
-                    row.quality.ssim_luma = 1.0;
-                } else {
-                    auto ref = reference[i];
-                    if (!ref) {
-                        row.quality.note = "no reference frame (full failed)";
-                    } else {
-                        workers.submit([&row, ref, image, w, h] { scoreFrame(row, *ref, *image, w, h); });
-                    }
+                if (is_reference) {
+                    reference_frames[i] = image;
+                    scorer.setReference(i, image);
                 }
-                if (options.save_frames) {
-                    char file[128];
-                    std::snprintf(file, sizeof file, "%s_%04d.png", name.c_str(), fr.index);
-                    auto dest = out.path() / "frames" / file;
-                    std::snprintf(file, sizeof file, "%s_%04d_class.png", name.c_str(), fr.index);
-                    auto class_dest = out.path() / "frames" / file;
-                    auto classes = std::make_shared<const std::vector<uint8_t>>(std::move(fr.diagnostic));
-                    workers.submit([dest, class_dest, image, classes, w, h, &row] {
-                        try {
-                            metrics::writePng(dest, {w, h, *image});
-                            if (!classes->empty()) metrics::writePng(class_dest, classMapImage(*classes, w, h));
-                        } catch (const std::exception& e) {
-                            row.note += std::string("PNG not saved: ") + e.what();
-                        }
-                    });
-                }
+                QualityFrame qf{fr.index, image, classes,
+                                fr.analysis.empty() ? nullptr
+                                                    : std::make_shared<const std::vector<float>>(std::move(fr.analysis)),
+                                i == 0 || p.poses[i].cut};
+                scorer.score(name, is_reference, row, std::move(qf));
+                if (options.save_frames) savePng(out.path(), name, fr.index, image, classes, w, h, workers);
             };
             try {
-                // Warm-up: the path's first frames, untimed, excluded (timing.md).
-                for (int i = 0; i < options.warmup; ++i) {
-                    size_t k = size_t(i) % p.poses.size();
-                    render::FrameRequest req;
-                    req.index = -1;
-                    req.time = req.prev_time = p.times[k];
-                    req.camera = req.prev_camera = toCamera(p.poses[k]);
-                    req.history_reset = true;
-                    renderer.submit(req);
-                }
-                renderer.finish();
-                for (size_t i = 0; i < p.poses.size(); ++i) {
-                    render::FrameRequest req;
-                    req.index = int(i);
-                    req.time = p.times[i];
-                    req.camera = toCamera(p.poses[i]);
-                    req.history_reset = i == 0 || p.poses[i].cut;
-                    req.prev_time = i == 0 ? p.times[i] : p.times[i - 1];
-                    req.prev_camera = i == 0 ? req.camera : toCamera(p.poses[i - 1]);
-                    req.readback = quality;
-                    for (auto& fr : renderer.submit(req)) handle(std::move(fr));
-                }
+                warmUp(renderer);
+                for (size_t i = 0; i < p.poses.size(); ++i)
+                    for (auto& fr : renderer.submit(request(i, quality))) handle(std::move(fr));
                 for (auto& fr : renderer.finish()) handle(std::move(fr));
             } catch (const vk::Unsupported& e) {
                 vr.status = "skipped";
                 vr.note = e.what();
+                failRemaining();
             } catch (const vk::Error& e) {
                 vr.status = "failed";
                 vr.note = e.what();
+                failRemaining();
             }
         }
     }
-    workers.wait();
+    results.worst_files = scorer.finish(out.path());
     if (p.poses.size() >= 3 && moving(p.poses, mid))
         for (size_t vi = 0; vi < p.order.size(); ++vi)
-            if (p.order[vi]->name != "full" && mid_images[vi] && reference[mid - 1] && reference[mid] && reference[mid + 1])
+            if (!(p.order[vi]->name == "full" && full_is_reference) && mid_images[vi] && reference_frames[mid - 1] && reference_frames[mid] && reference_frames[mid + 1])
                 results.variants[vi].alignment =
-                    checkAlignment(*mid_images[vi], *reference[mid - 1], *reference[mid], *reference[mid + 1], w, h,
-                                   int(mid));
+                    checkAlignment(*mid_images[vi], *reference_frames[mid - 1], *reference_frames[mid],
+                                   *reference_frames[mid + 1], w, h, int(mid));
     renderers.clear();
     gpu::destroyGpuScene(ctx, gpu_scene);
     results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
     RunContext rc{options, p.settings, p.scene, p.path, p.times, p.poses, ctx, results};
     writeOutputs(out.path(), rc);
+    reports::writeReport(out.path());
     out.commit();
     printSummary(std::cout, out.finalPath(), rc);
     return 0;

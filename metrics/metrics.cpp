@@ -6,7 +6,6 @@
 #include "metrics/metrics.h"
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <array>
@@ -17,6 +16,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "metrics/simd.h"
 
 namespace cbr::metrics {
 
@@ -34,22 +35,34 @@ constexpr int kRadius = kSsimBorder;
 constexpr int kTaps = 2 * kRadius + 1;
 static_assert(kRadius == int(3.5 * kSigma + 0.5), "window radius must follow scipy's rule");
 
-// Quantities filtered per image channel: mu_a, mu_b, E[a^2], E[b^2], E[ab].
-constexpr int kMoments = 5;
-// At most RGB + luma per call (ssim() scores luma in the same pass).
+// Output tile of the SSIM pass: 32 rows x 256 columns. Its planes (input plus the
+// 5-pixel halo, 42 x 266 doubles each) stay in a core's L2 cache while 11 rows are read
+// for every output row; tiles are also the unit of parallel work.
+constexpr int kTileRows = 32;
+constexpr int kTileCols = 256;
+constexpr int kTileInRows = kTileRows + 2 * kRadius;
+constexpr int kTileInCols = kTileCols + 2 * kRadius;
+// Filtered per image channel: mu_a, mu_b, E[a^2 + b^2], E[ab]. SSIM needs the variances
+// only as vx + vy, so E[a^2] and E[b^2] are filtered as one sum (the filter is linear):
+// four filters instead of Wang's five, with the same result up to rounding.
+constexpr int kPlanes = 4;
+// At most RGB + luma per call (ssim() scores luma in the same pass). Luma needs only
+// E[Ya^2 + Yb^2] and E[Ya Yb]: its means are the BT.709 mix of the RGB means.
 constexpr int kMaxChannels = 4;
-// Output rows per strip: a strip's moment images (a few MB at 1080p, against 166 MB
-// per channel for whole-frame images) stay near the cache, and strips are the unit
-// of parallel work.
-constexpr int kStripRows = 32;
 
 constexpr uint64_t kExponentMask = 0x7FF0000000000000ull;
+constexpr uint64_t kExponentOne = 0x0010000000000000ull;
+
+inline bool nonFinite(double v) {
+    return (std::bit_cast<uint64_t>(v) & kExponentMask) == kExponentMask;
+}
 
 std::string shapeText(const Image& image) {
     return std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
            std::to_string(image.channels);
 }
 
+// Shape checks only: the NaN/inf scan is fused into the passes that read every value.
 void checkImage(const char* what, const Image& image) {
     if (image.channels != 1 && image.channels != 3)
         throw std::invalid_argument(std::string(what) + ": expected 1 or 3 channels, got " +
@@ -63,15 +76,6 @@ void checkImage(const char* what, const Image& image) {
                                     shapeText(image) + " needs " +
                                     std::to_string(size_t(image.width) * image.height *
                                                    image.channels));
-    // A NaN pixel would silently turn every score into NaN; refuse it at the door.
-    // Testing the exponent bits (all ones for NaN and inf) lets the compiler vectorise
-    // the scan, which std::isfinite with an early exit does not.
-    bool non_finite = false;
-    for (double v : image.data)
-        non_finite |= (std::bit_cast<uint64_t>(v) & kExponentMask) == kExponentMask;
-    if (non_finite)
-        throw std::invalid_argument(std::string(what) +
-                                    ": image contains a NaN or infinite value");
 }
 
 void checkPair(const char* what, const Image& a, const Image& b) {
@@ -82,6 +86,11 @@ void checkPair(const char* what, const Image& a, const Image& b) {
     checkImage(what, b);
 }
 
+[[noreturn]] void throwNonFinite(const char* what) {
+    // A NaN pixel would silently turn every score into NaN; refuse it at the door.
+    throw std::invalid_argument(std::string(what) + ": image contains a NaN or infinite value");
+}
+
 void checkSsimSize(const char* what, const Image& a) {
     if (a.width < kTaps || a.height < kTaps)
         throw std::invalid_argument(std::string(what) + ": image is " + std::to_string(a.width) +
@@ -90,99 +99,227 @@ void checkSsimSize(const char* what, const Image& a) {
 }
 
 // scipy.ndimage._gaussian_kernel1d, in the same arithmetic order.
-cv::Mat gaussianKernel() {
-    cv::Mat kernel(kTaps, 1, CV_64F);
+std::array<double, kTaps> gaussianKernel() {
+    std::array<double, kTaps> kernel{};
     const double sigma2 = kSigma * kSigma;
     double sum = 0;
     for (int i = 0; i < kTaps; ++i) {
         const double x = i - kRadius;
-        kernel.at<double>(i) = std::exp(-0.5 / sigma2 * (x * x));
-        sum += kernel.at<double>(i);
+        kernel[size_t(i)] = std::exp(-0.5 / sigma2 * (x * x));
+        sum += kernel[size_t(i)];
     }
-    kernel /= sum;
+    for (double& k : kernel) k /= sum;
     return kernel;
+}
+
+// The Gaussian is symmetric (x*x above), so each pair of taps shares one multiply.
+// Vertical pass: out[x] = sum_i k[i] * rows[i][x] over 11 rows `stride` apart.
+inline void columnPass(const double* __restrict in, size_t stride, int n,
+                       const double* __restrict k, double* __restrict out) {
+    const double* r0 = in;
+    const double* r1 = in + stride;
+    const double* r2 = in + 2 * stride;
+    const double* r3 = in + 3 * stride;
+    const double* r4 = in + 4 * stride;
+    const double* r5 = in + 5 * stride;
+    const double* r6 = in + 6 * stride;
+    const double* r7 = in + 7 * stride;
+    const double* r8 = in + 8 * stride;
+    const double* r9 = in + 9 * stride;
+    const double* r10 = in + 10 * stride;
+    const double k0 = k[0], k1 = k[1], k2 = k[2], k3 = k[3], k4 = k[4], k5 = k[5];
+    for (int x = 0; x < n; ++x)
+        out[x] = k5 * r5[x] + k4 * (r4[x] + r6[x]) + k3 * (r3[x] + r7[x]) +
+                 k2 * (r2[x] + r8[x]) + k1 * (r1[x] + r9[x]) + k0 * (r0[x] + r10[x]);
+}
+
+// Horizontal pass: out[x] = sum_i k[i] * in[x + i], for n outputs.
+inline void rowPass(const double* __restrict in, int n, const double* __restrict k,
+                    double* __restrict out) {
+    const double k0 = k[0], k1 = k[1], k2 = k[2], k3 = k[3], k4 = k[4], k5 = k[5];
+    for (int x = 0; x < n; ++x)
+        out[x] = k5 * in[x + 5] + k4 * (in[x + 4] + in[x + 6]) + k3 * (in[x + 3] + in[x + 7]) +
+                 k2 * (in[x + 2] + in[x + 8]) + k1 * (in[x + 1] + in[x + 9]) +
+                 k0 * (in[x] + in[x + 10]);
+}
+
+// One thread's buffers, kept across calls so that no tile touches fresh pages.
+struct TileScratch {
+    std::vector<double> planes = std::vector<double>(size_t(kPlanes) * kTileInRows * kTileInCols);
+    std::vector<double> vertical = std::vector<double>(size_t(kPlanes) * kTileInCols);
+    std::vector<double> filtered = std::vector<double>(size_t(kPlanes) * kTileCols);
+    std::vector<double> values = std::vector<double>(size_t(kTileCols));
+    std::vector<double> luma_means = std::vector<double>(size_t(2) * kTileRows * kTileCols);
+};
+
+// BT.709 weights, applied in bt709Luma's order.
+constexpr double kLumaWeights[3] = {0.2126, 0.7152, 0.0722};
+
+// Wang's SSIM for output rows [y0, y1) and columns [x0, x1) of every scored channel
+// (the image's own, then luma when with_luma). Adds per-channel sums of the map to
+// sums; writes the channel mean into map's rows when given. Returns false when an
+// input value of the tile (halo included) is NaN or infinite.
+CBR_SIMD_CLONES
+bool ssimTile(const Image& a, const Image& b, bool with_luma, const double* kernel, int y0, int y1,
+              int x0, int x1, TileScratch& scratch, double* sums, Image* map) {
+    const int width = a.width, channels = a.channels;
+    const int out_rows = y1 - y0, out_cols = x1 - x0;
+    const int in_rows = out_rows + 2 * kRadius, in_cols = out_cols + 2 * kRadius;
+    const size_t plane_size = size_t(in_rows) * in_cols;
+    double* plane[kPlanes];
+    for (int q = 0; q < kPlanes; ++q) plane[q] = scratch.planes.data() + q * plane_size;
+    double* mean_ya = scratch.luma_means.data();
+    double* mean_yb = mean_ya + size_t(kTileRows) * kTileCols;
+    // NaN/inf scan of the tile's input (halo included, so the tiles cover every pixel),
+    // over contiguous memory where it vectorises.
+    // An all-ones exponent (NaN, inf) plus one carries into the sign bit: integer adds
+    // and ORs only, which vectorise where a compare-and-branch per value does not.
+    uint64_t carry = 0;
+    for (int y = 0; y < in_rows; ++y) {
+        const size_t offset = (size_t(y0 - kRadius + y) * width + (x0 - kRadius)) * channels;
+        const double* pa = a.data.data() + offset;
+        const double* pb = b.data.data() + offset;
+        const size_t count = size_t(in_cols) * channels;
+        for (size_t i = 0; i < count; ++i)
+            carry |= ((std::bit_cast<uint64_t>(pa[i]) & kExponentMask) + kExponentOne) |
+                     ((std::bit_cast<uint64_t>(pb[i]) & kExponentMask) + kExponentOne);
+    }
+    const bool bad = (carry >> 63) != 0;
+    const int scored = channels + (with_luma ? 1 : 0);
+    for (int c = 0; c < scored; ++c) {
+        const bool is_luma = c == channels;
+        for (int y = 0; y < in_rows; ++y) {
+            const size_t offset = (size_t(y0 - kRadius + y) * width + (x0 - kRadius)) * channels;
+            const double* pa = a.data.data() + offset;
+            const double* pb = b.data.data() + offset;
+            double* pm_a = plane[0] + size_t(y) * in_cols;
+            double* pm_b = plane[1] + size_t(y) * in_cols;
+            double* pm_s = plane[2] + size_t(y) * in_cols;
+            double* pm_p = plane[3] + size_t(y) * in_cols;
+            if (is_luma) {
+                for (int x = 0; x < in_cols; ++x) {
+                    const double* qa = pa + size_t(x) * 3;
+                    const double* qb = pb + size_t(x) * 3;
+                    const double va = bt709Luma(qa[0], qa[1], qa[2]);
+                    const double vb = bt709Luma(qb[0], qb[1], qb[2]);
+                    pm_s[x] = va * va + vb * vb;
+                    pm_p[x] = va * vb;
+                }
+                continue;
+            }
+            for (int x = 0; x < in_cols; ++x) {
+                const double va = pa[size_t(x) * channels + c];
+                const double vb = pb[size_t(x) * channels + c];
+                pm_a[x] = va;
+                pm_b[x] = vb;
+                pm_s[x] = va * va + vb * vb;
+                pm_p[x] = va * vb;
+            }
+        }
+        double* fa = scratch.filtered.data();
+        double* fb = fa + kTileCols;
+        double* fs = fb + kTileCols;
+        double* fp = fs + kTileCols;
+        double* values = scratch.values.data();
+        double channel_sum = 0;
+        for (int r = 0; r < out_rows; ++r) {
+            // Luma's means come from the RGB means below: filter only its two products.
+            for (int q = is_luma ? 2 : 0; q < kPlanes; ++q) {
+                double* v = scratch.vertical.data() + size_t(q) * kTileInCols;
+                columnPass(plane[q] + size_t(r) * in_cols, size_t(in_cols), in_cols, kernel, v);
+                rowPass(v, out_cols, kernel, scratch.filtered.data() + size_t(q) * kTileCols);
+            }
+            double* row_ya = mean_ya + size_t(r) * kTileCols;
+            double* row_yb = mean_yb + size_t(r) * kTileCols;
+            if (is_luma) {
+                fa = row_ya;
+                fb = row_yb;
+            } else if (with_luma) {
+                // The filter is linear: mean(luma) = 0.2126 mean(R) + 0.7152 mean(G) + ...
+                const double w = kLumaWeights[c];
+                if (c == 0) {
+                    for (int x = 0; x < out_cols; ++x) row_ya[x] = w * fa[x];
+                    for (int x = 0; x < out_cols; ++x) row_yb[x] = w * fb[x];
+                } else {
+                    for (int x = 0; x < out_cols; ++x) row_ya[x] += w * fa[x];
+                    for (int x = 0; x < out_cols; ++x) row_yb[x] += w * fb[x];
+                }
+            }
+            for (int x = 0; x < out_cols; ++x) {
+                const double ux = fa[x], uy = fb[x];
+                // Population (co)variances (use_sample_covariance=False, as Wang):
+                // vx + vy = E[a^2 + b^2] - ux^2 - uy^2.
+                const double means2 = ux * ux + uy * uy;
+                const double vxy = fp[x] - ux * uy;
+                const double a1 = 2 * ux * uy + kC1;
+                const double a2 = 2 * vxy + kC2;
+                const double b1 = means2 + kC1;
+                const double b2 = (fs[x] - means2) + kC2;
+                // b1 >= C1 and b2 >= C2 (less rounding): constant images stay finite.
+                values[x] = (a1 * a2) / (b1 * b2);
+            }
+            // Four partial sums break the add latency chain; per-row sums keep the
+            // rounding error near numpy's pairwise mean.
+            double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+            int x = 0;
+            for (; x + 4 <= out_cols; x += 4) {
+                s0 += values[x];
+                s1 += values[x + 1];
+                s2 += values[x + 2];
+                s3 += values[x + 3];
+            }
+            for (; x < out_cols; ++x) s0 += values[x];
+            channel_sum += (s0 + s1) + (s2 + s3);
+            if (map && !is_luma) {
+                double* map_row = map->data.data() + size_t(y0 + r) * width + x0;
+                for (int i = 0; i < out_cols; ++i) {
+                    double& v = map_row[i];
+                    v = c == 0 ? values[i] : v + values[i];
+                    if (c == channels - 1) v /= channels;
+                }
+            }
+            if (is_luma) {
+                fa = scratch.filtered.data();
+                fb = fa + kTileCols;
+            }
+        }
+        sums[c] += channel_sum;
+    }
+    return !bad;
 }
 
 // Wang's SSIM over the valid region of every channel of a and b, plus their BT.709 luma
 // as one more channel when with_luma. Adds each scored channel's sum of the SSIM map to
 // channel_sums. When map is given (one channel, same size), writes into its valid
 // region the per-pixel mean over the image's own channels (luma excluded); the border
-// is left as the caller filled it.
-void ssimCore(const Image& a, const Image& b, bool with_luma, double* channel_sums, Image* map) {
-    const int width = a.width, height = a.height, channels = a.channels;
-    const int scored = channels + (with_luma ? 1 : 0);
-    const cv::Mat kernel = gaussianKernel();
-    const int strips = (height - 2 * kRadius + kStripRows - 1) / kStripRows;
-    // One slot per strip, summed in order afterwards: the result does not depend on
-    // how OpenCV schedules strips over threads.
-    std::vector<std::array<double, kMaxChannels>> strip_sums(strips);
-
-    cv::parallel_for_(cv::Range(0, strips), [&](const cv::Range& range) {
-        cv::Mat moments, filtered;  // reused across this worker's strips
-        for (int s = range.start; s < range.end; ++s) {
-            const int out_y0 = kRadius + s * kStripRows;
-            const int out_rows = std::min(kStripRows, height - kRadius - out_y0);
-            // The strip's input: its rows plus the window radius above and below.
-            const int in_y0 = out_y0 - kRadius;
-            const int in_rows = out_rows + 2 * kRadius;
-            moments.create(in_rows, width, CV_64FC(kMoments));
+// is left as the caller filled it. Throws for a NaN or infinite input value.
+void ssimCore(const char* what, const Image& a, const Image& b, bool with_luma,
+              double* channel_sums, Image* map) {
+    static const std::array<double, kTaps> kernel = gaussianKernel();
+    const int valid_rows = a.height - 2 * kRadius, valid_cols = a.width - 2 * kRadius;
+    const int tile_rows = (valid_rows + kTileRows - 1) / kTileRows;
+    const int tile_cols = (valid_cols + kTileCols - 1) / kTileCols;
+    const int tiles = tile_rows * tile_cols;
+    // One slot per tile, summed in order afterwards: the result does not depend on how
+    // OpenCV schedules tiles over threads.
+    std::vector<std::array<double, kMaxChannels>> tile_sums(static_cast<size_t>(tiles));
+    std::vector<uint8_t> tile_ok(static_cast<size_t>(tiles), 1);
+    cv::parallel_for_(cv::Range(0, tiles), [&](const cv::Range& range) {
+        thread_local TileScratch scratch;
+        for (int t = range.start; t < range.end; ++t) {
+            const int y0 = kRadius + (t / tile_cols) * kTileRows;
+            const int x0 = kRadius + (t % tile_cols) * kTileCols;
             std::array<double, kMaxChannels> sums{};
-            // One channel at a time keeps the moment images small enough for the cache.
-            for (int c = 0; c < scored; ++c) {
-                for (int y = 0; y < in_rows; ++y) {
-                    const double* pa = a.data.data() + size_t(in_y0 + y) * width * channels;
-                    const double* pb = b.data.data() + size_t(in_y0 + y) * width * channels;
-                    double* m = moments.ptr<double>(y);
-                    for (int x = 0; x < width; ++x, pa += channels, pb += channels, m += kMoments) {
-                        const double va = c < channels ? pa[c] : bt709Luma(pa[0], pa[1], pa[2]);
-                        const double vb = c < channels ? pb[c] : bt709Luma(pb[0], pb[1], pb[2]);
-                        m[0] = va;
-                        m[1] = vb;
-                        m[2] = va * va;
-                        m[3] = vb * vb;
-                        m[4] = va * vb;
-                    }
-                }
-                // Filtering the ROI of the output rows only: OpenCV reads the real rows
-                // above and below a submatrix as its border, so every valid pixel sees its
-                // whole window and no vertical work is spent on the halo. BORDER_REFLECT
-                // (scipy's 'reflect') then shapes only the discarded left/right margin.
-                cv::sepFilter2D(moments.rowRange(kRadius, kRadius + out_rows), filtered, CV_64F,
-                                kernel, kernel, cv::Point(-1, -1), 0.0, cv::BORDER_REFLECT);
-                for (int y = 0; y < out_rows; ++y) {
-                    const double* f = filtered.ptr<double>(y);
-                    double* map_row = map ? map->data.data() + size_t(out_y0 + y) * width : nullptr;
-                    double row_sum = 0;
-                    for (int x = kRadius; x < width - kRadius; ++x) {
-                        const double* m = f + size_t(x) * kMoments;
-                        const double ux = m[0], uy = m[1];
-                        // Population (co)variances: use_sample_covariance=False, as Wang.
-                        const double vx = m[2] - ux * ux;
-                        const double vy = m[3] - uy * uy;
-                        const double vxy = m[4] - ux * uy;
-                        const double a1 = 2 * ux * uy + kC1;
-                        const double a2 = 2 * vxy + kC2;
-                        const double b1 = ux * ux + uy * uy + kC1;
-                        const double b2 = vx + vy + kC2;
-                        // b1 >= C1 and b2 >= C2 (less rounding): constant images stay finite.
-                        const double s_val = (a1 * a2) / (b1 * b2);
-                        row_sum += s_val;
-                        if (map_row && c < channels) {
-                            double& v = map_row[x];
-                            v = c == 0 ? s_val : v + s_val;
-                            if (c == channels - 1) v /= channels;
-                        }
-                    }
-                    // Per-row partial sums: rounding error near numpy's pairwise mean.
-                    sums[c] += row_sum;
-                }
-            }
-            strip_sums[s] = sums;
+            tile_ok[size_t(t)] =
+                ssimTile(a, b, with_luma, kernel.data(), y0, std::min(y0 + kTileRows, a.height - kRadius),
+                         x0, std::min(x0 + kTileCols, a.width - kRadius), scratch, sums.data(), map);
+            tile_sums[size_t(t)] = sums;
         }
     });
-
-    for (const auto& sums : strip_sums)
-        for (int c = 0; c < scored; ++c) channel_sums[c] += sums[c];
+    if (std::find(tile_ok.begin(), tile_ok.end(), 0) != tile_ok.end()) throwNonFinite(what);
+    const int scored = a.channels + (with_luma ? 1 : 0);
+    for (const auto& sums : tile_sums)
+        for (int c = 0; c < scored; ++c) channel_sums[c] += sums[size_t(c)];
 }
 
 }  // namespace
@@ -191,18 +328,30 @@ double mse(const Image& a, const Image& b) {
     checkPair("mse", a, b);
     const size_t row_values = size_t(a.width) * a.channels;
     // Per-row partial sums keep the rounding error near numpy's pairwise summation
-    // (the tests compare with scikit-image to 1e-9 relative).
-    double total = 0;
-    for (int y = 0; y < a.height; ++y) {
-        const double* pa = a.data.data() + y * row_values;
-        const double* pb = b.data.data() + y * row_values;
-        double row = 0;
-        for (size_t i = 0; i < row_values; ++i) {
-            const double d = pa[i] - pb[i];
-            row += d * d;
+    // (the tests compare with scikit-image to 1e-9 relative); they are added in row
+    // order below, so the result does not depend on the thread count.
+    std::vector<double> row_sums(size_t(a.height));
+    std::vector<uint8_t> row_bad(size_t(a.height), 0);
+    cv::parallel_for_(cv::Range(0, a.height), [&](const cv::Range& range) {
+        for (int y = range.start; y < range.end; ++y) {
+            const double* pa = a.data.data() + y * row_values;
+            const double* pb = b.data.data() + y * row_values;
+            double row = 0;
+            for (size_t i = 0; i < row_values; ++i) {
+                const double d = pa[i] - pb[i];
+                row += d * d;
+            }
+            // NaN or inf anywhere in the row makes the row sum NaN or inf; only then is
+            // the row scanned, to tell a bad value from an overflow of huge ones.
+            if (!std::isfinite(row))
+                for (size_t i = 0; i < row_values; ++i)
+                    if (nonFinite(pa[i]) || nonFinite(pb[i])) row_bad[size_t(y)] = 1;
+            row_sums[size_t(y)] = row;
         }
-        total += row;
-    }
+    });
+    if (std::find(row_bad.begin(), row_bad.end(), 1) != row_bad.end()) throwNonFinite("mse");
+    double total = 0;
+    for (double row : row_sums) total += row;
     return total / double(a.data.size());
 }
 
@@ -225,7 +374,7 @@ SsimResult ssim(const Image& a, const Image& b) {
     SsimResult result;
     if (a.channels == 1) {
         double sum = 0;
-        ssimCore(a, b, /*with_luma=*/false, &sum, nullptr);
+        ssimCore("ssim", a, b, /*with_luma=*/false, &sum, nullptr);
         result.ssim = sum / valid;
         // A one-channel image is its own luma.
         result.luma_ssim = result.ssim;
@@ -234,7 +383,7 @@ SsimResult ssim(const Image& a, const Image& b) {
     // Luma rides along as a fourth channel of the same pass, computed per pixel with
     // bt709Luma, so it equals ssim(luma(a), luma(b)) without a second pass.
     double sums[4] = {0, 0, 0, 0};
-    ssimCore(a, b, /*with_luma=*/true, sums, nullptr);
+    ssimCore("ssim", a, b, /*with_luma=*/true, sums, nullptr);
     // Per-channel mean SSIM, then the plain mean of the three (channel_axis convention).
     result.ssim = (sums[0] / valid + sums[1] / valid + sums[2] / valid) / 3.0;
     result.luma_ssim = sums[3] / valid;
@@ -251,7 +400,7 @@ Image ssimMap(const Image& a, const Image& b) {
     // The border has no full window; 1.0 there reads as "no error" in a heat map.
     map.data.assign(size_t(a.width) * a.height, 1.0);
     double sums[3] = {0, 0, 0};
-    ssimCore(a, b, /*with_luma=*/false, sums, &map);
+    ssimCore("ssimMap", a, b, /*with_luma=*/false, sums, &map);
     return map;
 }
 

@@ -37,6 +37,7 @@ struct Settings {
     bool cso_absolute = false;       // false: relative to the mean neighbour depth
     bool debug_pixel_id = false;     // colours encode the full-res pixel each sample lands on
     bool analysis = false;           // quality frames also read back motion and depths (edge crawl)
+    int supersample = 1;             // the supersampled reference: k x k samples per output pixel
 };
 
 struct Camera {

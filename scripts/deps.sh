@@ -10,7 +10,7 @@ cbr_packages=(
   libopenimageio-dev libopencv-imgproc-dev
 )
 if [[ "${CBR_WITH_TESTS:-0}" == 1 ]]; then
-  cbr_packages+=(vulkan-validationlayers libgtest-dev assimp-testmodels)
+  cbr_packages+=(vulkan-validationlayers libgtest-dev assimp-testmodels chromium)
 fi
 
 missing=()

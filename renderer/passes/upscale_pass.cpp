@@ -2,6 +2,7 @@
 #include "renderer/passes/upscale_pass.h"
 
 #include "renderer/vk/context.h"
+#include "shaders/downsample.comp.h"
 #include "shaders/upscale.comp.h"
 
 namespace cbr::passes {
@@ -42,6 +43,45 @@ void addUpscalePass(graph::Graph& graph, const Upscale& u, vk::Image& source, Vk
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, u.kernel.layout, 0, 1, &u.set, 0, nullptr);
         vkCmdPushConstants(cmd, u.kernel.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), push);
         vkCmdDispatch(cmd, (uint32_t(push[2]) + 7) / 8, (uint32_t(push[3]) + 7) / 8, 1);
+    };
+    graph.addPass(std::move(pass));
+}
+
+Downsample createDownsample(vk::Context& ctx, vk::Image& source, vk::Image& target) {
+    Downsample d;
+    std::initializer_list<vk::Binding> bindings = {
+        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+        {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
+    d.kernel = vk::createComputeKernel(ctx, kSpirv_downsample_comp, sizeof(kSpirv_downsample_comp), bindings,
+                                       sizeof(int32_t));
+    d.pool = vk::createPool(ctx, bindings, 1);
+    d.set = vk::allocateSet(ctx, d.pool, d.kernel.set_layout);
+    d.sampler = vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 0.0f);
+    vk::writeImage(ctx, d.set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, source.view,
+                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, d.sampler);
+    vk::writeImage(ctx, d.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, target.view, VK_IMAGE_LAYOUT_GENERAL);
+    return d;
+}
+
+void destroyDownsample(vk::Context& ctx, Downsample& d) {
+    vk::destroyComputeKernel(ctx, d.kernel);
+    if (d.pool) vkDestroyDescriptorPool(ctx.device, d.pool, nullptr);
+    if (d.sampler) vkDestroySampler(ctx.device, d.sampler, nullptr);
+    d = {};
+}
+
+void addDownsamplePass(graph::Graph& graph, const Downsample& d, vk::Image& source, int factor, vk::Image& target) {
+    graph::Pass pass;
+    pass.name = "downsample";
+    pass.graphics = false;
+    pass.uses = {{&source, graph::Use::Sampled}, {&target, graph::Use::StorageWrite}};
+    VkExtent2D extent = target.extent;
+    int32_t push = factor;
+    pass.record = [&d, extent, push](VkCommandBuffer cmd) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, d.kernel.pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, d.kernel.layout, 0, 1, &d.set, 0, nullptr);
+        vkCmdPushConstants(cmd, d.kernel.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdDispatch(cmd, (extent.width + 7) / 8, (extent.height + 7) / 8, 1);
     };
     graph.addPass(std::move(pass));
 }

@@ -1,4 +1,5 @@
-// The `upscale` pass of dynamic resolution: scaled HDR region -> full-size HDR.
+// Resampling passes: the `upscale` of dynamic resolution (scaled HDR region -> full-size
+// HDR) and the `downsample` of the supersampled reference.
 #pragma once
 
 #include "renderer/graph/graph.h"
@@ -19,5 +20,16 @@ Upscale createUpscale(vk::Context& ctx, vk::Image& source, vk::Image& target, Up
 void destroyUpscale(vk::Context& ctx, Upscale& u);
 void addUpscalePass(graph::Graph& graph, const Upscale& u, vk::Image& source, VkExtent2D render_size,
                     vk::Image& target);
+
+// The `downsample` pass of the supersampled reference: k x k box filter in HDR.
+struct Downsample {
+    vk::ComputeKernel kernel;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    VkSampler sampler = VK_NULL_HANDLE;
+};
+Downsample createDownsample(vk::Context& ctx, vk::Image& source, vk::Image& target);
+void destroyDownsample(vk::Context& ctx, Downsample& d);
+void addDownsamplePass(graph::Graph& graph, const Downsample& d, vk::Image& source, int factor, vk::Image& target);
 
 }  // namespace cbr::passes

@@ -16,16 +16,25 @@ constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;  // float depth + revers
 
 class ForwardVariant final : public VariantRenderer {
 public:
-    ForwardVariant(vk::Context& ctx, const gpu::GpuScene& scene, const render::Settings& s, bool scaled)
-        : ctx_(ctx), scene_(scene), settings_(s), scaled_(scaled) {
+    // supersample k > 1: the reference, rendered at k x k the size and box-filtered down.
+    ForwardVariant(vk::Context& ctx, const gpu::GpuScene& scene, const render::Settings& s, bool scaled,
+                   int supersample = 1)
+        : ctx_(ctx), scene_(scene), settings_(s), scaled_(scaled), supersample_(supersample) {
         VkExtent2D full{s.width, s.height};
-        color_ = vk::createImage(ctx, {"hdr", kHdrFormat, full,
+        VkExtent2D target{s.width * uint32_t(supersample), s.height * uint32_t(supersample)};
+        color_ = vk::createImage(ctx, {"hdr", kHdrFormat, target,
                                        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
-        depth_ = vk::createImage(ctx, {"depth", kDepthFormat, full, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
+        depth_ = vk::createImage(ctx, {"depth", kDepthFormat, target, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
         display_ = vk::createImage(ctx, {"display", VK_FORMAT_R8G8B8A8_UNORM, full,
                                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
         pipelines_ = passes::createScenePipelines(ctx, scene, {kHdrFormat, kDepthFormat, VK_SAMPLE_COUNT_1_BIT});
         vk::Image* tonemap_source = &color_;
+        if (supersample_ > 1) {
+            upscaled_ = vk::createImage(ctx, {"downsampled", kHdrFormat, full,
+                                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+            downsample_ = passes::createDownsample(ctx, color_, upscaled_);
+            tonemap_source = &upscaled_;
+        }
         if (scaled_) {
             upscaled_ = vk::createImage(ctx, {"upscaled", kHdrFormat, full,
                                               VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
@@ -41,12 +50,13 @@ public:
         vkDeviceWaitIdle(ctx_.device);
         passes::destroyTonemap(ctx_, tonemap_);
         passes::destroyUpscale(ctx_, upscale_);
+        passes::destroyDownsample(ctx_, downsample_);
         passes::destroyScenePipelines(ctx_, pipelines_);
         for (vk::Image* img : {&color_, &depth_, &display_, &upscaled_}) vk::destroyImage(ctx_, *img);
     }
 
     VkExtent2D renderExtent(double scale) const override {
-        if (!scaled_) return {settings_.width, settings_.height};
+        if (!scaled_) return {settings_.width * uint32_t(supersample_), settings_.height * uint32_t(supersample_)};
         auto axis = [scale](uint32_t n) { return std::clamp(uint32_t(std::lround(n * scale)), 1u, n); };
         return {axis(settings_.width), axis(settings_.height)};
     }
@@ -66,7 +76,9 @@ public:
         else
             graph.leaveOut("transparent", "scene has no BLEND materials");
         if (scaled_) passes::addUpscalePass(graph, upscale_, color_, render, upscaled_);
-        passes::addTonemapPass(graph, tonemap_, scaled_ ? upscaled_ : color_, display_, settings_.exposure, settings_.debug_pixel_id);
+        if (supersample_ > 1) passes::addDownsamplePass(graph, downsample_, color_, supersample_, upscaled_);
+        passes::addTonemapPass(graph, tonemap_, scaled_ || supersample_ > 1 ? upscaled_ : color_, display_,
+                               settings_.exposure, settings_.debug_pixel_id);
     }
 
     vk::Image& display() override { return display_; }
@@ -76,13 +88,20 @@ private:
     const gpu::GpuScene& scene_;
     render::Settings settings_;
     bool scaled_;
-    vk::Image color_, depth_, display_, upscaled_;
+    int supersample_;
+    vk::Image color_, depth_, display_, upscaled_;  // upscaled_: also the downsampled reference
     passes::ScenePipelines pipelines_;
     passes::Upscale upscale_;
+    passes::Downsample downsample_;
     passes::Tonemap tonemap_;
 };
 
 }  // namespace
+
+std::unique_ptr<VariantRenderer> buildSupersampledReference(vk::Context& ctx, const gpu::GpuScene& scene,
+                                                            const render::Settings& s) {
+    return std::make_unique<ForwardVariant>(ctx, scene, s, false, std::max(1, s.supersample));
+}
 
 std::unique_ptr<VariantRenderer> buildFull(vk::Context& ctx, const gpu::GpuScene& scene, const render::Settings& s) {
     return std::make_unique<ForwardVariant>(ctx, scene, s, false);

@@ -11,4 +11,9 @@ std::unique_ptr<VariantRenderer> buildFull(vk::Context& ctx, const gpu::GpuScene
 std::unique_ptr<VariantRenderer> buildDynamicResolution(vk::Context& ctx, const gpu::GpuScene& scene,
                                                         const render::Settings& s);
 
+// The `--reference ssaa` reference: Settings::supersample x supersample samples per pixel,
+// box-filtered in HDR, then tone-mapped. Not a variant: it is what variants are scored against.
+std::unique_ptr<VariantRenderer> buildSupersampledReference(vk::Context& ctx, const gpu::GpuScene& scene,
+                                                            const render::Settings& s);
+
 }  // namespace cbr::variants

@@ -20,6 +20,12 @@ constexpr Variant kVariants[] = {
 
 std::span<const Variant> allVariants() { return kVariants; }
 
+const Variant& supersampledReference() {
+    static constexpr Variant kReference{"reference", "k x k supersampled, box-filtered: the ssaa reference",
+                                        buildSupersampledReference};
+    return kReference;
+}
+
 std::string variantNames() {
     std::string s;
     for (const auto& v : kVariants) s += (s.empty() ? "" : ", ") + std::string(v.name);

@@ -67,5 +67,7 @@ std::span<const Variant> allVariants();
 // Throws std::invalid_argument naming the accepted variants for an unknown name.
 const Variant& findVariant(std::string_view name);
 std::string variantNames();  // "full, drr, ..."
+// The supersampled reference (`--reference ssaa`), shaped like a variant row but not in the table.
+const Variant& supersampledReference();
 
 }  // namespace cbr::variants

@@ -1,0 +1,63 @@
+// Scoring of quality frames on worker threads: PSNR and SSIM per frame, edge crawl in
+// frame order per variant, and the worst frames kept for the report (method/metrics.md).
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/results.h"
+#include "harness/worker_pool.h"
+#include "metrics/image.h"
+#include "metrics/temporal.h"
+
+namespace cbr::harness {
+
+using Bytes = std::shared_ptr<const std::vector<uint8_t>>;
+
+// One quality frame of a variant, as read back.
+struct QualityFrame {
+    int index = 0;
+    Bytes rgba;                                    // display image, RGBA8
+    Bytes classes;                                 // checkerboard class map (R8), may be null
+    std::shared_ptr<const std::vector<float>> analysis;  // motion.xy, depth, previous depth
+    bool cut = false;                              // history reset (first frame or camera cut)
+};
+
+class QualityScorer {
+public:
+    QualityScorer(int width, int height, size_t frames, WorkerPool& workers);
+    ~QualityScorer();
+
+    void setReference(size_t frame, Bytes rgba);
+    bool hasReference(size_t frame) const;
+    // Scores `frame` of `variant` into `row` (which must outlive finish()). `is_reference`:
+    // the variant is the reference itself (PSNR inf, SSIM 1, ECI 0 without computing).
+    void score(const std::string& variant, bool is_reference, FrameRow& row, QualityFrame frame);
+    // Waits for every job; writes the worst frames (by SSIM and by ECI) of each variant
+    // as PNGs under dir/worst/. Returns the files written.
+    std::vector<std::string> finish(const std::filesystem::path& dir);
+
+private:
+    struct Chain;
+    struct Worst;
+    void crawlStep(const std::string& variant, FrameRow& row, const QualityFrame& frame);
+    Chain& chain(const std::string& variant);
+
+    int width_, height_;
+    WorkerPool& workers_;
+    mutable std::mutex mutex_;
+    std::vector<Bytes> reference_;
+    std::map<std::string, std::unique_ptr<Chain>> chains_;
+};
+
+// Heat-map colouring of a one-channel image (0 black ... 1 white through red and yellow).
+std::vector<uint8_t> heatMap(const metrics::Image& value, double scale);
+// Checkerboard class map (R8 classes) as RGBA8 colours.
+std::vector<uint8_t> classMapRgba(const std::vector<uint8_t>& classes);
+
+}  // namespace cbr::harness

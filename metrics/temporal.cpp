@@ -1,0 +1,440 @@
+// Edge crawl index (ECI) and flicker ratio, as defined in method/metrics.md ("Edge crawl"):
+// the variant's frame-to-frame change minus the reference's, after backward warping with
+// the renderer's motion vectors, scored on the reference's edges only.
+#include "metrics/temporal.h"
+
+#include <opencv2/core.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "metrics/simd.h"
+
+namespace cbr::metrics {
+
+// Two frames' buffers used in turn: frames[current] is the previous frame, the other is
+// overwritten by the next one, so a sequence allocates (and page-faults) only once.
+struct CrawlTracker::State {
+    struct Frame {
+        int width = 0;
+        int height = 0;
+        std::vector<double> reference_luma;  // blurred; e_t = variant - reference
+        std::vector<double> variant_luma;    // blurred
+        std::vector<float> depth;            // for the next frame's disocclusion test
+    };
+    Frame frames[2];
+    int current = 0;
+    bool has_frame = false;
+};
+
+namespace {
+
+// Rows per unit of parallel work. The blur's strips are short so that their luma rows
+// (plus the kernel's halo) stay in a core's L2 cache.
+constexpr int kBlurStripRows = 16;
+constexpr int kScoreStripRows = 32;
+// The flicker ratio's floor on the reference change: one 8-bit code value, so a static
+// reference does not divide by rounding noise (metrics.md).
+constexpr double kFlickerFloor = 1.0 / 255.0;
+// A 3x3 Sobel ([1 2 1] x [-1 0 1]) gives 8 for a ramp of one per pixel: scaled by 1/8 its
+// magnitude is the per-pixel gradient the threshold is stated in.
+constexpr double kSobelScale = 1.0 / 8.0;
+
+constexpr uint64_t kExponentMask = 0x7FF0000000000000ull;
+constexpr uint64_t kExponentOne = 0x0010000000000000ull;
+
+std::string sizeText(int width, int height) {
+    return std::to_string(width) + "x" + std::to_string(height);
+}
+
+void checkImage(const char* what, const Image& image) {
+    const std::string where = std::string("CrawlTracker::add: ") + what;
+    if (image.channels != 1 && image.channels != 3)
+        throw std::invalid_argument(where + " has " + std::to_string(image.channels) +
+                                    " channels, expected 1 or 3");
+    if (image.width <= 0 || image.height <= 0)
+        throw std::invalid_argument(where + " is empty (" + sizeText(image.width, image.height) +
+                                    ")");
+    const size_t expected = size_t(image.width) * image.height * image.channels;
+    if (image.data.size() != expected)
+        throw std::invalid_argument(where + " holds " + std::to_string(image.data.size()) +
+                                    " values, " + sizeText(image.width, image.height) + "x" +
+                                    std::to_string(image.channels) + " needs " +
+                                    std::to_string(expected));
+}
+
+void checkField(const char* what, size_t size, size_t expected, const MotionField& motion) {
+    if (size != expected)
+        throw std::invalid_argument(std::string("CrawlTracker::add: motion field ") + what +
+                                    " holds " + std::to_string(size) + " values, a " +
+                                    sizeText(motion.width, motion.height) + " frame needs " +
+                                    std::to_string(expected));
+}
+
+void checkInputs(const Image& reference, const Image& variant, const MotionField& motion) {
+    checkImage("reference", reference);
+    checkImage("variant", variant);
+    if (!reference.sameShape(variant))
+        throw std::invalid_argument(
+            "CrawlTracker::add: reference and variant shapes differ (" +
+            sizeText(reference.width, reference.height) + "x" +
+            std::to_string(reference.channels) + " vs " +
+            sizeText(variant.width, variant.height) + "x" + std::to_string(variant.channels) +
+            ")");
+    if (motion.width != reference.width || motion.height != reference.height)
+        throw std::invalid_argument("CrawlTracker::add: motion field is " +
+                                    sizeText(motion.width, motion.height) + ", images are " +
+                                    sizeText(reference.width, reference.height));
+    const size_t pixels = size_t(reference.width) * reference.height;
+    checkField("motion", motion.motion.size(), 2 * pixels, motion);
+    checkField("depth", motion.depth.size(), pixels, motion);
+    checkField("prev_depth_expected", motion.prev_depth_expected.size(), pixels, motion);
+}
+
+void checkSetting(const char* name, double value, bool ok) {
+    if (!ok || !std::isfinite(value))
+        throw std::invalid_argument(std::string("CrawlSettings: ") + name +
+                                    " must be finite and >= 0, got " + std::to_string(value));
+}
+
+// scipy.ndimage.gaussian_filter's kernel (truncate 4: radius int(4 sigma + 0.5)), so the
+// blurred luma can be recomputed with scipy's defaults. Sigma 0: no blur.
+std::vector<double> blurKernel(double sigma) {
+    if (sigma == 0) return {1.0};
+    const int radius = int(4.0 * sigma + 0.5);
+    std::vector<double> kernel(size_t(2 * radius + 1));
+    double sum = 0;
+    for (int i = 0; i <= 2 * radius; ++i) {
+        const double x = i - radius;
+        kernel[size_t(i)] = std::exp(-0.5 / (sigma * sigma) * (x * x));
+        sum += kernel[size_t(i)];
+    }
+    for (double& k : kernel) k /= sum;
+    return kernel;
+}
+
+// scipy's 'reflect' border (d c b a | a b c d), also for kernels wider than the image.
+int reflectIndex(int i, int n) {
+    const int period = 2 * n;
+    i %= period;
+    if (i < 0) i += period;
+    return i < n ? i : period - 1 - i;
+}
+
+// Runs body(y0, y1) over strips of rows on OpenCV's thread pool.
+template <typename Body>
+void forStrips(int height, int strip_rows, const Body& body) {
+    const int strips = (height + strip_rows - 1) / strip_rows;
+    cv::parallel_for_(cv::Range(0, strips), [&](const cv::Range& range) {
+        for (int s = range.start; s < range.end; ++s)
+            body(s * strip_rows, std::min(height, (s + 1) * strip_rows));
+    });
+}
+
+// One thread's buffers, kept across calls so that no strip touches fresh pages.
+struct BlurScratch {
+    std::vector<double> rows;    // luma of the strip's rows plus the kernel's halo
+    std::vector<double> padded;  // one vertically filtered row with reflected ends
+};
+
+// Steps 1-2 of metrics.md for rows [y0, y1): BT.709 luma of `image`, Gaussian-blurred
+// (separable, symmetric taps folded), written to out. Returns false if a value is NaN
+// or infinite: one such pixel would poison the blur around it.
+CBR_SIMD_CLONES
+bool blurredLumaRows(const Image& image, const double* kernel, int radius, int y0, int y1,
+                     BlurScratch& scratch, double* out) {
+    const int width = image.width, height = image.height, channels = image.channels;
+    const int in_rows = (y1 - y0) + 2 * radius;
+    scratch.rows.resize(size_t(in_rows) * width);
+    scratch.padded.resize(size_t(width) + 2 * size_t(radius));
+    // An all-ones exponent (NaN, inf) plus one carries into the sign bit: integer adds
+    // and ORs, which vectorise where a compare-and-branch per value does not.
+    uint64_t carry = 0;
+    for (int j = 0; j < in_rows; ++j) {
+        const double* in =
+            image.data.data() + size_t(reflectIndex(y0 - radius + j, height)) * width * channels;
+        double* row = scratch.rows.data() + size_t(j) * width;
+        if (channels == 1) {
+            for (int x = 0; x < width; ++x) row[x] = in[x];
+        } else {
+            for (int x = 0; x < width; ++x)
+                row[x] = bt709Luma(in[3 * x], in[3 * x + 1], in[3 * x + 2]);
+        }
+        for (int x = 0; x < width; ++x)
+            carry |= (std::bit_cast<uint64_t>(row[x]) & kExponentMask) + kExponentOne;
+    }
+    double* padded = scratch.padded.data();
+    double* centre = padded + radius;
+    const double mid = kernel[radius];
+    for (int y = y0; y < y1; ++y) {
+        const double* rows = scratch.rows.data() + size_t(y - y0) * width;
+        const double* mid_row = rows + size_t(radius) * width;
+        for (int x = 0; x < width; ++x) centre[x] = mid * mid_row[x];
+        for (int i = 0; i < radius; ++i) {
+            const double* lo = rows + size_t(i) * width;
+            const double* hi = rows + size_t(2 * radius - i) * width;
+            const double k = kernel[i];
+            for (int x = 0; x < width; ++x) centre[x] += k * (lo[x] + hi[x]);
+        }
+        for (int m = 1; m <= radius; ++m) {
+            centre[-m] = centre[reflectIndex(-m, width)];
+            centre[width - 1 + m] = centre[reflectIndex(width - 1 + m, width)];
+        }
+        double* o = out + size_t(y) * width;
+        for (int x = 0; x < width; ++x) o[x] = mid * padded[x + radius];
+        for (int i = 0; i < radius; ++i) {
+            const double k = kernel[i];
+            for (int x = 0; x < width; ++x) o[x] += k * (padded[x + i] + padded[x + 2 * radius - i]);
+        }
+    }
+    return (carry >> 63) == 0;
+}
+
+// Step 5 for one row: |Sobel / 8| of the blurred reference luma above the threshold,
+// then the horizontal half of the 3x3 dilation. Borders reflect (the same pixel).
+CBR_SIMD_CLONES
+void edgeRow(const double* up, const double* mid, const double* down, int width,
+             double threshold, uint8_t* edge, uint8_t* wide) {
+    // Squares compared: the same set as magnitude > threshold, without a square root.
+    const double threshold2 = threshold * threshold;
+    auto at = [&](int x) {
+        const int l = std::max(x - 1, 0), r = std::min(x + 1, width - 1);
+        const double gx = ((up[r] - up[l]) + 2 * (mid[r] - mid[l]) + (down[r] - down[l])) * kSobelScale;
+        const double gy = ((down[l] - up[l]) + 2 * (down[x] - up[x]) + (down[r] - up[r])) * kSobelScale;
+        return uint8_t(gx * gx + gy * gy > threshold2);
+    };
+    edge[0] = at(0);
+    for (int x = 1; x + 1 < width; ++x) {
+        const double gx = ((up[x + 1] - up[x - 1]) + 2 * (mid[x + 1] - mid[x - 1]) +
+                           (down[x + 1] - down[x - 1])) * kSobelScale;
+        const double gy = ((down[x - 1] - up[x - 1]) + 2 * (down[x] - up[x]) +
+                           (down[x + 1] - up[x + 1])) * kSobelScale;
+        edge[x] = uint8_t(gx * gx + gy * gy > threshold2);
+    }
+    if (width > 1) edge[width - 1] = at(width - 1);
+    for (int x = 0; x < width; ++x) {
+        const uint8_t left = x > 0 ? edge[x - 1] : 0;
+        const uint8_t right = x + 1 < width ? edge[x + 1] : 0;
+        wide[x] = edge[x] | left | right;
+    }
+}
+
+// Bilinear sample at continuous pixel-index coordinates (pixel centres on integers).
+// The caller has checked 0 <= sx <= width - 1 and 0 <= sy <= height - 1, so int()
+// truncation is floor().
+inline double bilinear(const double* image, int width, int height, double sx, double sy) {
+    const int x0 = int(sx), y0 = int(sy);
+    const double fx = sx - x0, fy = sy - y0;
+    // On the last row or column the next one has weight 0: clamp the index only.
+    const int x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
+    const double* r0 = image + size_t(y0) * width;
+    const double* r1 = image + size_t(y1) * width;
+    const double top = r0[x0] + fx * (r0[x1] - r0[x0]);
+    const double bottom = r1[x0] + fx * (r1[x1] - r1[x0]);
+    return top + fy * (bottom - top);
+}
+
+// Per-strip partial sums, added in strip order afterwards so the result does not depend
+// on how the thread pool schedules strips.
+struct StripSums {
+    double numerator = 0;
+    double denominator = 0;
+    double flicker_variant = 0;
+    double flicker_reference = 0;
+    double valid = 0;
+};
+
+struct ScoreScratch {
+    std::vector<uint8_t> edge;
+    std::vector<uint8_t> wide;  // horizontally dilated edges of the strip's rows +-1
+};
+
+}  // namespace
+
+CrawlTracker::CrawlTracker(CrawlSettings settings) : settings_(settings) {
+    checkSetting("blur_sigma", settings_.blur_sigma, settings_.blur_sigma >= 0);
+    checkSetting("margin", settings_.margin, settings_.margin >= 0);
+    checkSetting("edge_threshold", settings_.edge_threshold, settings_.edge_threshold >= 0);
+    checkSetting("disocclusion_tolerance", settings_.disocclusion_tolerance,
+                 settings_.disocclusion_tolerance >= 0);
+}
+
+void CrawlTracker::reset() { previous_.reset(); }
+
+CrawlFrame CrawlTracker::add(const Image& reference, const Image& variant, const MotionField& motion,
+                             bool cut, bool want_map) {
+    checkInputs(reference, variant, motion);
+    const int width = reference.width, height = reference.height;
+    const bool chained = previous_ && previous_->has_frame && !cut;
+    // A new size mid-sequence has no pixel correspondence with the previous frame: the
+    // caller has mixed sequences, which deserves a clear message, not a silent reset.
+    if (chained) {
+        const State::Frame& last = previous_->frames[previous_->current];
+        if (last.width != width || last.height != height)
+            throw std::invalid_argument("CrawlTracker::add: frame is " + sizeText(width, height) +
+                                        ", the previous frame was " +
+                                        sizeText(last.width, last.height) +
+                                        " (pass cut = true or reset() between sequences)");
+    }
+    // Buffers are reused in place unless a copy of this tracker shares them.
+    std::shared_ptr<State> state = previous_;
+    if (!state)
+        state = std::make_shared<State>();
+    else if (state.use_count() > 2)
+        state = std::make_shared<State>(*previous_);
+
+    State::Frame& now = state->frames[1 - state->current];
+    now.width = width;
+    now.height = height;
+    const size_t pixels = size_t(width) * height;
+    now.reference_luma.resize(pixels);
+    now.variant_luma.resize(pixels);
+
+    // Step 1: luma of both images, blurred with sigma 1 so that bilinear warping (a
+    // slight blur itself) does not read as change.
+    const std::vector<double> kernel = blurKernel(settings_.blur_sigma);
+    const int radius = int(kernel.size() / 2);
+    const int blur_strips = (height + kBlurStripRows - 1) / kBlurStripRows;
+    std::vector<uint8_t> strip_finite(static_cast<size_t>(blur_strips), 1);
+    forStrips(height, kBlurStripRows, [&](int y0, int y1) {
+        thread_local BlurScratch scratch;
+        const bool ok =
+            blurredLumaRows(reference, kernel.data(), radius, y0, y1, scratch,
+                            now.reference_luma.data()) &&
+            blurredLumaRows(variant, kernel.data(), radius, y0, y1, scratch, now.variant_luma.data());
+        strip_finite[size_t(y0 / kBlurStripRows)] = ok ? 1 : 0;
+    });
+    if (std::find(strip_finite.begin(), strip_finite.end(), 0) != strip_finite.end())
+        throw std::invalid_argument(
+            "CrawlTracker::add: reference or variant contains a NaN or infinite value");
+    now.depth.assign(motion.depth.begin(), motion.depth.end());
+
+    CrawlFrame frame;
+    if (want_map) frame.crawl_map = Image{width, height, 1, std::vector<double>(pixels, 0.0)};
+    // From here on the state is consistent: this frame is the one the next compares with.
+    const int previous_index = state->current;
+    state->current = 1 - state->current;
+    state->has_frame = true;
+    previous_ = state;
+    // A cut or the first frame: nothing to compare with; this frame starts the chain.
+    if (!chained) return frame;
+    frame.has_pair = true;
+    const State::Frame& before = state->frames[previous_index];
+
+    const int margin = settings_.margin;
+    // Pixel-index coordinates: the centre of pixel x is at x + 0.5 in continuous
+    // coordinates, so the warp source p + motion is at index x + motion_x.
+    const double lo_x = margin, hi_x = width - 1 - margin;
+    const double lo_y = margin, hi_y = height - 1 - margin;
+    const double tolerance = settings_.disocclusion_tolerance;
+    const int score_strips = (height + kScoreStripRows - 1) / kScoreStripRows;
+    std::vector<StripSums> strip_sums(static_cast<size_t>(score_strips));
+
+    forStrips(height, kScoreStripRows, [&](int y0, int y1) {
+        thread_local ScoreScratch scratch;
+        // Step 5: edge rows y0-1 .. y1 (the dilation's halo), from the reference only.
+        const int g0 = std::max(0, y0 - 1), g1 = std::min(height, y1 + 1);
+        scratch.edge.resize(size_t(width));
+        scratch.wide.resize(size_t(g1 - g0) * width);
+        const double* blurred = now.reference_luma.data();
+        for (int y = g0; y < g1; ++y)
+            edgeRow(blurred + size_t(std::max(y - 1, 0)) * width, blurred + size_t(y) * width,
+                    blurred + size_t(std::min(y + 1, height - 1)) * width, width,
+                    settings_.edge_threshold, scratch.edge.data(),
+                    scratch.wide.data() + size_t(y - g0) * width);
+
+        StripSums sums;
+        const int row_begin = std::max(y0, margin), row_end = std::min(y1, height - margin);
+        for (int y = row_begin; y < row_end; ++y) {
+            // The vertical half of the 3x3 dilation.
+            const uint8_t* above = scratch.wide.data() + size_t(std::max(y - 1, g0) - g0) * width;
+            const uint8_t* centre = scratch.wide.data() + size_t(y - g0) * width;
+            const uint8_t* below = scratch.wide.data() + size_t(std::min(y + 1, g1 - 1) - g0) * width;
+            const double* reference_row = now.reference_luma.data() + size_t(y) * width;
+            const double* variant_row = now.variant_luma.data() + size_t(y) * width;
+            const float* motion_row = motion.motion.data() + size_t(y) * width * 2;
+            const float* depth_row = motion.depth.data() + size_t(y) * width;
+            const float* expected_row = motion.prev_depth_expected.data() + size_t(y) * width;
+            double* map_row = want_map ? frame.crawl_map->data.data() + size_t(y) * width : nullptr;
+            StripSums row;
+            for (int x = margin; x < width - margin; ++x) {
+                // Step 4: the warp source must lie inside the margin too. Written so
+                // that NaN motion fails the test and marks the pixel invalid.
+                const double sx = x + double(motion_row[2 * x]);
+                const double sy = y + double(motion_row[2 * x + 1]);
+                if (!(sx >= lo_x && sx <= hi_x && sy >= lo_y && sy <= hi_y)) continue;
+                // Not disoccluded: a surface here now, and the previous depth at the warp
+                // source (nearest pixel, so depth is never blended across a silhouette)
+                // is the depth this point had then, within the relative tolerance.
+                const double depth = depth_row[x];
+                const double expected = expected_row[x];
+                if (!(std::isfinite(depth) && depth > 0 && std::isfinite(expected) && expected > 0))
+                    continue;
+                const int nx = int(sx + 0.5), ny = int(sy + 0.5);
+                const double depth_then = before.depth[size_t(ny) * width + size_t(nx)];
+                if (!(std::abs(depth_then - expected) <= tolerance * expected)) continue;
+                row.valid += 1;
+                if (!(above[x] | centre[x] | below[x])) continue;
+
+                // Steps 2, 3 and 6. Bilinear warping is linear, so warp(e_t-1) is
+                // warp(Yv_t-1) - warp(Yr_t-1), and e_t - warp(e_t-1) = dV - dR.
+                const double d_variant =
+                    variant_row[x] - bilinear(before.variant_luma.data(), width, height, sx, sy);
+                const double d_reference =
+                    reference_row[x] - bilinear(before.reference_luma.data(), width, height, sx, sy);
+                const double crawl = d_variant - d_reference;
+                row.numerator += crawl * crawl;
+                row.denominator += 1;
+                row.flicker_variant += std::abs(d_variant);
+                row.flicker_reference += std::max(std::abs(d_reference), kFlickerFloor);
+                if (map_row) map_row[x] = std::abs(crawl);
+            }
+            sums.numerator += row.numerator;
+            sums.denominator += row.denominator;
+            sums.flicker_variant += row.flicker_variant;
+            sums.flicker_reference += row.flicker_reference;
+            sums.valid += row.valid;
+        }
+        strip_sums[size_t(y0 / kScoreStripRows)] = sums;
+    });
+
+    StripSums total;
+    for (const StripSums& s : strip_sums) {
+        total.numerator += s.numerator;
+        total.denominator += s.denominator;
+        total.flicker_variant += s.flicker_variant;
+        total.flicker_reference += s.flicker_reference;
+        total.valid += s.valid;
+    }
+    frame.numerator = total.numerator;
+    frame.denominator = total.denominator;
+    frame.valid_fraction = total.valid / double(pixels);
+    if (total.denominator > 0) {
+        frame.eci = std::sqrt(total.numerator / total.denominator);
+        // Each scored pixel adds at least 1/255 here, so this is > 0.
+        frame.flicker_ratio = total.flicker_variant / total.flicker_reference;
+    } else {
+        frame.no_edges = true;
+    }
+    return frame;
+}
+
+double pooledEci(const std::vector<CrawlFrame>& frames) {
+    double numerator = 0, denominator = 0;
+    for (const CrawlFrame& f : frames) {
+        if (!f.has_pair) continue;
+        numerator += f.numerator;
+        denominator += f.denominator;
+    }
+    // Guarded like the per-frame value: a sequence without scored edges reports 0.
+    if (!(denominator > 0) || !std::isfinite(numerator) || !std::isfinite(denominator)) return 0;
+    return std::sqrt(numerator / denominator);
+}
+
+}  // namespace cbr::metrics

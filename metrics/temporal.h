@@ -1,0 +1,64 @@
+// Edge crawl index (ECI) and flicker ratio: temporal instability at the reference's edges,
+// after motion compensation with the renderer's own motion vectors (method/metrics.md).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "metrics/image.h"
+
+namespace cbr::metrics {
+
+// Per-pixel analysis of the reference frame t, written by the renderer at output size.
+struct MotionField {
+    int width = 0;
+    int height = 0;
+    // 2 floats per pixel, full-res pixels: the surface at pixel centre p in frame t was at
+    // p + motion in frame t-1 (backward warp source).
+    std::vector<float> motion;
+    // View-space depth at t (> 0); 0 where no surface was drawn (sky).
+    std::vector<float> depth;
+    // The view-space depth the same surface point had at t-1 (for the disocclusion test).
+    std::vector<float> prev_depth_expected;
+};
+
+struct CrawlSettings {
+    double blur_sigma = 1.0;        // removes the warp's resampling floor (metrics.md step 1)
+    int margin = 4;                 // pixels near the frame border are not scored
+    double edge_threshold = 0.02;   // Sobel magnitude of the blurred reference luma, per pixel
+    double disocclusion_tolerance = 0.05;  // relative view-depth mismatch that marks disocclusion
+};
+
+struct CrawlFrame {
+    bool has_pair = false;        // false on the first frame and after a cut: nothing scored
+    double eci = 0;               // sqrt(numerator / denominator); 0 when no edges
+    double flicker_ratio = 0;     // sum(mask w |dV|) / sum(mask w max(|dR|, 1/255)); 0 when no edges
+    double valid_fraction = 0;    // share of pixels inside the valid mask
+    double numerator = 0;         // sum(mask w (e_t - warp(e_t-1))^2), for sequence pooling
+    double denominator = 0;       // sum(mask w)
+    bool no_edges = false;        // denominator 0: ECI and flicker ratio reported as 0, flagged
+    std::optional<Image> crawl_map;  // |e_t - warp(e_t-1)| on masked edge pixels (1 channel), on request
+};
+
+// Feed one variant's frames in order; keeps only the previous frame's state.
+class CrawlTracker {
+public:
+    explicit CrawlTracker(CrawlSettings settings = {});
+    // reference and variant: RGB display images in [0,1]; motion: the reference frame's
+    // analysis. `cut`: a camera cut lies between the previous frame and this one.
+    // Throws std::invalid_argument when shapes disagree.
+    CrawlFrame add(const Image& reference, const Image& variant, const MotionField& motion, bool cut,
+                   bool want_map = false);
+    void reset();
+
+private:
+    struct State;
+    CrawlSettings settings_;
+    std::shared_ptr<State> previous_;
+};
+
+// Sequence ECI: sqrt(sum of numerators / sum of denominators) over frames with a pair.
+double pooledEci(const std::vector<CrawlFrame>& frames);
+
+}  // namespace cbr::metrics

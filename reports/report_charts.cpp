@@ -1,0 +1,305 @@
+// Report sections with charts: GPU time by pass, per-frame quality, pixel classes, error vs time.
+#include <algorithm>
+#include <cmath>
+
+#include "reports/html.h"
+#include "reports/report_sections.h"
+
+namespace cbr::reports {
+
+namespace {
+
+bool anyValue(const std::vector<std::optional<double>>& v) {
+    return std::any_of(v.begin(), v.end(), [](const auto& x) { return x && !std::isnan(*x); });
+}
+
+bool isLavapipe(const RunData& d) {
+    const auto* j = jsonAt(d.run, "/device/is_lavapipe");
+    return j && j->is_boolean() && j->get<bool>();
+}
+
+std::string statusLine(const RunData& d, const std::string& v) {
+    std::string status = summaryText(d, v, "status");
+    std::string note = summaryText(d, v, "note");
+    return "<p class=\"muted\"><b>" + esc(v) + "</b>: " + esc(status.empty() ? "no rows" : status) +
+           (note.empty() ? "" : " \u2013 " + esc(note)) + "; nothing to plot.</p>";
+}
+
+std::string chartBlock(const std::string& title, const std::string& svg) {
+    return "<div class=\"chart-block\"><h3>" + esc(title) + "</h3>" + svg + "</div>";
+}
+
+}  // namespace
+
+std::string legendHtml(const std::vector<Series>& series, const std::string& extra) {
+    std::string out = "<div class=\"legend\">";
+    for (const auto& s : series)
+        out += "<span><i style=\"background:" + esc(s.color) + "\"></i>" + esc(s.name) + "</span>";
+    return out + extra + "</div>";
+}
+
+std::string timeSection(const RunData& d) {
+    std::string out = "<section id=\"time\"><h2>GPU time per frame, by pass</h2>";
+    const auto passes = passNames(d);
+    const bool median = d.repeats > 1;
+    out += "<p class=\"note\">Bars stack the GPU time of each pass (frames.csv <code>gpu_ms_&lt;pass&gt;</code>) ";
+    out += median ? "as the per-pass median over the " + std::to_string(d.repeats) +
+                        " repetitions at each frame; the dashed line is the median frame time (<code>gpu_ms</code>). "
+                        "Medians taken per pass need not add up exactly to the median frame."
+                  : std::string("of repetition 0; the dashed line is the frame time (<code>gpu_ms</code>).");
+    out += " Every variant shares one scale.";
+    if (isLavapipe(d)) out += " On lavapipe these are CPU rasterisation times: compare ratios, not absolute values.";
+    out += "</p>";
+
+    const int rep = median ? -1 : 0;
+    struct Block {
+        std::string variant;
+        StackedChart chart;
+    };
+    std::vector<Block> blocks;
+    std::vector<Series> legend;
+    double y_max = 0;
+    for (const auto& v : d.variants) {
+        StackedChart c;
+        c.y_label = "GPU time (ms)";
+        c.x = d.frame_ids;
+        c.value_unit = " ms";
+        for (size_t p = 0; p < passes.size(); ++p) {
+            auto values = perFrame(d, v, "gpu_ms_" + passes[p], rep);
+            if (!anyValue(values)) continue;
+            c.layers.push_back({passes[p], passColor(passes[p], p), values});
+            if (std::none_of(legend.begin(), legend.end(), [&](const Series& s) { return s.name == passes[p]; }))
+                legend.push_back({passes[p], passColor(passes[p], p), {}});
+        }
+        auto total = perFrame(d, v, "gpu_ms", rep);
+        if (c.layers.empty() && anyValue(total)) c.layers.push_back({"frame", "#7f7f7f", total});
+        if (c.layers.empty()) {
+            blocks.push_back({v, {}});
+            continue;
+        }
+        c.overlay = Series{"frame time (gpu_ms)", "#202020", total};
+        for (size_t i = 0; i < d.frame_ids.size(); ++i) {
+            double sum = 0;
+            for (const auto& l : c.layers)
+                if (l.y[i] && std::isfinite(*l.y[i])) sum += *l.y[i];
+            y_max = std::max(y_max, sum);
+            if (total[i] && std::isfinite(*total[i])) y_max = std::max(y_max, *total[i]);
+        }
+        blocks.push_back({v, std::move(c)});
+    }
+    out += legendHtml(legend, "<span><i class=\"dash\"></i>frame time</span>");
+    out += "<div class=\"grid2\">";
+    for (auto& b : blocks) {
+        if (b.chart.layers.empty()) {
+            out += statusLine(d, b.variant);
+            continue;
+        }
+        b.chart.y_max = y_max > 0 ? y_max * 1.05 : 1.0;
+        out += chartBlock(b.variant, stackedChartSvg(b.chart));
+    }
+    return out + "</div></section>";
+}
+
+std::string qualitySection(const RunData& d) {
+    std::string out = "<section id=\"quality\"><h2>Quality per frame</h2>";
+    out += "<p class=\"note\">Against the reference (<code>full</code>, not drawn) at the same frame, repetition 0 "
+           "(rendering is deterministic). PSNR of a frame identical to the reference is infinite: it sits on the "
+           "\u221e lane at the top (\u25b2) and never stretches the scale.</p>";
+    std::vector<std::string> shown;
+    for (const auto& v : d.variants)
+        if (v != kReference) shown.push_back(v);
+    std::vector<Series> legend;
+    for (const auto& v : shown) legend.push_back({v, variantColor(d, v), {}});
+    out += legendHtml(legend);
+
+    struct Metric {
+        const char* column;
+        const char* title;
+        const char* y_label;
+    };
+    const Metric metrics[] = {
+        {"psnr_db", "PSNR", "PSNR (dB)"},
+        {"ssim", "SSIM", "SSIM (unitless)"},
+        {"eci", "Edge crawl index (ECI), lower is better", "ECI (luma, [0,1] units)"},
+        {"flicker_ratio", "Flicker ratio (1: changes like the reference)", "flicker ratio (x)"},
+        {"crawl_valid_fraction", "Share of pixels scored by ECI", "valid fraction (unitless)"},
+    };
+    out += "<div class=\"grid2\">";
+    std::vector<std::string> absent;
+    for (const auto& m : metrics) {
+        if (!d.frames.has(m.column)) {
+            absent.push_back(m.column);
+            continue;
+        }
+        LineChart c;
+        c.y_label = m.y_label;
+        c.x = d.frame_ids;
+        for (const auto& v : shown) {
+            auto values = perFrame(d, v, m.column, 0);
+            if (anyValue(values)) c.series.push_back({v, variantColor(d, v), values});
+        }
+        if (c.series.empty()) {
+            out += "<div class=\"chart-block\"><h3>" + esc(m.title) + "</h3><p class=\"muted\">No values in " +
+                   "frames.csv column <code>" + esc(m.column) + "</code>.</p></div>";
+            continue;
+        }
+        out += chartBlock(m.title, lineChartSvg(c));
+    }
+    out += "</div>";
+    if (!absent.empty()) {
+        std::string list;
+        for (const auto& a : absent) {
+            if (!list.empty()) list += ", ";
+            list += "<code>" + esc(a) + "</code>";
+        }
+        out += "<p class=\"muted\">frames.csv has no column " + list +
+               ": this run predates those metrics, so they are not charted.</p>";
+    }
+    return out + "</section>";
+}
+
+std::string pixelClassSection(const RunData& d) {
+    std::string out = "<section id=\"classes\"><h2>Checkerboard pixel classes over time</h2>";
+    std::vector<std::string> cbr;
+    for (const auto& v : d.variants)
+        if (isCheckerboard(d, v)) cbr.push_back(v);
+    if (cbr.empty()) return out + "<p class=\"muted\">No checkerboard variant in this run.</p></section>";
+    out += "<p class=\"note\">Share of the frame's pixels in each reconstruction class (repetition 0): shaded this "
+           "frame, reused from frame N\u22121, missing by parity, occluded, off-screen in N\u22121, reset (first "
+           "frame, cut). Colours match the class maps.</p>";
+    std::vector<Series> legend;
+    for (const auto& pc : kPixelClasses)
+        if (d.frames.has(pc.column)) legend.push_back({pc.label, pc.color, {}});
+    if (legend.empty())
+        return out + "<p class=\"muted\">frames.csv has no px_* columns.</p></section>";
+    out += legendHtml(legend) + "<div class=\"grid2\">";
+    for (const auto& v : cbr) {
+        StackedChart c;
+        c.y_label = "share of pixels (%)";
+        c.x = d.frame_ids;
+        c.areas = true;
+        c.y_max = 100;
+        c.value_unit = "%";
+        for (const auto& pc : kPixelClasses) {
+            auto values = perFrame(d, v, pc.column, 0);
+            for (auto& x : values)
+                if (x) *x *= 100.0;
+            if (anyValue(values)) c.layers.push_back({pc.label, pc.color, values});
+        }
+        out += c.layers.empty() ? statusLine(d, v) : chartBlock(v, stackedChartSvg(c));
+    }
+    return out + "</div></section>";
+}
+
+std::string paretoSentence(const std::vector<CostQuality>& all) {
+    const CostQuality* ref = nullptr;
+    for (const auto& v : all)
+        if (v.name == kReference) ref = &v;
+    if (!ref || !ref->gpu_ms || !std::isfinite(*ref->gpu_ms) || *ref->gpu_ms <= 0)
+        return "No timed reference (full) in this run, so no variant's cost can be compared with full's.";
+
+    std::vector<ScatterPoint> pts;
+    std::vector<const CostQuality*> who;
+    for (const auto& v : all) {
+        if (!v.gpu_ms || !std::isfinite(*v.gpu_ms) || *v.gpu_ms <= 0) continue;
+        std::optional<double> y = v.name == kReference ? std::optional<double>(INFINITY) : v.psnr_db;
+        if (!y || std::isnan(*y)) continue;
+        pts.push_back({v.name, "", *v.gpu_ms, y});
+        who.push_back(&v);
+    }
+    auto front = paretoFront(pts, /*y_higher_is_better=*/true);
+    auto onFront = [&](size_t i) { return std::find(front.begin(), front.end(), i) != front.end(); };
+    auto speed = [&](size_t i) { return *ref->gpu_ms / pts[i].x; };
+    auto psnrText = [](double p) { return std::isinf(p) ? std::string("identical to full") : fmt(p, 2) + " dB"; };
+
+    std::optional<size_t> best;
+    for (size_t i = 0; i < pts.size(); ++i) {
+        if (who[i]->name == kReference || !onFront(i) || speed(i) <= 1.0) continue;
+        if (!best || *pts[i].y > *pts[*best].y || (*pts[i].y == *pts[*best].y && pts[i].x < pts[*best].x)) best = i;
+    }
+    if (pts.size() <= 1) return "Only the reference (full) has timing and quality here, so there is nothing to compare.";
+    if (!best) {
+        std::string s = "No variant is both on the Pareto front and faster than full, so full gives the best quality "
+                        "for its cost here";
+        for (size_t i = 0; i < pts.size(); ++i)
+            if (who[i]->name != kReference)
+                s += "; " + who[i]->name + " runs at " + fmt(speed(i), 2) + "x the speed of full with PSNR " +
+                     psnrText(*pts[i].y);
+        return s + ".";
+    }
+    std::string s = who[*best]->name + " gives the best quality for its cost: it is on the Pareto front with PSNR " +
+                    psnrText(*pts[*best].y);
+    if (who[*best]->ssim) s += " (SSIM " + fmt(*who[*best]->ssim, 4) + ")";
+    s += " at " + fmt(speed(*best), 2) + "x the speed of full";
+    std::vector<size_t> others;
+    for (size_t i = 0; i < pts.size(); ++i)
+        if (i != *best && who[i]->name != kReference) others.push_back(i);
+    std::sort(others.begin(), others.end(), [&](size_t a, size_t b) { return pts[a].x < pts[b].x; });
+    for (size_t i : others) {
+        const double sp = speed(i);
+        const bool faster = pts[i].x < pts[*best].x;
+        const bool better = *pts[i].y > *pts[*best].y;
+        s += "; " + who[i]->name;
+        if (faster && better) s += " is faster (" + fmt(sp, 2) + "x) and higher quality (" + psnrText(*pts[i].y) + ")";
+        else if (faster) s += " is faster (" + fmt(sp, 2) + "x) but lower quality (" + psnrText(*pts[i].y) + ")";
+        else if (better) s += " is higher quality (" + psnrText(*pts[i].y) + ") but no faster than full (" + fmt(sp, 2) + "x)";
+        else s += " is dominated: slower (" + fmt(sp, 2) + "x) and no better (" + psnrText(*pts[i].y) + ")";
+    }
+    return s + " (speeds are ratios of median GPU frame time, as plotted).";
+}
+
+std::string paretoSentence(const RunData& d) {
+    std::vector<CostQuality> cq;
+    for (const auto& v : d.variants) {
+        if (!variantOk(d, v)) continue;
+        cq.push_back({v, summaryNum(d, v, "gpu_ms_median"), summaryNum(d, v, "psnr_db_mean"),
+                      summaryNum(d, v, "ssim_mean")});
+    }
+    return paretoSentence(cq);
+}
+
+std::string paretoSection(const RunData& d) {
+    std::string out = "<section id=\"pareto\"><h2>Error against run time</h2>";
+    out += "<p class=\"note\">One point per variant that ran: x is the median GPU frame time (summary.csv "
+           "<code>gpu_ms_median</code>), y the sequence error. The dashed line joins the Pareto front (no other variant "
+           "is both faster and better); ringed points lie on it. The reference has no error: PSNR \u221e, 1\u2212SSIM 0"
+           ", ECI 0. The answer at the top of the page reads the PSNR panel.</p>";
+    struct Axis {
+        const char* column;
+        const char* title;
+        const char* label;
+        bool higher;
+        bool one_minus;
+    };
+    const Axis axes[] = {
+        {"ssim_mean", "1 \u2212 SSIM (lower is better)", "1 \u2212 SSIM", false, true},
+        {"psnr_db_mean", "PSNR (higher is better)", "PSNR (dB)", true, false},
+        {"eci", "ECI (lower is better)", "ECI", false, false},
+    };
+    out += "<div class=\"row\">";
+    for (const auto& a : axes) {
+        if (!d.summary.has(a.column)) {
+            out += "<div class=\"chart-small\"><h3>" + esc(a.title) + "</h3><p class=\"muted\">summary.csv has no "
+                   "column <code>" + esc(a.column) + "</code> (an older run).</p></div>";
+            continue;
+        }
+        ScatterChart c;
+        c.title = a.title;
+        c.x_label = "median GPU time (ms)";
+        c.y_label = a.label;
+        c.y_higher_is_better = a.higher;
+        for (const auto& v : d.variants) {
+            if (!variantOk(d, v)) continue;
+            auto x = summaryNum(d, v, "gpu_ms_median");
+            if (!x || !std::isfinite(*x)) continue;
+            auto y = summaryNum(d, v, a.column);
+            if (v == kReference && !y) y = a.higher ? INFINITY : 0.0;
+            if (y && a.one_minus) y = 1.0 - *y;
+            c.points.push_back({v, variantColor(d, v), *x, y});
+        }
+        out += "<div class=\"chart-small\">" + scatterChartSvg(c) + "</div>";
+    }
+    return out + "</div></section>";
+}
+
+}  // namespace cbr::reports

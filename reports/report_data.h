@@ -1,0 +1,62 @@
+// A run directory loaded for the report, and the queries the report's sections share.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "reports/csv_read.h"
+
+namespace cbr::reports {
+
+struct RunData {
+    std::filesystem::path dir;
+    CsvData summary;
+    CsvData frames;
+    nlohmann::json run;                 // run.json, checked to be an object
+    std::vector<std::string> variants;  // summary.csv order
+    std::vector<double> frame_ids;      // sorted distinct `frame` values
+    int repeats = 0;                    // distinct `repeat` values in frames.csv
+};
+
+// Reads summary.csv, frames.csv and run.json. Throws std::invalid_argument naming the
+// file and line (or JSON pointer) for anything missing or malformed.
+RunData loadRun(const std::filesystem::path& dir);
+
+// The reference variant: `full`, as the suite defines it.
+inline constexpr const char* kReference = "full";
+
+// summary.csv row of a variant, or nullopt.
+std::optional<size_t> summaryRow(const RunData& d, const std::string& variant);
+std::optional<double> summaryNum(const RunData& d, const std::string& variant, const std::string& column);
+std::string summaryText(const RunData& d, const std::string& variant, const std::string& column);
+bool variantOk(const RunData& d, const std::string& variant);
+// A checkerboard variant: summary.csv has its pixel-class shares, or run.json a route.
+bool isCheckerboard(const RunData& d, const std::string& variant);
+// run.json's variants[] entry of a variant, or nullptr.
+const nlohmann::json* variantJson(const RunData& d, const std::string& variant);
+
+// Per-frame values of one column, aligned with d.frame_ids: repetition `repeat`, or
+// (repeat < 0) the median over all repetitions. nullopt where no row or empty cell.
+std::vector<std::optional<double>> perFrame(const RunData& d, const std::string& variant, const std::string& column,
+                                            int repeat);
+// The frame (repetition 0) where a column is lowest (or highest); nullopt without values.
+std::optional<int> extremeFrame(const RunData& d, const std::string& variant, const std::string& column,
+                                bool highest);
+
+// Pass names from frames.csv's gpu_ms_<pass> columns, in column order.
+std::vector<std::string> passNames(const RunData& d);
+
+// Stable colours: variants by position in summary.csv, passes and pixel classes by name.
+std::string variantColor(const RunData& d, const std::string& variant);
+std::string passColor(const std::string& pass, size_t index);
+
+// A JSON value as display text: strings as they are, numbers short, booleans yes/no,
+// null or absent "–", arrays of scalars joined by ", ".
+std::string jsonText(const nlohmann::json* j);
+const nlohmann::json* jsonAt(const nlohmann::json& j, const std::string& pointer);
+
+}  // namespace cbr::reports

@@ -1,0 +1,195 @@
+// Report section with the worst frames: reference/variant wipe, error, SSIM, crawl and class maps.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "reports/base64.h"
+#include "reports/html.h"
+#include "reports/report_sections.h"
+
+namespace cbr::reports {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Embedded {
+    std::string uri;  // empty when the file is missing
+    int width = 0, height = 0;
+};
+
+// Width and height from a PNG's IHDR chunk (PNG spec, section 11.2.2); 0 when not a PNG.
+void pngSize(const std::string& bytes, int& w, int& h) {
+    static const unsigned char kSig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (bytes.size() < 24 || bytes.compare(0, 8, std::string(reinterpret_cast<const char*>(kSig), 8)) != 0 ||
+        bytes.compare(12, 4, "IHDR") != 0)
+        return;
+    auto be32 = [&](size_t o) {
+        return int(uint32_t(uint8_t(bytes[o])) << 24 | uint32_t(uint8_t(bytes[o + 1])) << 16 |
+                   uint32_t(uint8_t(bytes[o + 2])) << 8 | uint32_t(uint8_t(bytes[o + 3])));
+    };
+    w = be32(16);
+    h = be32(20);
+}
+
+Embedded embed(const fs::path& file) {
+    Embedded e;
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) return e;
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return e;
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const std::string bytes = ss.str();
+    pngSize(bytes, e.width, e.height);
+    e.uri = "data:image/png;base64," + base64Encode(bytes);
+    return e;
+}
+
+// Small images are shown at 2x, pixelated, so single pixels stay visible.
+int displayWidth(const Embedded& e) {
+    if (e.width <= 0) return 640;
+    return e.width <= 480 ? e.width * 2 : e.width;
+}
+
+std::string img(const Embedded& e, const std::string& alt, const std::string& cls = {}) {
+    std::string out = "<img";
+    if (!cls.empty()) out += " class=\"" + cls + "\"";
+    out += " src=\"" + e.uri + "\" alt=\"" + esc(alt) + "\"";
+    if (e.width > 0) out += " width=\"" + std::to_string(e.width) + "\" height=\"" + std::to_string(e.height) + "\"";
+    return out + ">";
+}
+
+// Reference over variant; the slider uncovers the reference from the left.
+std::string wipe(const Embedded& ref, const Embedded& var, const std::string& variant) {
+    std::string out = "<div class=\"wipe-box\" style=\"max-width:" + std::to_string(displayWidth(var)) + "px\">";
+    out += "<div class=\"wipe\">" + img(var, variant + " frame") + img(ref, "reference (full) frame", "wipe-top") +
+           "<div class=\"wipe-bar\"></div></div>";
+    out += "<div class=\"wipe-controls\"><span>\u2190 reference (full)</span><input type=\"range\" min=\"0\" "
+           "max=\"100\" value=\"50\" aria-label=\"wipe between reference and " + esc(variant) +
+           "\"><span>" + esc(variant) + " \u2192</span><button type=\"button\" class=\"flip\">flip</button></div>";
+    return out + "</div>";
+}
+
+std::string mapFigure(const Embedded& e, const std::string& caption, const std::string& missing_name) {
+    std::string out = "<figure class=\"map\">";
+    if (e.uri.empty()) out += "<div class=\"missing\">" + std::string(kDash) + "</div>";
+    else out += img(e, caption);
+    out += "<figcaption>" + esc(caption);
+    if (e.uri.empty()) out += " <span class=\"muted\">(" + esc(missing_name) + " absent)</span>";
+    return out + "</figcaption></figure>";
+}
+
+std::string classLegend() {
+    std::string out = "<div class=\"legend small\">";
+    for (const auto& pc : kPixelClasses)
+        out += "<span><i style=\"background:" + std::string(pc.color) + "\"></i>" + pc.label + "</span>";
+    return out + "</div>";
+}
+
+std::string frameLabel(const RunData& d, const std::string& v, const char* column, bool highest) {
+    auto f = extremeFrame(d, v, column, highest);
+    if (!f) return {};
+    auto values = perFrame(d, v, column, 0);
+    std::optional<double> value;
+    for (size_t i = 0; i < d.frame_ids.size(); ++i)
+        if (int(d.frame_ids[i]) == *f) value = values[i];
+    const std::string name = std::string(column) == "ssim" ? "SSIM" : std::string(column) == "eci" ? "ECI" : column;
+    return "frame " + std::to_string(*f) + " (" + name + " " + fmtShort(value.value_or(NAN), 4) + ")";
+}
+
+// Saved frames are <variant>_<frame>.png with the frame zero-padded to 4 digits.
+fs::path savedFrame(const RunData& d, const std::string& v, int frame, const char* suffix) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "_%04d%s.png", frame, suffix);
+    fs::path p = d.dir / "frames" / (v + buf);
+    std::error_code ec;
+    if (fs::exists(p, ec)) return p;
+    return d.dir / "frames" / (v + "_" + std::to_string(frame) + suffix + ".png");
+}
+
+std::string fromWorstDir(const RunData& d, const std::string& v) {
+    struct Kind {
+        const char* kind;
+        const char* title;
+        const char* column;
+        bool highest;
+    };
+    const Kind kinds[] = {{"ssim", "Lowest SSIM", "ssim", false}, {"eci", "Highest edge crawl (ECI)", "eci", true}};
+    const bool cbr = isCheckerboard(d, v);
+    std::string out;
+    for (const auto& k : kinds) {
+        auto file = [&](const char* what) { return std::string(v) + "_" + k.kind + "_" + what + ".png"; };
+        const fs::path dir = d.dir / "worst";
+        Embedded ref = embed(dir / file("reference")), var = embed(dir / file("variant"));
+        Embedded err = embed(dir / file("error")), ssim = embed(dir / file("ssim_map"));
+        Embedded crawl = embed(dir / file("crawl_map"));
+        Embedded cls = cbr ? embed(dir / file("class_map")) : Embedded{};
+        bool any = !ref.uri.empty() || !var.uri.empty() || !err.uri.empty() || !ssim.uri.empty() ||
+                   !crawl.uri.empty() || !cls.uri.empty();
+        std::string label = frameLabel(d, v, k.column, k.highest);
+        out += "<h4>" + esc(k.title) + (label.empty() ? "" : ": " + esc(label)) + "</h4>";
+        if (!any) {
+            out += "<p class=\"muted\">No worst/" + esc(file("*")) + " images in this run" +
+                   (d.frames.has(k.column) ? "." : std::string(" (it has no ") + k.column + " metric).") + "</p>";
+            continue;
+        }
+        out += "<div class=\"compare\">";
+        if (!ref.uri.empty() && !var.uri.empty()) out += wipe(ref, var, v);
+        else out += mapFigure(var.uri.empty() ? ref : var, var.uri.empty() ? "reference" : v, var.uri.empty() ? file("variant") : file("reference"));
+        out += "<div class=\"maps\">";
+        out += mapFigure(err, "error |variant \u2212 reference|", file("error"));
+        out += mapFigure(ssim, "SSIM map (dark: low)", file("ssim_map"));
+        out += mapFigure(crawl, "crawl map |e\u209c \u2212 warp(e\u209c\u208b\u2081)|", file("crawl_map"));
+        if (cbr) out += mapFigure(cls, "pixel classes", file("class_map")) + classLegend();
+        out += "</div></div>";
+    }
+    return out;
+}
+
+std::string fromSavedFrames(const RunData& d, const std::string& v) {
+    auto f = extremeFrame(d, v, "ssim", false);
+    if (!f) return "<p class=\"muted\">No per-frame SSIM for " + esc(v) + ".</p>";
+    Embedded ref = embed(savedFrame(d, kReference, *f, "")), var = embed(savedFrame(d, v, *f, ""));
+    if (ref.uri.empty() || var.uri.empty())
+        return "<p class=\"muted\">frames/ lacks frame " + std::to_string(*f) + " of " + esc(v) + " or of full.</p>";
+    std::string out = "<h4>Lowest SSIM: " + esc(frameLabel(d, v, "ssim", false)) + ", from frames/</h4>";
+    out += "<div class=\"compare\">" + wipe(ref, var, v) + "<div class=\"maps\">";
+    if (isCheckerboard(d, v)) {
+        Embedded cls = embed(savedFrame(d, v, *f, "_class"));
+        out += mapFigure(cls, "pixel classes", "frames/" + v + "_class.png") + classLegend();
+    }
+    return out + "</div></div>";
+}
+
+}  // namespace
+
+std::string imagesSection(const RunData& d) {
+    std::string out = "<section id=\"images\"><h2>Worst frames</h2>";
+    std::error_code ec;
+    const bool worst = fs::is_directory(d.dir / "worst", ec);
+    const bool saved = fs::is_directory(d.dir / "frames", ec);
+    if (worst) {
+        out += "<p class=\"note\">Per variant, the frame with the lowest SSIM and the one with the highest edge crawl, "
+               "from worst/. Drag the slider (or press flip) to compare the reference with the variant; maps at "
+               "the right.</p>";
+    } else if (saved) {
+        out += "<p class=\"note\">This run has no worst/ folder (it predates the worst-frame export), so there are "
+               "no error, SSIM or crawl maps. Shown instead: each variant's lowest-SSIM frame from the saved frames/ "
+               "(repetition 0), with its class map for checkerboard variants.</p>";
+    } else {
+        return out + "<p class=\"muted\">No images in this run: neither worst/ nor frames/ exists (run with "
+                     "<code>--save-frames</code> to keep them).</p></section>";
+    }
+    for (const auto& v : d.variants) {
+        if (v == kReference) continue;
+        out += "<div class=\"variant-images\"><h3>" + esc(v) + "</h3>";
+        if (!variantOk(d, v)) out += "<p class=\"muted\">" + esc(v) + " did not run (" + esc(summaryText(d, v, "status")) + ").</p>";
+        else out += worst ? fromWorstDir(d, v) : fromSavedFrames(d, v);
+        out += "</div>";
+    }
+    return out + "</section>";
+}
+
+}  // namespace cbr::reports

@@ -1,0 +1,183 @@
+// Report section with provenance and settings from run.json: device, build, settings, routes, validation.
+#include <cstdio>
+#include <set>
+
+#include "reports/html.h"
+#include "reports/report_sections.h"
+
+namespace cbr::reports {
+
+namespace {
+
+using Rows = std::vector<std::pair<std::string, std::string>>;
+
+std::string kvTable(const std::string& title, const Rows& rows) {
+    std::string out = "<div><h3>" + esc(title) + "</h3><table class=\"kv\">";
+    for (const auto& [k, v] : rows) out += "<tr><th>" + esc(k) + "</th><td>" + esc(v) + "</td></tr>";
+    return out + "</table></div>";
+}
+
+std::string at(const RunData& d, const std::string& pointer) { return jsonText(jsonAt(d.run, pointer)); }
+
+std::string hexAt(const RunData& d, const std::string& pointer) {
+    const auto* j = jsonAt(d.run, pointer);
+    if (!j || !j->is_number_integer()) return jsonText(j);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "0x%04llx", static_cast<unsigned long long>(j->get<long long>()));
+    return buf;
+}
+
+std::string joined(const std::string& a, const std::string& b, const std::string& sep) {
+    if (a == kDash) return b;
+    if (b == kDash) return a;
+    return a + sep + b;
+}
+
+// Every scalar under an object, as "key" or "parent.key", skipping `skip`.
+void flatten(const nlohmann::json& j, const std::string& prefix, const std::set<std::string>& skip, Rows& rows) {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
+        if (skip.count(key)) continue;
+        if (it->is_object()) flatten(*it, key, skip, rows);
+        else rows.push_back({key, jsonText(&*it)});
+    }
+}
+
+}  // namespace
+
+std::string provenanceSection(const RunData& d) {
+    std::string out = "<section id=\"provenance\"><h2>Provenance and settings</h2>";
+    out += "<div class=\"kv-grid\">";
+    out += kvTable("Device", {
+                                 {"name", at(d, "/device/name")},
+                                 {"type", at(d, "/device/type")},
+                                 {"driver", joined(at(d, "/device/driver_name"), at(d, "/device/driver_info"), ", ")},
+                                 {"driver id", at(d, "/device/driver_id")},
+                                 {"driver version", at(d, "/device/driver_version")},
+                                 {"Vulkan API version", at(d, "/device/api_version")},
+                                 {"vendor / device id",
+                                  hexAt(d, "/device/vendor_id") + " / " + hexAt(d, "/device/device_id")},
+                                 {"timestamp period (ns)", at(d, "/device/timestamp_period_ns")},
+                                 {"timestamp valid bits", at(d, "/device/timestamp_valid_bits")},
+                                 {"pipeline statistics", at(d, "/device/pipeline_statistics")},
+                                 {"timing note", at(d, "/device/timing_note")},
+                             });
+    std::string res = at(d, "/settings/width") + "\u00d7" + at(d, "/settings/height");
+    std::string cmd;
+    if (const auto* c = jsonAt(d.run, "/command_line"); c && c->is_array())
+        for (const auto& a : *c) {
+            if (!cmd.empty()) cmd += ' ';
+            cmd += jsonText(&a);
+        }
+    out += kvTable("Build and run", {
+                                        {"tool", joined(at(d, "/tool/name"), at(d, "/tool/version"), " ")},
+                                        {"build commit", at(d, "/tool/commit")},
+                                        {"date", at(d, "/date")},
+                                        {"command line", cmd.empty() ? kDash : cmd},
+                                        {"wall time (s)", at(d, "/wall_seconds")},
+                                        {"image I/O", at(d, "/metrics/image_io")},
+                                    });
+    out += kvTable("Benchmark", {
+                                    {"pipeline", at(d, "/settings/pipeline")},
+                                    {"resolution (px)", res},
+                                    {"frames per repetition", at(d, "/settings/frames")},
+                                    {"repetitions", at(d, "/settings/repeat")},
+                                    {"warm-up frames", at(d, "/settings/warmup_frames")},
+                                    {"warm-up rule", at(d, "/settings/warmup_rule")},
+                                    {"variant order", at(d, "/settings/variant_order")},
+                                    {"shading cost (x)", at(d, "/settings/shading_cost")},
+                                    {"checkerboard route (requested)", at(d, "/settings/cbr_route")},
+                                });
+    Rows other;
+    if (const auto* s = jsonAt(d.run, "/settings"); s && s->is_object())
+        flatten(*s, "", {"pipeline", "width", "height", "frames", "repeat", "warmup_frames", "warmup_rule",
+                         "variant_order", "shading_cost", "cbr_route"},
+                other);
+    if (!other.empty()) out += kvTable("Other settings", other);
+    out += kvTable("Scene", {
+                                {"name", at(d, "/scene/name")},
+                                {"source", at(d, "/scene/source")},
+                                {"content hash", at(d, "/scene/hash")},
+                                {"triangles", at(d, "/scene/triangles")},
+                                {"draws opaque / masked / blend", at(d, "/scene/opaque_draws") + " / " +
+                                                                       at(d, "/scene/masked_draws") + " / " +
+                                                                       at(d, "/scene/blend_draws")},
+                                {"animated instances", at(d, "/scene/animated_instances")},
+                                {"lights", at(d, "/scene/lights")},
+                                {"default light added", at(d, "/scene/default_light")},
+                            });
+    out += kvTable("Camera path", {
+                                      {"name", at(d, "/path/name")},
+                                      {"source", at(d, "/path/source")},
+                                      {"pose hash", at(d, "/path/hash")},
+                                      {"fps", at(d, "/path/fps")},
+                                      {"duration (s)", at(d, "/path/duration_s")},
+                                      {"frames", at(d, "/path/frames")},
+                                      {"cuts", at(d, "/path/cuts")},
+                                  });
+    out += kvTable("Validation layer", {
+                                           {"enabled", at(d, "/validation/enabled")},
+                                           {"errors", at(d, "/validation/errors")},
+                                           {"warnings", at(d, "/validation/warnings")},
+                                           {"messages", at(d, "/validation/messages")},
+                                       });
+    out += "</div>";
+
+    if (const auto* m = jsonAt(d.run, "/validation/first_messages"); m && m->is_array() && !m->empty()) {
+        out += "<h3>First validation messages</h3><ul class=\"messages\">";
+        for (const auto& msg : *m) out += "<li><code>" + esc(jsonText(&msg)) + "</code></li>";
+        out += "</ul>";
+    }
+
+    // Per checkerboard variant: the route the device allowed, and why.
+    std::string routes;
+    for (const auto& v : d.variants) {
+        const auto* vj = variantJson(d, v);
+        if (!isCheckerboard(d, v) || !vj) continue;
+        auto f = [&](const char* key) { return esc(jsonText(jsonAt(*vj, std::string("/") + key))); };
+        routes += "<tr><td>" + esc(v) + "</td><td><b>" + f("route") + "</b></td><td>" + f("route_reason") + "</td><td>" +
+                  f("quarter_resolution") + "</td><td>" + f("occlusion_rule") + "</td><td>" + f("motion") + "</td><td>" +
+                  f("lost_border") + "</td><td class=\"num\">" + f("lod_bias") + "</td></tr>";
+    }
+    if (!routes.empty())
+        out += "<h3>Checkerboard routes</h3><div class=\"scroll\"><table><tr><th>variant</th><th>route</th>"
+               "<th>reason</th><th>quarter res (px)</th><th>occlusion rule</th><th>motion</th><th>lost border</th>"
+               "<th class=\"num\">LOD bias</th></tr>" +
+               routes + "</table></div>";
+
+    // Frame alignment (metrics.md): PSNR against the same reference frame must beat the neighbours'.
+    std::string align;
+    for (const auto& v : d.variants) {
+        const auto* vj = variantJson(d, v);
+        const auto* fa = vj ? jsonAt(*vj, "/frame_alignment") : nullptr;
+        if (!fa || !fa->is_object()) continue;
+        const auto* ok = jsonAt(*fa, "/ok");
+        bool good = ok && ok->is_boolean() && ok->get<bool>();
+        auto num = [&](const char* key) {
+            const auto* j = jsonAt(*fa, std::string("/") + key);
+            return j && j->is_number() ? fmt(j->get<double>(), 2) : std::string(kDash);
+        };
+        align += "<tr><td>" + esc(v) + "</td><td class=\"num\">" + esc(jsonText(jsonAt(*fa, "/frame"))) +
+                 "</td><td class=\"num\">" + num("psnr_db_same") + "</td><td class=\"num\">" + num("psnr_db_prev") +
+                 "</td><td class=\"num\">" + num("psnr_db_next") + "</td><td class=\"" + (good ? "ok" : "bad") + "\">" +
+                 (ok ? (good ? "ok" : "misaligned") : kDash) + "</td></tr>";
+    }
+    if (!align.empty())
+        out += "<h3>Frame alignment check</h3><table><tr><th>variant</th><th class=\"num\">frame</th>"
+               "<th class=\"num\">PSNR same (dB)</th><th class=\"num\">PSNR previous (dB)</th>"
+               "<th class=\"num\">PSNR next (dB)</th><th>result</th></tr>" +
+               align + "</table>";
+
+    if (const auto* m = jsonAt(d.run, "/metrics"); m && m->is_object()) {
+        Rows rows;
+        flatten(*m, "", {"image_io"}, rows);
+        if (!rows.empty()) {
+            out += "<h3>Metric conventions</h3><table class=\"kv\">";
+            for (const auto& [k, v] : rows) out += "<tr><th>" + esc(k) + "</th><td>" + esc(v) + "</td></tr>";
+            out += "</table>";
+        }
+    }
+    return out + "</section>";
+}
+
+}  // namespace cbr::reports
