@@ -1,0 +1,109 @@
+// lavapipe tier for quality analysis: edge-crawl columns, the supersampled reference
+// (which scores `full` too), worst-frame images and the report written by every run.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "tests/render/bench_runner.h"
+
+namespace cbr::test {
+namespace {
+
+TEST(Quality, SupersampledReferenceScoresFullAndCrawlIsReported) {
+    auto work = scratchDir("quality-ssaa");
+    auto out = work / "out";
+    auto r = runBench({"run", "--scene", "atrium", "--path", "subpixel-pan", "--res", "128x72", "--frames", "8",
+                       "--repeat", "1", "--warmup", "1", "--validate", "--reference", "ssaa", "--ssaa", "3",
+                       "--variants", "full,cbr-aso", "--out", out.string()},
+                      work);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto run = readJson(out / "run.json");
+    EXPECT_EQ(run["validation"]["errors"], 0) << run["validation"]["first_messages"].dump(1);
+    EXPECT_EQ(run["validation"]["warnings"], 0) << run["validation"]["first_messages"].dump(1);
+    EXPECT_NE(run["metrics"]["reference_kind"].get<std::string>().find("ssaa"), std::string::npos);
+    auto summary = readCsv(out / "summary.csv");
+    for (size_t i = 0; i < summary.rows.size(); ++i) {
+        std::string v = summary.at(i, "variant");
+        // Against a supersampled reference, full itself has an error: finite PSNR, SSIM < 1.
+        double psnr = std::stod(summary.at(i, "psnr_db_mean"));
+        EXPECT_TRUE(std::isfinite(psnr)) << v;
+        EXPECT_GT(psnr, 15.0) << v;
+        EXPECT_LT(std::stod(summary.at(i, "ssim_mean")), 1.0) << v;
+        double eci = std::stod(summary.at(i, "eci"));
+        EXPECT_TRUE(std::isfinite(eci)) << v;
+        EXPECT_GT(eci, 0.0) << v;  // an aliased sub-pixel pan crawls against a stable reference
+        EXPECT_GE(std::stod(summary.at(i, "eci_max")), std::stod(summary.at(i, "eci_p95"))) << v;
+    }
+    // Per frame: no pair on frame 0, a pair with a valid region afterwards.
+    auto frames = readCsv(out / "frames.csv");
+    for (size_t i = 0; i < frames.rows.size(); ++i) {
+        if (frames.at(i, "frame") == "0") {
+            EXPECT_EQ(frames.at(i, "eci"), "");
+            continue;
+        }
+        EXPECT_NE(frames.at(i, "eci"), "") << i;
+        double valid = std::stod(frames.at(i, "crawl_valid_fraction"));
+        EXPECT_GT(valid, 0.3) << i;
+        EXPECT_LE(valid, 1.0) << i;
+    }
+    for (const char* v : {"full", "cbr-aso"})
+        for (const char* what : {"reference", "variant", "error", "ssim_map"})
+            EXPECT_TRUE(std::filesystem::exists(out / "worst" / (std::string(v) + "_ssim_" + what + ".png")))
+                << v << " " << what;
+    EXPECT_TRUE(std::filesystem::exists(out / "worst" / "cbr-aso_eci_crawl_map.png"));
+    EXPECT_TRUE(std::filesystem::exists(out / "worst" / "cbr-aso_eci_class_map.png"));
+    EXPECT_TRUE(std::filesystem::exists(out / "report.html"));
+}
+
+TEST(Quality, StaticPathGivesFiniteCrawlAndReferenceIsExact) {
+    auto work = scratchDir("quality-static");
+    auto out = work / "out";
+    auto r = runBench({"run", "--scene", "blocks", "--path", "static", "--res", "96x64", "--frames", "5", "--repeat",
+                       "1", "--warmup", "0", "--variants", "full,cbr-cso", "--out", out.string()},
+                      work);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto frames = readCsv(out / "frames.csv");
+    for (size_t i = 0; i < frames.rows.size(); ++i) {
+        if (frames.at(i, "frame") == "0") continue;
+        double eci = std::stod(frames.at(i, "eci"));
+        EXPECT_TRUE(std::isfinite(eci));
+        if (frames.at(i, "variant") == "full") {
+            EXPECT_EQ(eci, 0.0);
+        }
+    }
+}
+
+TEST(Quality, ReportCommandRebuildsAndRejectsBadInput) {
+    auto work = scratchDir("quality-report");
+    auto out = work / "out";
+    auto r = runBench({"run", "--scene", "blocks", "--path", "orbit", "--res", "64x48", "--frames", "4", "--repeat",
+                       "1", "--warmup", "0", "--out", out.string()},
+                      work);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::string before = slurp(out / "report.html");
+    std::filesystem::remove(out / "report.html");
+    auto rebuilt = runBench({"report", out.string()}, work);
+    EXPECT_EQ(rebuilt.exit_code, 0) << rebuilt.err;
+    EXPECT_TRUE(std::filesystem::exists(out / "report.html"));
+    // A malformed CSV: one line, exit 2, the existing report untouched.
+    std::string good = slurp(out / "report.html");
+    std::string summary = slurp(out / "summary.csv");
+    { std::ofstream(out / "summary.csv", std::ios::app) << "drr,ok,not-a-number\n"; }
+    auto bad = runBench({"report", out.string()}, work);
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("summary.csv"), std::string::npos) << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+    EXPECT_EQ(slurp(out / "report.html"), good);
+    // A missing file.
+    { std::ofstream(out / "summary.csv", std::ios::trunc) << summary; }
+    std::filesystem::remove(out / "frames.csv");
+    auto missing = runBench({"report", out.string()}, work);
+    EXPECT_EQ(missing.exit_code, 2);
+    EXPECT_NE(missing.err.find("frames.csv"), std::string::npos) << missing.err;
+    EXPECT_EQ(slurp(out / "report.html"), good);
+}
+
+}  // namespace
+}  // namespace cbr::test
