@@ -2,6 +2,7 @@
 // Intel Integrated Graphics", and method/cbr.md): one full-res pixel per invocation from
 // the two quarter-res sample sets of frames N and N-1. Included by cbr_resolve_array.comp
 // (multiview layers) and cbr_resolve_ms.comp (2x MSAA samples), which define FETCH.
+#extension GL_KHR_shader_subgroup_ballot : require
 #include "shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -77,97 +78,103 @@ vec3 fillFromNeighbours(ivec2 p, int parity, ivec2 size) {
     return weight > 0.0 ? sum / weight : vec3(0.0);
 }
 
+// Frame N's data for a pixel it did not shade: reused from N-1, or filled (with the class).
+vec3 reconstruct(ivec2 p, int parity, ivec2 size, out uint cls) {
+    if (frame.frame_info.y != 0u) {
+        cls = kReset;
+        return fillFromNeighbours(p, parity, size);
+    }
+    // Frame N's four cardinal neighbours: all shaded this frame (checkerboard).
+    float nearest = -1.0;
+    ivec3 nearest_src = ivec3(-1);
+    float depth_sum = 0.0;
+    int depth_count = 0;
+    for (int i = 0; i < 4; ++i) {
+        ivec2 n = p + neighbourOffset(i);
+        if (any(lessThan(n, ivec2(0))) || any(greaterThanEqual(n, size))) continue;
+        ivec3 s = shadedSource(parity, n);
+        if (s.x < 0) continue;
+        float d = FETCH(cur_depth, s.yz, s.x).r;
+        depth_sum += viewDepth(d, frame.depth_params.xy);
+        depth_count++;
+        if (d > nearest) {  // reversed Z: larger is nearer
+            nearest = d;
+            nearest_src = s;
+        }
+    }
+    vec2 motion = vec2(1e9);
+    if (nearest_src.x >= 0) {
+        if (HAS_MOTION != 0) {
+            motion = FETCH(cur_motion, nearest_src.yz, nearest_src.x).xy;
+        } else {
+            // Static scene: the camera's motion from depth, reprojected with the previous
+            // view-projection (the paper's method).
+            vec2 ndc = (vec2(p) + 0.5) / vec2(size) * 2.0 - 1.0;
+            vec4 prev = frame.reproject * vec4(ndc, nearest, 1.0);
+            if (prev.w > 0.0) motion = (prev.xy / prev.w * 0.5 + 0.5) * vec2(size) - (vec2(p) + 0.5);
+        }
+    }
+    vec2 prev_pos = vec2(p) + 0.5 + motion;
+    if (!(all(greaterThanEqual(prev_pos, vec2(0.0))) && all(lessThan(prev_pos, vec2(size))))) {
+        cls = kOffscreen;
+        return fillFromNeighbours(p, parity, size);
+    }
+    ivec2 pp = ivec2(floor(prev_pos));
+    if (patternEntry(1 - parity, pp & 1).x < 0) {
+        cls = kMissingParity;  // the motion cancelled the jitter
+        return fillFromNeighbours(p, parity, size);
+    }
+    ivec3 prev_src = shadedSource(1 - parity, pp);
+    if (prev_src.x < 0) {
+        cls = kOffscreen;  // frame N-1's lost column
+        return fillFromNeighbours(p, parity, size);
+    }
+    if (any(notEqual(pp >> 1, p >> 1))) {
+        if (CHECK_OCCLUSION == 0) {
+            cls = kOccluded;  // ASO: any quarter-res motion means missing
+            return fillFromNeighbours(p, parity, size);
+        }
+        // CSO: view-space depths, so the test does not depend on where the camera looks.
+        float d_prev = viewDepth(FETCH(prev_depth, prev_src.yz, prev_src.x).r, frame.depth_params.zw);
+        float d_avg = depth_sum / float(max(depth_count, 1));
+        float tolerance = CSO_ABSOLUTE != 0 ? params.cso_tolerance : params.cso_tolerance * d_avg;
+        if (depth_count == 0 || abs(d_prev - d_avg) >= tolerance) {
+            cls = kOccluded;
+            return fillFromNeighbours(p, parity, size);
+        }
+    }
+    cls = kReused;
+    return FETCH(prev_color, prev_src.yz, prev_src.x).rgb;
+}
+
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = ivec2(frame.frame_info.zw);
+    int parity = int(frame.frame_info.x);
     bool inside = all(lessThan(p, size));
     if (gl_LocalInvocationIndex < 6u) group_counts[gl_LocalInvocationIndex] = 0u;
     barrier();
 
     uint cls = kShaded;
-    vec3 color = vec3(0.0);
     if (inside) {
-        int parity = int(frame.frame_info.x);
-        bool reset = frame.frame_info.y != 0u;
+        vec3 color;
         ivec3 own = shadedSource(parity, p);
-        bool fill = false;
         if (own.x >= 0) {
             color = FETCH(cur_color, own.yz, own.x).rgb;
         } else if (patternEntry(parity, p & 1).x >= 0) {
             cls = kOffscreen;  // shaded this frame in principle, but in the lost column
-            fill = true;
-        } else if (reset) {
-            cls = kReset;
-            fill = true;
+            color = fillFromNeighbours(p, parity, size);
         } else {
-            // Frame N's four cardinal neighbours: all shaded this frame (checkerboard).
-            float nearest = -1.0;
-            ivec3 nearest_src = ivec3(-1);
-            float depth_sum = 0.0;
-            int depth_count = 0;
-            for (int i = 0; i < 4; ++i) {
-                ivec2 n = p + neighbourOffset(i);
-                if (any(lessThan(n, ivec2(0))) || any(greaterThanEqual(n, size))) continue;
-                ivec3 s = shadedSource(parity, n);
-                if (s.x < 0) continue;
-                float d = FETCH(cur_depth, s.yz, s.x).r;
-                depth_sum += viewDepth(d, frame.depth_params.xy);
-                depth_count++;
-                if (d > nearest) {  // reversed Z: larger is nearer
-                    nearest = d;
-                    nearest_src = s;
-                }
-            }
-            vec2 motion = vec2(1e9);
-            if (nearest_src.x >= 0) {
-                if (HAS_MOTION != 0) {
-                    motion = FETCH(cur_motion, nearest_src.yz, nearest_src.x).xy;
-                } else {
-                    // Static scene: the camera's motion from depth, reprojected with the
-                    // previous view-projection (the paper's method).
-                    vec2 ndc = (vec2(p) + 0.5) / vec2(size) * 2.0 - 1.0;
-                    vec4 prev = frame.reproject * vec4(ndc, nearest, 1.0);
-                    if (prev.w > 0.0) motion = (prev.xy / prev.w * 0.5 + 0.5) * vec2(size) - (vec2(p) + 0.5);
-                }
-            }
-            vec2 prev_pos = vec2(p) + 0.5 + motion;
-            if (!(all(greaterThanEqual(prev_pos, vec2(0.0))) && all(lessThan(prev_pos, vec2(size))))) {
-                cls = kOffscreen;
-                fill = true;
-            } else {
-                ivec2 pp = ivec2(floor(prev_pos));
-                ivec3 prev_src = shadedSource(1 - parity, pp);
-                if (patternEntry(1 - parity, pp & 1).x < 0) {
-                    cls = kMissingParity;  // the motion cancelled the jitter
-                    fill = true;
-                } else if (prev_src.x < 0) {
-                    cls = kOffscreen;      // frame N-1's lost column
-                    fill = true;
-                } else if (any(notEqual(pp >> 1, p >> 1)) && CHECK_OCCLUSION == 0) {
-                    cls = kOccluded;       // ASO: any quarter-res motion means missing
-                    fill = true;
-                } else if (any(notEqual(pp >> 1, p >> 1))) {
-                    // CSO: view-space depths, so the test does not depend on where the camera looks.
-                    float d_prev = viewDepth(FETCH(prev_depth, prev_src.yz, prev_src.x).r, frame.depth_params.zw);
-                    float d_avg = depth_sum / float(max(depth_count, 1));
-                    float tolerance = CSO_ABSOLUTE != 0 ? params.cso_tolerance : params.cso_tolerance * d_avg;
-                    if (depth_count == 0 || abs(d_prev - d_avg) >= tolerance) {
-                        cls = kOccluded;
-                        fill = true;
-                    } else {
-                        cls = kReused;
-                        color = FETCH(prev_color, prev_src.yz, prev_src.x).rgb;
-                    }
-                } else {
-                    cls = kReused;
-                    color = FETCH(prev_color, prev_src.yz, prev_src.x).rgb;
-                }
-            }
+            color = reconstruct(p, parity, size, cls);
         }
-        if (fill) color = fillFromNeighbours(p, int(frame.frame_info.x), size);
         imageStore(out_color, p, vec4(color, 1.0));
         imageStore(out_class, p, uvec4(cls));
-        atomicAdd(group_counts[cls], 1u);
+    }
+    // Class counts: one ballot per class and subgroup rather than an atomic per pixel
+    // (per-invocation shared atomics cost llvmpipe a third of the pass).
+    for (uint c = 0u; c < 6u; ++c) {
+        uint n = subgroupBallotBitCount(subgroupBallot(inside && cls == c));
+        if (subgroupElect() && n > 0u) atomicAdd(group_counts[c], n);
     }
     barrier();
     if (gl_LocalInvocationIndex < 6u && group_counts[gl_LocalInvocationIndex] > 0u)

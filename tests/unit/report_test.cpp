@@ -166,9 +166,25 @@ TEST(ReportSvg, ParetoFrontAndTicks) {
 }
 
 TEST(ReportSentence, NoVariantFasterThanFull) {
-    std::string s = paretoSentence(std::vector<CostQuality>{{"full", 10.0, INFINITY, 1.0}, {"drr", 12.0, 30.0, 0.95}});
-    EXPECT_NE(s.find("No variant is both on the Pareto front and faster than full"), std::string::npos) << s;
-    EXPECT_NE(s.find("drr runs at 0.83x"), std::string::npos) << s;
+    std::string s = paretoSentence(std::vector<CostQuality>{{"full", 10.0, INFINITY, 1.0, 1.0, 1.0, 1.0},
+                                                            {"drr", 12.0, 30.0, 0.95, 0.8, 0.7, 0.9}});
+    EXPECT_NE(s.find("No variant is both on the Pareto front and measurably faster than full"), std::string::npos)
+        << s;
+    EXPECT_NE(s.find("drr runs at 0.83x the speed of full (paired speedup 0.80x [0.70, 0.90])"), std::string::npos)
+        << s;
+}
+
+// A median-ms gain whose paired interval includes 1 is not a speedup (timing.md).
+TEST(ReportSentence, InsignificantSpeedupIsNotBest) {
+    std::string s = paretoSentence(std::vector<CostQuality>{{"full", 40.0, INFINITY, 1.0, 1.0, 1.0, 1.0},
+                                                            {"drr", 20.0, 25.3, 0.9, 2.0, 1.9, 2.1},
+                                                            {"cbr-cso", 25.0, 26.1, 0.93, 1.6, 0.9, 1.7}});
+    EXPECT_EQ(s.rfind("drr gives the best quality for its cost: it is on the Pareto front with PSNR 25.30 dB "
+                      "(SSIM 0.9000) at 2.00x the speed of full; cbr-cso is not measurably faster than full "
+                      "(paired speedup 1.60x [0.90, 1.70]) at PSNR 26.10 dB",
+                      0),
+              0u)
+        << s;
 }
 
 TEST(Report, WritesSelfContainedReport) {
@@ -212,6 +228,7 @@ TEST(Report, WritesSelfContainedReport) {
         EXPECT_NE(text.find(needle), std::string::npos) << needle;
     // Absent files of a present worst/ folder are marked, not fatal.
     EXPECT_NE(text.find("cbr-cso_ssim_ssim_map.png absent"), std::string::npos);
+    EXPECT_EQ(text.find("cbr-cso_ssim_crawl_map.png absent"), std::string::npos) << "crawl maps belong to ECI frames";
     fs::remove_all(dir);
 }
 
