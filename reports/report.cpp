@@ -32,6 +32,7 @@ table{border-collapse:collapse;font-size:13px}
 th,td{padding:4px 8px;border-bottom:1px solid var(--line);text-align:left;vertical-align:top}
 th{font-weight:600;background:var(--soft)}
 .num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
+th.num{white-space:normal;min-width:56px}
 .kv{width:100%}
 td.variant{white-space:nowrap;font-weight:600}
 .kv th{background:none;font-weight:500;color:var(--muted);white-space:nowrap}
@@ -40,13 +41,13 @@ td.variant{white-space:nowrap;font-weight:600}
 .scroll{overflow-x:auto}
 .ok{color:#1a7f37}.bad{color:#b42318}
 code{font-size:12px;background:var(--soft);padding:0 3px;border-radius:3px}
-ul.messages{font-size:13px}
+ul.messages,ul.notes{font-size:13px}
 .legend{margin:6px 0;font-size:13px}
 .legend span{display:inline-flex;align-items:center;margin-right:14px}
 .legend i{display:inline-block;width:12px;height:12px;margin-right:5px;border-radius:2px}
 .legend i.dash{height:0;border-top:2px dashed #202020;border-radius:0;width:16px}
 .legend.small{font-size:12px;grid-column:1/-1}
-.grid2{display:grid;grid-template-columns:repeat(auto-fit,minmax(520px,1fr));gap:6px 26px}
+.grid2{display:grid;grid-template-columns:repeat(auto-fill,minmax(520px,1fr));gap:6px 26px}
 .row{display:flex;flex-wrap:wrap;gap:18px}
 .chart-small{flex:1 1 300px;max-width:390px}
 svg.chart{width:100%;height:auto;display:block;font-size:11px}
@@ -71,6 +72,7 @@ svg.chart .pareto{fill:none;stroke:#333;stroke-width:1.2;stroke-dasharray:5 3}
 figure.map{margin:0}
 figure.map img{display:block;width:100%;height:auto;image-rendering:pixelated;border:1px solid var(--line)}
 figcaption{font-size:12px;color:var(--muted)}
+.maps .heat{grid-column:1/-1;margin:0}
 .missing{height:70px;display:flex;align-items:center;justify-content:center;background:var(--soft);color:var(--muted)}
 )CSS";
 

@@ -105,9 +105,10 @@ std::string qualitySection(const RunData& d) {
     out += "<p class=\"note\">Against the reference (<code>full</code>, not drawn) at the same frame, repetition 0 "
            "(rendering is deterministic). PSNR of a frame identical to the reference is infinite: it sits on the "
            "\u221e lane at the top (\u25b2) and never stretches the scale.</p>";
-    std::vector<std::string> shown;
+    std::vector<std::string> shown;  // variants with any per-frame quality value
     for (const auto& v : d.variants)
-        if (v != kReference) shown.push_back(v);
+        if (v != kReference && (anyValue(perFrame(d, v, "psnr_db", 0)) || anyValue(perFrame(d, v, "ssim", 0))))
+            shown.push_back(v);
     std::vector<Series> legend;
     for (const auto& v : shown) legend.push_back({v, variantColor(d, v), {}});
     out += legendHtml(legend);
@@ -207,45 +208,62 @@ std::string paretoSentence(const std::vector<CostQuality>& all) {
         pts.push_back({v.name, "", *v.gpu_ms, y});
         who.push_back(&v);
     }
+    if (pts.size() <= 1) return "Only the reference (full) has timing and quality here, so there is nothing to compare.";
     auto front = paretoFront(pts, /*y_higher_is_better=*/true);
     auto onFront = [&](size_t i) { return std::find(front.begin(), front.end(), i) != front.end(); };
     auto speed = [&](size_t i) { return *ref->gpu_ms / pts[i].x; };
     auto psnrText = [](double p) { return std::isinf(p) ? std::string("identical to full") : fmt(p, 2) + " dB"; };
+    auto measurablyFaster = [&](size_t i) {
+        const CostQuality& v = *who[i];
+        return speed(i) > 1.0 && (!v.ci_low || *v.ci_low > 1.0);
+    };
+    auto paired = [&](size_t i) {
+        const CostQuality& v = *who[i];
+        std::string t = "paired speedup " + fmt(v.speedup, 2) + "x";
+        if (v.ci_low && v.ci_high) t += " [" + fmt(v.ci_low, 2) + ", " + fmt(v.ci_high, 2) + "]";
+        return t;
+    };
 
     std::optional<size_t> best;
     for (size_t i = 0; i < pts.size(); ++i) {
-        if (who[i]->name == kReference || !onFront(i) || speed(i) <= 1.0) continue;
+        if (who[i]->name == kReference || !onFront(i) || !measurablyFaster(i)) continue;
         if (!best || *pts[i].y > *pts[*best].y || (*pts[i].y == *pts[*best].y && pts[i].x < pts[*best].x)) best = i;
     }
-    if (pts.size() <= 1) return "Only the reference (full) has timing and quality here, so there is nothing to compare.";
-    if (!best) {
-        std::string s = "No variant is both on the Pareto front and faster than full, so full gives the best quality "
-                        "for its cost here";
-        for (size_t i = 0; i < pts.size(); ++i)
-            if (who[i]->name != kReference)
-                s += "; " + who[i]->name + " runs at " + fmt(speed(i), 2) + "x the speed of full with PSNR " +
-                     psnrText(*pts[i].y);
-        return s + ".";
-    }
-    std::string s = who[*best]->name + " gives the best quality for its cost: it is on the Pareto front with PSNR " +
-                    psnrText(*pts[*best].y);
-    if (who[*best]->ssim) s += " (SSIM " + fmt(*who[*best]->ssim, 4) + ")";
-    s += " at " + fmt(speed(*best), 2) + "x the speed of full";
     std::vector<size_t> others;
     for (size_t i = 0; i < pts.size(); ++i)
-        if (i != *best && who[i]->name != kReference) others.push_back(i);
+        if (who[i]->name != kReference && (!best || i != *best)) others.push_back(i);
     std::sort(others.begin(), others.end(), [&](size_t a, size_t b) { return pts[a].x < pts[b].x; });
+
+    std::string s;
+    if (!best) {
+        s = "No variant is both on the Pareto front and measurably faster than full, so full gives the best quality "
+            "for its cost here";
+        for (size_t i : others)
+            s += "; " + who[i]->name + " runs at " + fmt(speed(i), 2) + "x the speed of full (" + paired(i) +
+                 ") with PSNR " + psnrText(*pts[i].y);
+        return s + ".";
+    }
+    s = who[*best]->name + " gives the best quality for its cost: it is on the Pareto front with PSNR " +
+        psnrText(*pts[*best].y);
+    if (who[*best]->ssim) s += " (SSIM " + fmt(*who[*best]->ssim, 4) + ")";
+    s += " at " + fmt(speed(*best), 2) + "x the speed of full";
     for (size_t i : others) {
         const double sp = speed(i);
         const bool faster = pts[i].x < pts[*best].x;
         const bool better = *pts[i].y > *pts[*best].y;
         s += "; " + who[i]->name;
-        if (faster && better) s += " is faster (" + fmt(sp, 2) + "x) and higher quality (" + psnrText(*pts[i].y) + ")";
-        else if (faster) s += " is faster (" + fmt(sp, 2) + "x) but lower quality (" + psnrText(*pts[i].y) + ")";
-        else if (better) s += " is higher quality (" + psnrText(*pts[i].y) + ") but no faster than full (" + fmt(sp, 2) + "x)";
-        else s += " is dominated: slower (" + fmt(sp, 2) + "x) and no better (" + psnrText(*pts[i].y) + ")";
+        if (!measurablyFaster(i))
+            s += " is not measurably faster than full (" + paired(i) + ") at PSNR " + psnrText(*pts[i].y);
+        else if (faster && better)
+            s += " is faster (" + fmt(sp, 2) + "x) and higher quality (" + psnrText(*pts[i].y) + ")";
+        else if (faster)
+            s += " is faster (" + fmt(sp, 2) + "x) but lower quality (" + psnrText(*pts[i].y) + ")";
+        else if (better)
+            s += " is higher quality (" + psnrText(*pts[i].y) + ") but slower (" + fmt(sp, 2) + "x)";
+        else
+            s += " is dominated: slower (" + fmt(sp, 2) + "x) and no better (" + psnrText(*pts[i].y) + ")";
     }
-    return s + " (speeds are ratios of median GPU frame time, as plotted).";
+    return s + " (speeds: ratios of median GPU frame time, as plotted).";
 }
 
 std::string paretoSentence(const RunData& d) {
@@ -253,7 +271,8 @@ std::string paretoSentence(const RunData& d) {
     for (const auto& v : d.variants) {
         if (!variantOk(d, v)) continue;
         cq.push_back({v, summaryNum(d, v, "gpu_ms_median"), summaryNum(d, v, "psnr_db_mean"),
-                      summaryNum(d, v, "ssim_mean")});
+                      summaryNum(d, v, "ssim_mean"), summaryNum(d, v, "speedup_vs_full"),
+                      summaryNum(d, v, "speedup_ci_low"), summaryNum(d, v, "speedup_ci_high")});
     }
     return paretoSentence(cq);
 }

@@ -47,10 +47,12 @@ Embedded embed(const fs::path& file) {
     return e;
 }
 
-// Small images are shown at 2x, pixelated, so single pixels stay visible.
+// Small images are magnified by a whole factor to at least 480 px, pixelated, so single
+// pixels stay visible and sharp.
 int displayWidth(const Embedded& e) {
     if (e.width <= 0) return 640;
-    return e.width <= 480 ? e.width * 2 : e.width;
+    if (e.width >= 480) return e.width;
+    return e.width * ((480 + e.width - 1) / e.width);
 }
 
 std::string img(const Embedded& e, const std::string& alt, const std::string& cls = {}) {
@@ -138,11 +140,16 @@ std::string fromWorstDir(const RunData& d, const std::string& v) {
         out += "<div class=\"compare\">";
         if (!ref.uri.empty() && !var.uri.empty()) out += wipe(ref, var, v);
         else out += mapFigure(var.uri.empty() ? ref : var, var.uri.empty() ? "reference" : v, var.uri.empty() ? file("variant") : file("reference"));
+        // Error and SSIM maps always come with a worst frame, the crawl map with the ECI one,
+        // the class map with checkerboard variants: only those are marked when absent.
+        const bool eci_kind = std::string(k.kind) == "eci";
         out += "<div class=\"maps\">";
         out += mapFigure(err, "error |variant \u2212 reference|", file("error"));
-        out += mapFigure(ssim, "SSIM map (dark: low)", file("ssim_map"));
-        out += mapFigure(crawl, "crawl map |e\u209c \u2212 warp(e\u209c\u208b\u2081)|", file("crawl_map"));
+        out += mapFigure(ssim, "1 \u2212 SSIM map", file("ssim_map"));
+        if (eci_kind || !crawl.uri.empty())
+            out += mapFigure(crawl, "edge crawl |e\u209c \u2212 warp(e\u209c\u208b\u2081)|", file("crawl_map"));
         if (cbr) out += mapFigure(cls, "pixel classes", file("class_map")) + classLegend();
+        out += "<p class=\"note heat\">Maps: black \u2192 red \u2192 yellow \u2192 white as the value grows.</p>";
         out += "</div></div>";
     }
     return out;

@@ -27,12 +27,15 @@ std::string imagesSection(const RunData& d);
 // One variant's cost and quality, for the answer sentence.
 struct CostQuality {
     std::string name;
-    std::optional<double> gpu_ms;  // median frame GPU time
+    std::optional<double> gpu_ms;   // median frame GPU time
     std::optional<double> psnr_db;  // sequence PSNR (+inf: identical to the reference)
     std::optional<double> ssim;
+    std::optional<double> speedup, ci_low, ci_high;  // paired speedup vs full and its 95% interval
 };
-// ONE sentence: which variant gives the best quality (PSNR) for its cost, judged on the
-// same axes as the plot (median GPU ms; speed = full's median / the variant's).
+// ONE sentence: which variant gives the best quality (PSNR) for its cost. The front and
+// the speeds are those of the plot (median GPU ms; speed = full's median / the variant's);
+// a variant counts as faster than full only where the paired speedup's interval, when
+// there is one, lies above 1 (timing.md: report only significant differences).
 std::string paretoSentence(const std::vector<CostQuality>& variants);
 // The sentence for a loaded run.
 std::string paretoSentence(const RunData& d);
@@ -46,10 +49,13 @@ struct PixelClass {
     const char* label;
     const char* color;
 };
+// The colours are the class maps' (harness/quality.cpp classColours), so legend and map agree.
 inline constexpr PixelClass kPixelClasses[] = {
-    {"px_shaded", "shaded", "#9e9e9e"},          {"px_reused", "reused", "#2ca02c"},
-    {"px_missing_parity", "missing (parity)", "#e6c700"}, {"px_occluded", "occluded", "#d62728"},
-    {"px_offscreen", "off-screen", "#1f77b4"},   {"px_reset", "reset", "#e377c2"},
+    {"px_shaded", "shaded", "#606060"},
+    {"px_reused", "reused", "#28c83c"},
+    {"px_missing_parity", "missing (parity)", "#f0dc28"},
+    {"px_occluded", "occluded", "#e62828"},
+    {"px_offscreen", "off-screen", "#285af0"},
+    {"px_reset", "reset", "#dc3cdc"},
 };
-
 }  // namespace cbr::reports
