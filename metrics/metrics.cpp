@@ -35,17 +35,19 @@ constexpr int kRadius = kSsimBorder;
 constexpr int kTaps = 2 * kRadius + 1;
 static_assert(kRadius == int(3.5 * kSigma + 0.5), "window radius must follow scipy's rule");
 
-// Output tile of the SSIM pass: 32 rows x 256 columns. Its planes (input plus the
-// 5-pixel halo, 42 x 266 doubles each) stay in a core's L2 cache while 11 rows are read
-// for every output row; tiles are also the unit of parallel work.
+// Output tile of the SSIM pass: 32 rows x 192 columns. Its eight planes (input plus the
+// 5-pixel halo, 42 x 202 doubles each: 0.55 MB) stay in a core's L2 cache while 11 rows
+// are read for every output row; tiles are also the unit of parallel work.
 constexpr int kTileRows = 32;
-constexpr int kTileCols = 256;
+constexpr int kTileCols = 192;
 constexpr int kTileInRows = kTileRows + 2 * kRadius;
 constexpr int kTileInCols = kTileCols + 2 * kRadius;
 // Filtered per image channel: mu_a, mu_b, E[a^2 + b^2], E[ab]. SSIM needs the variances
 // only as vx + vy, so E[a^2] and E[b^2] are filtered as one sum (the filter is linear):
 // four filters instead of Wang's five, with the same result up to rounding.
 constexpr int kPlanes = 4;
+// Planes held per tile: both images' channels, plus the two products of one channel.
+constexpr int kImagePlanes = 2 * 3 + 2;
 // At most RGB + luma per call (ssim() scores luma in the same pass). Luma needs only
 // E[Ya^2 + Yb^2] and E[Ya Yb]: its means are the BT.709 mix of the RGB means.
 constexpr int kMaxChannels = 4;
@@ -143,17 +145,40 @@ inline void rowPass(const double* __restrict in, int n, const double* __restrict
                  k0 * (in[x] + in[x + 10]);
 }
 
+// The two products SSIM filters besides the means: a^2 + b^2 and ab.
+inline void channelProducts(const double* __restrict a, const double* __restrict b, size_t n,
+                            double* __restrict sum_squares, double* __restrict products) {
+    for (size_t i = 0; i < n; ++i) {
+        sum_squares[i] = a[i] * a[i] + b[i] * b[i];
+        products[i] = a[i] * b[i];
+    }
+}
+
+// The same for BT.709 luma, from RGB planes.
+inline void lumaProducts(double* const* a, double* const* b, size_t n,
+                         double* __restrict sum_squares, double* __restrict products) {
+    const double* __restrict ar = a[0];
+    const double* __restrict ag = a[1];
+    const double* __restrict ab = a[2];
+    const double* __restrict br = b[0];
+    const double* __restrict bg = b[1];
+    const double* __restrict bb = b[2];
+    for (size_t i = 0; i < n; ++i) {
+        const double va = bt709Luma(ar[i], ag[i], ab[i]);
+        const double vb = bt709Luma(br[i], bg[i], bb[i]);
+        sum_squares[i] = va * va + vb * vb;
+        products[i] = va * vb;
+    }
+}
+
 // One thread's buffers, kept across calls so that no tile touches fresh pages.
 struct TileScratch {
-    std::vector<double> planes = std::vector<double>(size_t(kPlanes) * kTileInRows * kTileInCols);
+    std::vector<double> planes = std::vector<double>(size_t(kImagePlanes) * kTileInRows * kTileInCols);
     std::vector<double> vertical = std::vector<double>(size_t(kPlanes) * kTileInCols);
     std::vector<double> filtered = std::vector<double>(size_t(kPlanes) * kTileCols);
     std::vector<double> values = std::vector<double>(size_t(kTileCols));
     std::vector<double> luma_means = std::vector<double>(size_t(2) * kTileRows * kTileCols);
 };
-
-// BT.709 weights, applied in bt709Luma's order.
-constexpr double kLumaWeights[3] = {0.2126, 0.7152, 0.0722};
 
 // Wang's SSIM for output rows [y0, y1) and columns [x0, x1) of every scored channel
 // (the image's own, then luma when with_luma). Adds per-channel sums of the map to
@@ -166,56 +191,55 @@ bool ssimTile(const Image& a, const Image& b, bool with_luma, const double* kern
     const int out_rows = y1 - y0, out_cols = x1 - x0;
     const int in_rows = out_rows + 2 * kRadius, in_cols = out_cols + 2 * kRadius;
     const size_t plane_size = size_t(in_rows) * in_cols;
-    double* plane[kPlanes];
-    for (int q = 0; q < kPlanes; ++q) plane[q] = scratch.planes.data() + q * plane_size;
+    // Planes: a's channels, b's channels, then E[a^2 + b^2] and E[ab] of the channel
+    // being scored.
+    double* image_plane[2][3];
+    for (int c = 0; c < channels; ++c) {
+        image_plane[0][c] = scratch.planes.data() + size_t(c) * plane_size;
+        image_plane[1][c] = scratch.planes.data() + size_t(channels + c) * plane_size;
+    }
+    double* sum_squares = scratch.planes.data() + size_t(2 * channels) * plane_size;
+    double* products = sum_squares + plane_size;
     double* mean_ya = scratch.luma_means.data();
     double* mean_yb = mean_ya + size_t(kTileRows) * kTileCols;
-    // NaN/inf scan of the tile's input (halo included, so the tiles cover every pixel),
-    // over contiguous memory where it vectorises.
-    // An all-ones exponent (NaN, inf) plus one carries into the sign bit: integer adds
-    // and ORs only, which vectorise where a compare-and-branch per value does not.
+
+    // Deinterleave the tile's input (halo included, so the tiles cover every pixel)
+    // into planes, scanning for NaN/inf on the way: an all-ones exponent (NaN, inf) plus
+    // one carries into the sign bit, integer adds and ORs that vectorise.
     uint64_t carry = 0;
     for (int y = 0; y < in_rows; ++y) {
         const size_t offset = (size_t(y0 - kRadius + y) * width + (x0 - kRadius)) * channels;
-        const double* pa = a.data.data() + offset;
-        const double* pb = b.data.data() + offset;
-        const size_t count = size_t(in_cols) * channels;
-        for (size_t i = 0; i < count; ++i)
-            carry |= ((std::bit_cast<uint64_t>(pa[i]) & kExponentMask) + kExponentOne) |
-                     ((std::bit_cast<uint64_t>(pb[i]) & kExponentMask) + kExponentOne);
+        const size_t row = size_t(y) * in_cols;
+        for (int i = 0; i < 2; ++i) {
+            const double* p = (i == 0 ? a : b).data.data() + offset;
+            const size_t count = size_t(in_cols) * channels;
+            for (size_t k = 0; k < count; ++k)
+                carry |= (std::bit_cast<uint64_t>(p[k]) & kExponentMask) + kExponentOne;
+            if (channels == 1) {
+                std::copy(p, p + in_cols, image_plane[i][0] + row);
+                continue;
+            }
+            double* r = image_plane[i][0] + row;
+            double* g = image_plane[i][1] + row;
+            double* bl = image_plane[i][2] + row;
+            for (int x = 0; x < in_cols; ++x) {
+                r[x] = p[3 * x];
+                g[x] = p[3 * x + 1];
+                bl[x] = p[3 * x + 2];
+            }
+        }
     }
     const bool bad = (carry >> 63) != 0;
     const int scored = channels + (with_luma ? 1 : 0);
     for (int c = 0; c < scored; ++c) {
         const bool is_luma = c == channels;
-        for (int y = 0; y < in_rows; ++y) {
-            const size_t offset = (size_t(y0 - kRadius + y) * width + (x0 - kRadius)) * channels;
-            const double* pa = a.data.data() + offset;
-            const double* pb = b.data.data() + offset;
-            double* pm_a = plane[0] + size_t(y) * in_cols;
-            double* pm_b = plane[1] + size_t(y) * in_cols;
-            double* pm_s = plane[2] + size_t(y) * in_cols;
-            double* pm_p = plane[3] + size_t(y) * in_cols;
-            if (is_luma) {
-                for (int x = 0; x < in_cols; ++x) {
-                    const double* qa = pa + size_t(x) * 3;
-                    const double* qb = pb + size_t(x) * 3;
-                    const double va = bt709Luma(qa[0], qa[1], qa[2]);
-                    const double vb = bt709Luma(qb[0], qb[1], qb[2]);
-                    pm_s[x] = va * va + vb * vb;
-                    pm_p[x] = va * vb;
-                }
-                continue;
-            }
-            for (int x = 0; x < in_cols; ++x) {
-                const double va = pa[size_t(x) * channels + c];
-                const double vb = pb[size_t(x) * channels + c];
-                pm_a[x] = va;
-                pm_b[x] = vb;
-                pm_s[x] = va * va + vb * vb;
-                pm_p[x] = va * vb;
-            }
-        }
+        if (is_luma)
+            lumaProducts(image_plane[0], image_plane[1], plane_size, sum_squares, products);
+        else
+            channelProducts(image_plane[0][c], image_plane[1][c], plane_size, sum_squares, products);
+        // Luma's means come from the RGB means below: it filters only its two products.
+        double* plane[kPlanes] = {is_luma ? nullptr : image_plane[0][c],
+                                  is_luma ? nullptr : image_plane[1][c], sum_squares, products};
         double* fa = scratch.filtered.data();
         double* fb = fa + kTileCols;
         double* fs = fb + kTileCols;
@@ -223,7 +247,6 @@ bool ssimTile(const Image& a, const Image& b, bool with_luma, const double* kern
         double* values = scratch.values.data();
         double channel_sum = 0;
         for (int r = 0; r < out_rows; ++r) {
-            // Luma's means come from the RGB means below: filter only its two products.
             for (int q = is_luma ? 2 : 0; q < kPlanes; ++q) {
                 double* v = scratch.vertical.data() + size_t(q) * kTileInCols;
                 columnPass(plane[q] + size_t(r) * in_cols, size_t(in_cols), in_cols, kernel, v);
@@ -235,8 +258,9 @@ bool ssimTile(const Image& a, const Image& b, bool with_luma, const double* kern
                 fa = row_ya;
                 fb = row_yb;
             } else if (with_luma) {
-                // The filter is linear: mean(luma) = 0.2126 mean(R) + 0.7152 mean(G) + ...
-                const double w = kLumaWeights[c];
+                // The filter is linear: mean(luma) = 0.2126 mean(R) + 0.7152 mean(G) + ...,
+                // summed in bt709Luma's order; its weights read from the one formula.
+                const double w = bt709Luma(c == 0, c == 1, c == 2);
                 if (c == 0) {
                     for (int x = 0; x < out_cols; ++x) row_ya[x] = w * fa[x];
                     for (int x = 0; x < out_cols; ++x) row_yb[x] = w * fb[x];

@@ -9,6 +9,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -30,14 +31,13 @@ struct CrawlTracker::State {
     };
     Frame frames[2];
     int current = 0;
-    bool has_frame = false;
 };
 
 namespace {
 
-// Rows per unit of parallel work. The blur's strips are short so that their luma rows
-// (plus the kernel's halo) stay in a core's L2 cache.
-constexpr int kBlurStripRows = 16;
+// Rows per unit of parallel work: long enough that the blur's halo rows (read twice)
+// are a small share, short enough for dozens of strips at 1080p.
+constexpr int kBlurStripRows = 48;
 constexpr int kScoreStripRows = 32;
 // The flicker ratio's floor on the reference change: one 8-bit code value, so a static
 // reference does not divide by rounding noise (metrics.md).
@@ -45,6 +45,9 @@ constexpr double kFlickerFloor = 1.0 / 255.0;
 // A 3x3 Sobel ([1 2 1] x [-1 0 1]) gives 8 for a ramp of one per pixel: scaled by 1/8 its
 // magnitude is the per-pixel gradient the threshold is stated in.
 constexpr double kSobelScale = 1.0 / 8.0;
+
+// Depths above this are infinite (float input): no surface.
+constexpr double kMaxDepth = std::numeric_limits<float>::max();
 
 constexpr uint64_t kExponentMask = 0x7FF0000000000000ull;
 constexpr uint64_t kExponentOne = 0x0010000000000000ull;
@@ -139,27 +142,29 @@ void forStrips(int height, int strip_rows, const Body& body) {
 
 // One thread's buffers, kept across calls so that no strip touches fresh pages.
 struct BlurScratch {
-    std::vector<double> rows;    // luma of the strip's rows plus the kernel's halo
+    std::vector<double> ring;    // luma of the last 2 radius + 1 input rows
     std::vector<double> padded;  // one vertically filtered row with reflected ends
 };
 
 // Steps 1-2 of metrics.md for rows [y0, y1): BT.709 luma of `image`, Gaussian-blurred
-// (separable, symmetric taps folded), written to out. Returns false if a value is NaN
-// or infinite: one such pixel would poison the blur around it.
+// (separable, symmetric taps folded), written to out. Luma rows pass through a ring of
+// 2 radius + 1 rows, so each input row is read about once. Returns false if a value is
+// NaN or infinite: one such pixel would poison the blur around it.
 CBR_SIMD_CLONES
 bool blurredLumaRows(const Image& image, const double* kernel, int radius, int y0, int y1,
                      BlurScratch& scratch, double* out) {
     const int width = image.width, height = image.height, channels = image.channels;
-    const int in_rows = (y1 - y0) + 2 * radius;
-    scratch.rows.resize(size_t(in_rows) * width);
+    const int taps = 2 * radius + 1;
+    scratch.ring.resize(size_t(taps) * width);
     scratch.padded.resize(size_t(width) + 2 * size_t(radius));
     // An all-ones exponent (NaN, inf) plus one carries into the sign bit: integer adds
     // and ORs, which vectorise where a compare-and-branch per value does not.
     uint64_t carry = 0;
-    for (int j = 0; j < in_rows; ++j) {
+    // Input row j (reflected at the frame's edges) goes to ring slot (j - y0 + radius) % taps.
+    auto load = [&](int j) {
         const double* in =
-            image.data.data() + size_t(reflectIndex(y0 - radius + j, height)) * width * channels;
-        double* row = scratch.rows.data() + size_t(j) * width;
+            image.data.data() + size_t(reflectIndex(j, height)) * width * channels;
+        double* row = scratch.ring.data() + size_t((j - y0 + radius) % taps) * width;
         if (channels == 1) {
             for (int x = 0; x < width; ++x) row[x] = in[x];
         } else {
@@ -168,17 +173,22 @@ bool blurredLumaRows(const Image& image, const double* kernel, int radius, int y
         }
         for (int x = 0; x < width; ++x)
             carry |= (std::bit_cast<uint64_t>(row[x]) & kExponentMask) + kExponentOne;
-    }
+    };
+    for (int j = y0 - radius; j < y0 + radius; ++j) load(j);
     double* padded = scratch.padded.data();
     double* centre = padded + radius;
     const double mid = kernel[radius];
     for (int y = y0; y < y1; ++y) {
-        const double* rows = scratch.rows.data() + size_t(y - y0) * width;
-        const double* mid_row = rows + size_t(radius) * width;
+        load(y + radius);
+        // Input row y - radius + i sits in slot (y - y0 + i) % taps.
+        auto row = [&](int i) {
+            return scratch.ring.data() + size_t((y - y0 + i) % taps) * width;
+        };
+        const double* mid_row = row(radius);
         for (int x = 0; x < width; ++x) centre[x] = mid * mid_row[x];
         for (int i = 0; i < radius; ++i) {
-            const double* lo = rows + size_t(i) * width;
-            const double* hi = rows + size_t(2 * radius - i) * width;
+            const double* lo = row(i);
+            const double* hi = row(2 * radius - i);
             const double k = kernel[i];
             for (int x = 0; x < width; ++x) centre[x] += k * (lo[x] + hi[x]);
         }
@@ -252,8 +262,98 @@ struct StripSums {
 
 struct ScoreScratch {
     std::vector<uint8_t> edge;
-    std::vector<uint8_t> wide;  // horizontally dilated edges of the strip's rows +-1
+    std::vector<uint8_t> wide;   // horizontally dilated edges of the strip's rows +-1
+    std::vector<uint8_t> valid;  // one row of the valid mask
+    std::vector<int32_t> source;  // one row of nearest warp sources
+    std::vector<float> then;      // the previous depth there
 };
+
+// One row of frame t against frame t-1.
+struct RowInputs {
+    int y = 0, width = 0, height = 0, margin = 0;
+    double tolerance = 0;
+    const uint8_t* above = nullptr;  // horizontally dilated edges of rows y-1, y, y+1
+    const uint8_t* centre = nullptr;
+    const uint8_t* below = nullptr;
+    const double* reference_now = nullptr;  // row y of the blurred lumas at t
+    const double* variant_now = nullptr;
+    const float* motion = nullptr;  // row y of the motion field at t
+    const float* depth = nullptr;
+    const float* expected = nullptr;
+    const double* reference_then = nullptr;  // whole frames at t-1
+    const double* variant_then = nullptr;
+    const float* depth_then = nullptr;
+    double* map_row = nullptr;  // crawl map row, or null
+    uint8_t* valid = nullptr;   // scratch rows
+    int32_t* source = nullptr;
+    float* then = nullptr;
+};
+
+// Steps 3-6 for one row. The valid mask is computed for every pixel without branches,
+// so that its arithmetic vectorises; the warp and sums run on valid edge pixels only.
+CBR_SIMD_CLONES
+StripSums scoreRow(const RowInputs& in) {
+    const int width = in.width, margin = in.margin;
+    // Pixel-index coordinates: the centre of pixel x is at x + 0.5 in continuous
+    // coordinates, so the warp source p + motion is at index x + motion_x.
+    const double lo = margin, hi_x = width - 1 - margin, hi_y = in.height - 1 - margin;
+    const double y = in.y;
+    // Locals, so that the stores to valid[] cannot alias the inputs' pointers.
+    const float* __restrict motion = in.motion;
+    const float* __restrict depth_now = in.depth;
+    const float* __restrict expected_now = in.expected;
+    const float* __restrict depth_then = in.depth_then;
+    uint8_t* __restrict valid = in.valid;
+    int32_t* __restrict source = in.source;
+    float* __restrict then = in.then;
+    const double tolerance = in.tolerance;
+    // Three simple loops rather than one: the first and last vectorise, the middle one
+    // is the gather of the previous depth.
+    for (int x = margin; x < width - margin; ++x) {
+        // Step 4: the warp source must lie inside the margin too. NaN motion fails
+        // every comparison and marks the pixel invalid.
+        const double sx = x + double(motion[2 * x]);
+        const double sy = y + double(motion[2 * x + 1]);
+        const bool inside = (sx >= lo) & (sx <= hi_x) & (sy >= lo) & (sy <= hi_y);
+        // The nearest pixel to the source; outside, a harmless in-frame pixel (masked).
+        const int nx = int((inside ? sx : lo) + 0.5), ny = int((inside ? sy : lo) + 0.5);
+        source[x] = ny * width + nx;
+        valid[x] = uint8_t(inside);
+    }
+    for (int x = margin; x < width - margin; ++x) then[x] = depth_then[source[x]];
+    int valid_count = 0;
+    for (int x = margin; x < width - margin; ++x) {
+        // Not disoccluded: a surface here now (depth > 0; NaN and inf fail), and the
+        // previous depth at the warp source (nearest pixel, so depth is never blended
+        // across a silhouette) is the depth this point had then, within the tolerance.
+        const double depth = depth_now[x], expected = expected_now[x], before = then[x];
+        const bool surface = (depth > 0) & (depth <= kMaxDepth) & (expected > 0) &
+                             (expected <= kMaxDepth) &
+                             (std::abs(before - expected) <= tolerance * expected);
+        const bool ok = valid[x] & surface;
+        valid[x] = uint8_t(ok);
+        valid_count += ok;
+    }
+    StripSums sums;
+    sums.valid = valid_count;
+    for (int x = margin; x < width - margin; ++x) {
+        if (!(in.valid[x] & (in.above[x] | in.centre[x] | in.below[x]))) continue;
+        const double sx = x + double(in.motion[2 * x]);
+        const double sy = y + double(in.motion[2 * x + 1]);
+        // Steps 2, 3 and 6. Bilinear warping is linear, so warp(e_t-1) is
+        // warp(Yv_t-1) - warp(Yr_t-1), and e_t - warp(e_t-1) = dV - dR.
+        const double d_variant = in.variant_now[x] - bilinear(in.variant_then, width, in.height, sx, sy);
+        const double d_reference =
+            in.reference_now[x] - bilinear(in.reference_then, width, in.height, sx, sy);
+        const double crawl = d_variant - d_reference;
+        sums.numerator += crawl * crawl;
+        sums.denominator += 1;
+        sums.flicker_variant += std::abs(d_variant);
+        sums.flicker_reference += std::max(std::abs(d_reference), kFlickerFloor);
+        if (in.map_row) in.map_row[x] = std::abs(crawl);
+    }
+    return sums;
+}
 
 }  // namespace
 
@@ -271,7 +371,7 @@ CrawlFrame CrawlTracker::add(const Image& reference, const Image& variant, const
                              bool cut, bool want_map) {
     checkInputs(reference, variant, motion);
     const int width = reference.width, height = reference.height;
-    const bool chained = previous_ && previous_->has_frame && !cut;
+    const bool chained = previous_ && !cut;
     // A new size mid-sequence has no pixel correspondence with the previous frame: the
     // caller has mixed sequences, which deserves a clear message, not a silent reset.
     if (chained) {
@@ -320,7 +420,6 @@ CrawlFrame CrawlTracker::add(const Image& reference, const Image& variant, const
     // From here on the state is consistent: this frame is the one the next compares with.
     const int previous_index = state->current;
     state->current = 1 - state->current;
-    state->has_frame = true;
     previous_ = state;
     // A cut or the first frame: nothing to compare with; this frame starts the chain.
     if (!chained) return frame;
@@ -328,10 +427,6 @@ CrawlFrame CrawlTracker::add(const Image& reference, const Image& variant, const
     const State::Frame& before = state->frames[previous_index];
 
     const int margin = settings_.margin;
-    // Pixel-index coordinates: the centre of pixel x is at x + 0.5 in continuous
-    // coordinates, so the warp source p + motion is at index x + motion_x.
-    const double lo_x = margin, hi_x = width - 1 - margin;
-    const double lo_y = margin, hi_y = height - 1 - margin;
     const double tolerance = settings_.disocclusion_tolerance;
     const int score_strips = (height + kScoreStripRows - 1) / kScoreStripRows;
     std::vector<StripSums> strip_sums(static_cast<size_t>(score_strips));
@@ -341,6 +436,9 @@ CrawlFrame CrawlTracker::add(const Image& reference, const Image& variant, const
         // Step 5: edge rows y0-1 .. y1 (the dilation's halo), from the reference only.
         const int g0 = std::max(0, y0 - 1), g1 = std::min(height, y1 + 1);
         scratch.edge.resize(size_t(width));
+        scratch.valid.resize(size_t(width));
+        scratch.source.resize(size_t(width));
+        scratch.then.resize(size_t(width));
         scratch.wide.resize(size_t(g1 - g0) * width);
         const double* blurred = now.reference_luma.data();
         for (int y = g0; y < g1; ++y)
@@ -356,45 +454,28 @@ CrawlFrame CrawlTracker::add(const Image& reference, const Image& variant, const
             const uint8_t* above = scratch.wide.data() + size_t(std::max(y - 1, g0) - g0) * width;
             const uint8_t* centre = scratch.wide.data() + size_t(y - g0) * width;
             const uint8_t* below = scratch.wide.data() + size_t(std::min(y + 1, g1 - 1) - g0) * width;
-            const double* reference_row = now.reference_luma.data() + size_t(y) * width;
-            const double* variant_row = now.variant_luma.data() + size_t(y) * width;
-            const float* motion_row = motion.motion.data() + size_t(y) * width * 2;
-            const float* depth_row = motion.depth.data() + size_t(y) * width;
-            const float* expected_row = motion.prev_depth_expected.data() + size_t(y) * width;
-            double* map_row = want_map ? frame.crawl_map->data.data() + size_t(y) * width : nullptr;
-            StripSums row;
-            for (int x = margin; x < width - margin; ++x) {
-                // Step 4: the warp source must lie inside the margin too. Written so
-                // that NaN motion fails the test and marks the pixel invalid.
-                const double sx = x + double(motion_row[2 * x]);
-                const double sy = y + double(motion_row[2 * x + 1]);
-                if (!(sx >= lo_x && sx <= hi_x && sy >= lo_y && sy <= hi_y)) continue;
-                // Not disoccluded: a surface here now, and the previous depth at the warp
-                // source (nearest pixel, so depth is never blended across a silhouette)
-                // is the depth this point had then, within the relative tolerance.
-                const double depth = depth_row[x];
-                const double expected = expected_row[x];
-                if (!(std::isfinite(depth) && depth > 0 && std::isfinite(expected) && expected > 0))
-                    continue;
-                const int nx = int(sx + 0.5), ny = int(sy + 0.5);
-                const double depth_then = before.depth[size_t(ny) * width + size_t(nx)];
-                if (!(std::abs(depth_then - expected) <= tolerance * expected)) continue;
-                row.valid += 1;
-                if (!(above[x] | centre[x] | below[x])) continue;
-
-                // Steps 2, 3 and 6. Bilinear warping is linear, so warp(e_t-1) is
-                // warp(Yv_t-1) - warp(Yr_t-1), and e_t - warp(e_t-1) = dV - dR.
-                const double d_variant =
-                    variant_row[x] - bilinear(before.variant_luma.data(), width, height, sx, sy);
-                const double d_reference =
-                    reference_row[x] - bilinear(before.reference_luma.data(), width, height, sx, sy);
-                const double crawl = d_variant - d_reference;
-                row.numerator += crawl * crawl;
-                row.denominator += 1;
-                row.flicker_variant += std::abs(d_variant);
-                row.flicker_reference += std::max(std::abs(d_reference), kFlickerFloor);
-                if (map_row) map_row[x] = std::abs(crawl);
-            }
+            RowInputs in;
+            in.y = y;
+            in.width = width;
+            in.height = height;
+            in.margin = margin;
+            in.tolerance = tolerance;
+            in.above = above;
+            in.centre = centre;
+            in.below = below;
+            in.reference_now = now.reference_luma.data() + size_t(y) * width;
+            in.variant_now = now.variant_luma.data() + size_t(y) * width;
+            in.motion = motion.motion.data() + size_t(y) * width * 2;
+            in.depth = motion.depth.data() + size_t(y) * width;
+            in.expected = motion.prev_depth_expected.data() + size_t(y) * width;
+            in.reference_then = before.reference_luma.data();
+            in.variant_then = before.variant_luma.data();
+            in.depth_then = before.depth.data();
+            in.map_row = want_map ? frame.crawl_map->data.data() + size_t(y) * width : nullptr;
+            in.valid = scratch.valid.data();
+            in.source = scratch.source.data();
+            in.then = scratch.then.data();
+            const StripSums row = scoreRow(in);
             sums.numerator += row.numerator;
             sums.denominator += row.denominator;
             sums.flicker_variant += row.flicker_variant;

@@ -48,6 +48,11 @@ public:
     // reference and variant: RGB display images in [0,1]; motion: the reference frame's
     // analysis. `cut`: a camera cut lies between the previous frame and this one.
     // Throws std::invalid_argument when shapes disagree.
+    // Conventions where metrics.md is silent: the previous depth is sampled at the warp
+    // source's nearest pixel; a pixel with NaN or infinite motion or depth is invalid;
+    // a NaN or infinite image value throws (the chain is left as it was); a new frame
+    // size without `cut` throws. Without a pair, valid_fraction is 0 and no_edges false;
+    // crawl_map is 0 wherever nothing was scored.
     CrawlFrame add(const Image& reference, const Image& variant, const MotionField& motion, bool cut,
                    bool want_map = false);
     void reset();

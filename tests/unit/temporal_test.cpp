@@ -1,5 +1,6 @@
 // Unit tests for the edge crawl index and flicker ratio: the calibrations of
 // method/metrics.md ("Edge crawl") on synthetic panning scenes, and a naive re-derivation.
+#include "metrics/cost.h"
 #include "metrics/image.h"
 #include "metrics/temporal.h"
 
@@ -493,6 +494,19 @@ TEST(EdgeCrawl, MatchesStepByStepDefinition) {
     ASSERT_TRUE(f.crawl_map.has_value());
     ASSERT_EQ(f.crawl_map->channels, 1);
     for (size_t i = 0; i < n.map.size(); ++i) ASSERT_NEAR(f.crawl_map->data[i], n.map[i], 1e-12) << i;
+}
+
+// The benchmark command's measurement runs the real functions; its times are not
+// asserted (STYLE.md), only that it produces them.
+TEST(MetricCost, MeasuresEveryMetric) {
+    const MetricCost cost = measureMetricCost(64, 48, 2);
+    for (double ms : {cost.psnr_ms, cost.ssim_ms, cost.eci_ms}) {
+        EXPECT_TRUE(std::isfinite(ms));
+        EXPECT_GE(ms, 0.0);
+    }
+    EXPECT_GE(cost.threads, 1);
+    EXPECT_THROW(measureMetricCost(10, 48, 2), std::invalid_argument);
+    EXPECT_THROW(measureMetricCost(64, 48, 0), std::invalid_argument);
 }
 
 TEST(EdgeCrawl, RejectsBadInput) {
