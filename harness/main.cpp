@@ -124,6 +124,7 @@ int main(int argc, char** argv) {
     run->add_option("--debug-shading", o.debug_shading,
                     "none, or pixel-id: colours encode the full-res pixel each sample lands on (tests)")
         ->capture_default_str();
+    run->add_option("--pipeline", o.pipeline, "forward or deferred (G-buffer, lighting resolve)")->capture_default_str();
     run->add_option("--reference", o.reference, "what variants are scored against: full or ssaa")
         ->capture_default_str();
     run->add_option("--ssaa", o.ssaa, "samples per axis of the ssaa reference (box filter)")->capture_default_str();

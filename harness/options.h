@@ -30,6 +30,7 @@ struct RunOptions {
     double cso_tolerance = 0.05;
     std::string cso_mode = "relative";
     std::string debug_shading = "none";  // none | pixel-id
+    std::string pipeline = "forward";    // forward | deferred
     std::string reference = "full";      // full | ssaa: what variants are scored against
     int ssaa = 4;                        // k x k samples per pixel of the ssaa reference
     std::vector<std::string> argv;    // the command line, for run.json

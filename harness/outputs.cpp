@@ -341,7 +341,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
     const auto& s = rc.settings;
     j["settings"] = {{"width", s.width},
                      {"height", s.height},
-                     {"pipeline", "forward"},
+                     {"pipeline", s.deferred ? "deferred" : "forward"},
                      {"frames", r.frames},
                      {"repeat", r.repeats},
                      {"warmup_frames", rc.options.warmup},
@@ -407,7 +407,10 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
         json passes = json::array();
         for (const auto& p : vr.passes_ran) passes.push_back({{"name", p}, {"ran", true}});
         for (const auto& [p, reason] : vr.left_out) passes.push_back({{"name", p}, {"ran", false}, {"reason", reason}});
-        json v = {{"name", vr.name}, {"status", vr.status}, {"pipeline", "forward"}, {"passes", passes}};
+        json v = {{"name", vr.name},
+                  {"status", vr.status},
+                  {"pipeline", rc.settings.deferred ? "deferred" : "forward"},
+                  {"passes", passes}};
         if (!vr.note.empty()) v["note"] = vr.note;
         for (const auto& [key, value] : vr.description) v[key] = value;
         if (vr.alignment) {

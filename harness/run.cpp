@@ -111,6 +111,9 @@ Prepared prepare(const RunOptions& o) {
     if (o.debug_shading != "none" && o.debug_shading != "pixel-id")
         throw std::invalid_argument("--debug-shading " + o.debug_shading + ": expected none or pixel-id");
     p.settings.debug_pixel_id = o.debug_shading == "pixel-id";
+    if (o.pipeline != "forward" && o.pipeline != "deferred")
+        throw std::invalid_argument("--pipeline " + o.pipeline + ": expected forward or deferred");
+    p.settings.deferred = o.pipeline == "deferred";
     if (o.reference != "full" && o.reference != "ssaa")
         throw std::invalid_argument("--reference " + o.reference + ": expected full or ssaa");
     if (o.ssaa < 2 || o.ssaa > 8)

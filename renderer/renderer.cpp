@@ -328,6 +328,7 @@ void Renderer::writeUniforms(Slot& slot, const FrameRequest& request, const vari
     u.background = glm::vec4(scene_.cpu->background, 1.0f);
     u.view_offsets = params.view_offsets;
     u.reproject = glm::mat4(prev_view_proj * glm::inverse(view_proj));  // composed in double
+    u.inv_view_proj = glm::mat4(glm::inverse(view_proj));
     u.depth_params = glm::vec4(glm::vec2(depth_ab(request.camera)), glm::vec2(depth_ab(prev)));
     u.frame_info = glm::uvec4(params.parity, request.history_reset ? 1u : 0u, settings_.width, settings_.height);
     std::memcpy(slot.frame_ubo.mapped, &u, sizeof(u));

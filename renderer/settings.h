@@ -30,6 +30,7 @@ struct Settings {
     DrrFilter drr_filter = DrrFilter::CatmullRom;
     DrrControl drr_control;
     int frames_in_flight = 2;
+    bool deferred = false;           // --pipeline deferred: G-buffer, lighting resolve, forward transparency
     // Checkerboard rendering.
     std::string cbr_route = "auto";  // auto | msaa-jitter | msaa-locations | multiview
     float cbr_lod_bias = -0.5f;      // the paper's; -1 matches full-res derivatives

@@ -72,7 +72,7 @@ GpuScene uploadScene(vk::Context& ctx, const scene::Scene& s) {
     constexpr auto kAll = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     constexpr auto kSampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     g.frame_layout = vk::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kAll | VK_SHADER_STAGE_COMPUTE_BIT},
-                                               {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kFrag},
+                                               {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kFrag | VK_SHADER_STAGE_COMPUTE_BIT},
                                                {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
                                                {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT}});
     std::initializer_list<vk::Binding> material_bindings = {

@@ -6,6 +6,8 @@
 #include "renderer/vk/context.h"
 #include "shaders/cbr_resolve_array.comp.h"
 #include "shaders/cbr_resolve_ms.comp.h"
+#include "shaders/cbr_resolve_srt_array.comp.h"
+#include "shaders/cbr_resolve_srt_ms.comp.h"
 
 namespace cbr::passes {
 
@@ -19,34 +21,46 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
     }
     constexpr auto kComp = VK_SHADER_STAGE_COMPUTE_BIT;
     constexpr auto kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    std::initializer_list<vk::Binding> bindings = {
+    std::vector<vk::Binding> binding_list = {
         {0, kSampled, kComp}, {1, kSampled, kComp}, {2, kSampled, kComp}, {3, kSampled, kComp},
         {4, kSampled, kComp}, {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kComp},
         {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kComp}};
+    if (desc.deferred) binding_list.insert(binding_list.end(), {{8, kSampled, kComp}, {9, kSampled, kComp}});
+    bool has_cfb = desc.deferred && sets[0].cfb.image;
     std::vector<vk::SpecConstant> spec = {{/* CHECK_OCCLUSION= */ 1, desc.check_occlusion ? 1 : 0},
                                           {/* CSO_ABSOLUTE= */ 2, desc.cso_absolute ? 1 : 0},
                                           {/* HAS_MOTION= */ 3, desc.has_motion ? 1 : 0}};
-    if (msaa)
-        r.kernel = vk::createComputeKernel(ctx, kSpirv_cbr_resolve_ms_comp, sizeof(kSpirv_cbr_resolve_ms_comp),
-                                           bindings, sizeof(CbrResolvePush), spec, frame_layout);
-    else
-        r.kernel = vk::createComputeKernel(ctx, kSpirv_cbr_resolve_array_comp,
-                                           sizeof(kSpirv_cbr_resolve_array_comp), bindings, sizeof(CbrResolvePush),
-                                           spec, frame_layout);
-    r.pool = vk::createPool(ctx, bindings, 2);
+    if (desc.deferred) spec.push_back({/* HAS_CFB= */ 4, has_cfb ? 1 : 0});
+    struct Code {
+        const uint32_t* spirv;
+        size_t size;
+    };
+    Code code = desc.deferred ? (msaa ? Code{kSpirv_cbr_resolve_srt_ms_comp, sizeof(kSpirv_cbr_resolve_srt_ms_comp)}
+                                      : Code{kSpirv_cbr_resolve_srt_array_comp, sizeof(kSpirv_cbr_resolve_srt_array_comp)})
+                              : (msaa ? Code{kSpirv_cbr_resolve_ms_comp, sizeof(kSpirv_cbr_resolve_ms_comp)}
+                                      : Code{kSpirv_cbr_resolve_array_comp, sizeof(kSpirv_cbr_resolve_array_comp)});
+    r.kernel = vk::createComputeKernel(ctx, code.spirv, code.size, binding_list, sizeof(CbrResolvePush), spec,
+                                       frame_layout);
+    r.pool = vk::createPool(ctx, binding_list, 2);
     r.sampler = vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 0.0f);
     constexpr auto kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     for (int cur = 0; cur < 2; ++cur) {
         CheckerboardSet& n = sets[cur];
         CheckerboardSet& prev = sets[1 - cur];
         VkDescriptorSet set = vk::allocateSet(ctx, r.pool, r.kernel.set_layout);
-        // Without moving objects no motion target exists; the binding still needs an
-        // image of the right kind, which the shader never reads (HAS_MOTION = 0).
-        const vk::Image& motion = n.motion.image ? n.motion : n.color;
-        vk::writeImage(ctx, set, 0, kSampled, n.color.view, kRead, r.sampler);
+        // Without moving objects (or transparency) no motion target (or CFB) exists; the
+        // binding still needs an image of the right kind, which the shader never reads.
+        const vk::Image& motion = n.motion.image ? n.motion : n.depth;
+        const vk::Image& colour = desc.deferred ? n.srt : n.color;
+        const vk::Image& prev_colour = desc.deferred ? prev.srt : prev.color;
+        vk::writeImage(ctx, set, 0, kSampled, colour.view, kRead, r.sampler);
         vk::writeImage(ctx, set, 1, kSampled, n.depth.view, kRead, r.sampler);
         vk::writeImage(ctx, set, 2, kSampled, motion.view, kRead, r.sampler);
-        vk::writeImage(ctx, set, 3, kSampled, prev.color.view, kRead, r.sampler);
+        vk::writeImage(ctx, set, 3, kSampled, prev_colour.view, kRead, r.sampler);
+        if (desc.deferred) {
+            vk::writeImage(ctx, set, 8, kSampled, (has_cfb ? n.cfb : n.depth).view, kRead, r.sampler);
+            vk::writeImage(ctx, set, 9, kSampled, (has_cfb ? prev.cfb : prev.depth).view, kRead, r.sampler);
+        }
         vk::writeImage(ctx, set, 4, kSampled, prev.depth.view, kRead, r.sampler);
         vk::writeImage(ctx, set, 5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out_color.view, VK_IMAGE_LAYOUT_GENERAL);
         vk::writeImage(ctx, set, 6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out_class.view, VK_IMAGE_LAYOUT_GENERAL);
@@ -69,10 +83,12 @@ void addCbrResolvePass(graph::Graph& graph, const CbrResolve& r, VkDescriptorSet
     pass.graphics = false;
     CheckerboardSet& n = sets[current];
     CheckerboardSet& prev = sets[1 - current];
-    pass.uses = {{&n.color, graph::Use::Sampled},    {&n.depth, graph::Use::Sampled},
-                 {&prev.color, graph::Use::Sampled}, {&prev.depth, graph::Use::Sampled},
-                 {&out_color, graph::Use::StorageWrite}, {&out_class, graph::Use::StorageWrite}};
-    if (n.motion.image) pass.uses.push_back({&n.motion, graph::Use::Sampled});
+    pass.uses = {{&n.depth, graph::Use::Sampled},
+                 {&prev.depth, graph::Use::Sampled},
+                 {&out_color, graph::Use::StorageWrite},
+                 {&out_class, graph::Use::StorageWrite}};
+    for (vk::Image* img : {&n.color, &prev.color, &n.srt, &prev.srt, &n.cfb, &prev.cfb, &n.motion})
+        if (img->image) pass.uses.push_back({img, graph::Use::Sampled});
     VkExtent2D extent = out_color.extent;
     VkDescriptorSet set = r.sets[current];
     pass.record = [&r, frame_set, set, extent](VkCommandBuffer cmd) {

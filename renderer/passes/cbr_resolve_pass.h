@@ -10,10 +10,15 @@
 namespace cbr::passes {
 
 // One frame's quarter-res sample set: two samples (2x MSAA) or two layers (multiview).
+// Forward: `color`. Deferred: the Shade Resolve Target `srt` (2W x H, one texel per sample)
+// and the Checkerboard Forward Buffer `cfb` (transparent colour, premultiplied, with
+// accumulated alpha; null image when the scene has nothing blended).
 struct CheckerboardSet {
     vk::Image color;
     vk::Image depth;
     vk::Image motion;  // null image when the scene has no moving objects
+    vk::Image srt;
+    vk::Image cfb;
 };
 
 struct CbrResolveDesc {
@@ -22,6 +27,7 @@ struct CbrResolveDesc {
     bool cso_absolute = false;
     float cso_tolerance = 0.05f;
     bool has_motion = true;
+    bool deferred = false;          // colours from srt (+ cfb) instead of color
 };
 
 // Push constants of the reconstruction: the route's pattern rows and the CSO tolerance.

@@ -7,6 +7,10 @@
 #include "renderer/vk/context.h"
 #include "renderer/vk/pipelines.h"
 #include "shaders/analysis.frag.h"
+#include "shaders/gbuffer.frag.h"
+#include "shaders/gbuffer_motion.frag.h"
+#include "shaders/gbuffer_sample.frag.h"
+#include "shaders/gbuffer_sample_motion.frag.h"
 #include "shaders/scene.frag.h"
 #include "shaders/scene_motion.frag.h"
 #include "shaders/scene_sample.frag.h"
@@ -26,6 +30,12 @@ VkPipeline createScenePipeline(vk::Context& ctx, VkPipelineLayout layout, const 
     auto module = [&](const uint32_t* code, size_t size) { return vk::createShaderModule(ctx, code, size); };
     VkShaderModule frag =
         desc.analysis ? module(kSpirv_analysis_frag, sizeof(kSpirv_analysis_frag))
+        : desc.gbuffer
+            ? (desc.sample_shading
+                   ? (desc.motion ? module(kSpirv_gbuffer_sample_motion_frag, sizeof(kSpirv_gbuffer_sample_motion_frag))
+                                  : module(kSpirv_gbuffer_sample_frag, sizeof(kSpirv_gbuffer_sample_frag)))
+                   : (desc.motion ? module(kSpirv_gbuffer_motion_frag, sizeof(kSpirv_gbuffer_motion_frag))
+                                  : module(kSpirv_gbuffer_frag, sizeof(kSpirv_gbuffer_frag))))
         : desc.sample_shading
             ? (desc.motion ? module(kSpirv_scene_sample_motion_frag, sizeof(kSpirv_scene_sample_motion_frag))
                            : module(kSpirv_scene_sample_frag, sizeof(kSpirv_scene_sample_frag)))
@@ -96,20 +106,32 @@ VkPipeline createScenePipeline(vk::Context& ctx, VkPipelineLayout layout, const 
     VkPipelineColorBlendAttachmentState motion_blend{};
     motion_blend.colorWriteMask =
         mode == AlphaMode::Blend ? 0 : VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT;
-    VkPipelineColorBlendAttachmentState blends[2] = {blend, motion_blend};
+    // Attachments: colour (or the G-buffer's three), then motion.
+    std::vector<VkFormat> formats;
+    std::vector<VkPipelineColorBlendAttachmentState> blends;
+    if (desc.gbuffer) {
+        formats.assign(std::begin(kGBufferFormats), std::end(kGBufferFormats));
+        blends.assign(3, blend);
+    } else {
+        formats.push_back(desc.analysis ? kAnalysisFormat : desc.color_format);
+        blends.push_back(blend);
+    }
+    if (desc.motion) {
+        formats.push_back(kMotionFormat);
+        blends.push_back(motion_blend);
+    }
     VkPipelineColorBlendStateCreateInfo blend_state{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    blend_state.attachmentCount = desc.motion ? 2 : 1;
-    blend_state.pAttachments = blends;
+    blend_state.attachmentCount = uint32_t(blends.size());
+    blend_state.pAttachments = blends.data();
     std::vector<VkDynamicState> dynamic = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
     if (desc.sample_locations) dynamic.push_back(VK_DYNAMIC_STATE_SAMPLE_LOCATIONS_EXT);
     VkPipelineDynamicStateCreateInfo dynamic_state{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
     dynamic_state.dynamicStateCount = uint32_t(dynamic.size());
     dynamic_state.pDynamicStates = dynamic.data();
-    VkFormat formats[2] = {desc.analysis ? kAnalysisFormat : desc.color_format, kMotionFormat};
     VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
     rendering.viewMask = desc.view_mask;
-    rendering.colorAttachmentCount = desc.motion ? 2 : 1;
-    rendering.pColorAttachmentFormats = formats;
+    rendering.colorAttachmentCount = uint32_t(formats.size());
+    rendering.pColorAttachmentFormats = formats.data();
     rendering.depthAttachmentFormat = desc.depth_format;
 
     VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
@@ -171,23 +193,26 @@ void drawItems(VkCommandBuffer cmd, const SceneFrame& f, const std::vector<gpu::
     }
 }
 
-// layer < 0: the whole image (or all views); else that layer's 2D view.
-void beginScene(VkCommandBuffer cmd, const SceneFrame& f, const SceneTargets& t, bool clear, int layer) {
+// layer < 0: the whole image (or all views); else that layer's 2D view. clear: colour
+// and depth cleared; else both loaded, depth read-only, unless clear_colour_only (the CFB:
+// transparent colour from zero over the opaque depth).
+void beginScene(VkCommandBuffer cmd, const SceneFrame& f, const SceneTargets& t, bool clear, int layer,
+                bool clear_colour_only = false) {
     auto view = [layer](const vk::Image* img) { return layer < 0 ? img->view : img->layer_views[size_t(layer)]; };
-    VkRenderingAttachmentInfo color_att[2] = {{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO},
-                                              {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO}};
-    color_att[0].imageView = view(t.color);
-    color_att[0].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    color_att[0].loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
-    color_att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    color_att[0].clearValue.color = {{f.clear_color.r, f.clear_color.g, f.clear_color.b, 0.0f}};
-    if (t.motion) {
-        color_att[1].imageView = view(t.motion);
-        color_att[1].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        color_att[1].loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
-        color_att[1].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        color_att[1].clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // sky: no motion
-    }
+    std::vector<VkRenderingAttachmentInfo> color_att;
+    auto attach = [&](const vk::Image* img, glm::vec4 clear_value) {
+        VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        a.imageView = view(img);
+        a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        a.loadOp = clear || clear_colour_only ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+        a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        a.clearValue.color = {{clear_value.r, clear_value.g, clear_value.b, clear_value.a}};
+        color_att.push_back(a);
+    };
+    attach(t.color, clear_colour_only ? glm::vec4(0.0f) : glm::vec4(glm::vec3(f.clear_color), 0.0f));
+    for (const vk::Image* extra : t.extra)
+        if (extra) attach(extra, glm::vec4(0.0f));
+    if (t.motion) attach(t.motion, glm::vec4(0.0f));  // sky: no motion
     VkRenderingAttachmentInfo depth_att{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth_att.imageView = view(t.depth);
     depth_att.imageLayout = clear ? VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
@@ -198,8 +223,8 @@ void beginScene(VkCommandBuffer cmd, const SceneFrame& f, const SceneTargets& t,
     info.renderArea = {{0, 0}, f.viewport};
     info.layerCount = 1;
     info.viewMask = layer < 0 ? t.view_mask : 0;
-    info.colorAttachmentCount = t.motion ? 2 : 1;
-    info.pColorAttachments = color_att;
+    info.colorAttachmentCount = uint32_t(color_att.size());
+    info.pColorAttachments = color_att.data();
     info.pDepthAttachment = &depth_att;
     vkCmdBeginRendering(cmd, &info);
     setViewport(cmd, f);
@@ -246,7 +271,7 @@ ScenePipelines createScenePipelines(vk::Context& ctx, const gpu::GpuScene& scene
     for (int two = 0; two < 2; ++two) {
         if (wanted(scene.opaque, two)) p.opaque[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Opaque, two);
         if (wanted(scene.masked, two)) p.masked[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Mask, two);
-        if (wanted(scene.blend, two) && !desc.analysis)
+        if (wanted(scene.blend, two) && !desc.analysis && !desc.gbuffer)
             p.blend[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Blend, two);
     }
     return p;
@@ -276,6 +301,24 @@ void addOpaquePass(graph::Graph& graph, const SceneTargets& targets, std::shared
     graph.addPass(std::move(pass));
 }
 
+void addGBufferPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame) {
+    graph::Pass pass;
+    pass.name = "gbuffer";
+    pass.uses = {{targets.color, graph::Use::ColorWrite}, {targets.depth, graph::Use::DepthWrite}};
+    for (vk::Image* extra : targets.extra)
+        if (extra) pass.uses.push_back({extra, graph::Use::ColorWrite});
+    if (targets.motion) pass.uses.push_back({targets.motion, graph::Use::ColorWrite});
+    pass.record = [frame, targets](VkCommandBuffer cmd) {
+        forEachLayer(targets, [&](int layer) {
+            beginScene(cmd, *frame, targets, true, layer);
+            if (!frame->scene->opaque.empty()) drawItems(cmd, *frame, frame->scene->opaque, frame->pipelines->opaque);
+            if (!frame->scene->masked.empty()) drawItems(cmd, *frame, frame->scene->masked, frame->pipelines->masked);
+            vkCmdEndRendering(cmd);
+        });
+    };
+    graph.addPass(std::move(pass));
+}
+
 void addAnalysisPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame) {
     graph::Pass pass;
     pass.name = "analysis";
@@ -290,12 +333,14 @@ void addAnalysisPass(graph::Graph& graph, const SceneTargets& targets, std::shar
     graph.addPass(std::move(pass));
 }
 
-void addTransparentPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame) {
+void addTransparentPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame,
+                        bool checkerboard_forward_buffer) {
     graph::Pass pass;
-    pass.name = "transparent";
-    pass.uses = {{targets.color, graph::Use::ColorReadWrite}, {targets.depth, graph::Use::DepthTest}};
+    pass.name = checkerboard_forward_buffer ? "cfb" : "transparent";
+    pass.uses = {{targets.color, checkerboard_forward_buffer ? graph::Use::ColorWrite : graph::Use::ColorReadWrite},
+                 {targets.depth, graph::Use::DepthTest}};
     if (targets.motion) pass.uses.push_back({targets.motion, graph::Use::ColorReadWrite});
-    pass.record = [frame, targets](VkCommandBuffer cmd) {
+    pass.record = [frame, targets, checkerboard_forward_buffer](VkCommandBuffer cmd) {
         // Back to front by the distance of each instance's bounds centre: correct for
         // separate panes, which is what blended scenes here contain.
         const auto& s = *frame->scene;
@@ -311,7 +356,7 @@ void addTransparentPass(graph::Graph& graph, const SceneTargets& targets, std::s
         std::vector<gpu::DrawItem> items;
         for (const auto& [dist, d] : sorted) items.push_back(d);
         forEachLayer(targets, [&](int layer) {
-            beginScene(cmd, *frame, targets, false, layer);
+            beginScene(cmd, *frame, targets, false, layer, checkerboard_forward_buffer);
             drawItems(cmd, *frame, items, frame->pipelines->blend);
             vkCmdEndRendering(cmd);
         });

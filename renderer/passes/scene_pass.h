@@ -27,11 +27,17 @@ struct ScenePipelineDesc {
     bool motion = false;           // second attachment: motion vectors (kMotionFormat)
     bool sample_locations = false; // VK_EXT_sample_locations set per frame (dynamic state)
     bool analysis = false;         // analysis.frag into kAnalysisFormat: opaque and masked only
+    bool gbuffer = false;          // gbuffer*.frag into the kGBufferFormats: opaque and masked only
 };
+
+// Deferred G-buffer: albedo + occlusion, normal + roughness, emission + metallic.
+constexpr VkFormat kGBufferFormats[3] = {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R16G16B16A16_SFLOAT,
+                                         VK_FORMAT_R16G16B16A16_SFLOAT};
 
 constexpr VkFormat kAnalysisFormat = VK_FORMAT_R32G32B32A32_SFLOAT;  // motion.xy, depth, previous depth
 
-// The attachments of the scene passes; `motion` may be null.
+// The attachments of the scene passes, in order color, extra..., motion; `motion` and the
+// extras may be null (the extras are the G-buffer's second and third targets).
 struct SceneTargets {
     vk::Image* color = nullptr;
     vk::Image* motion = nullptr;
@@ -39,6 +45,7 @@ struct SceneTargets {
     uint32_t view_mask = 0;          // multiview: both layers in one pass
     bool sequential_layers = false;  // the two layers one after the other (no multiview)
     bool unjittered = false;         // ignore the checkerboard view offsets (analysis pass)
+    vk::Image* extra[2] = {};        // G-buffer normal and emission targets
 };
 
 // Indexed [double_sided]. Cull mode is baked in rather than dynamic: lavapipe (Mesa 22.3)
@@ -76,8 +83,14 @@ void addOpaquePass(graph::Graph& graph, const SceneTargets& targets, std::shared
 // Untimed `analysis` pass: motion and depths of the unjittered full-res image for the
 // edge-crawl metric; `targets.color` is a kAnalysisFormat image.
 void addAnalysisPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame);
+// The deferred `gbuffer` pass: opaque and alpha-tested geometry into the G-buffer
+// (targets.color = albedo, extra = normal, emission; motion for checkerboard with moving objects).
+void addGBufferPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame);
 // Blended draws, back to front, depth-tested against the opaque depth, not written;
 // motion vectors stay those of the opaque surface behind.
-void addTransparentPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame);
+// checkerboard_forward_buffer: the deferred checkerboard's `cfb` pass, into a buffer of its
+// own cleared to zero (premultiplied colour, accumulated alpha), composited at reconstruction.
+void addTransparentPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame,
+                        bool checkerboard_forward_buffer = false);
 
 }  // namespace cbr::passes

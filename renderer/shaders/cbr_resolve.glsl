@@ -1,7 +1,9 @@
 // Checkerboard reconstruction (Intel, "Checkerboard Rendering for Real-Time Upscaling on
 // Intel Integrated Graphics", and method/cbr.md): one full-res pixel per invocation from
 // the two quarter-res sample sets of frames N and N-1. Included by cbr_resolve_array.comp
-// (multiview layers) and cbr_resolve_ms.comp (2x MSAA samples), which define FETCH.
+// (multiview layers) and cbr_resolve_ms.comp (2x MSAA samples), which define FETCH, and
+// by the deferred cbr_resolve_srt_*.comp, whose colours come from the Shade Resolve Target
+// and the Checkerboard Forward Buffer; FETCH_CUR_COLOR / FETCH_PREV_COLOR read colours.
 #extension GL_KHR_shader_subgroup_ballot : require
 #include "shared.h"
 
@@ -70,7 +72,7 @@ vec3 fillFromNeighbours(ivec2 p, int parity, ivec2 size) {
         if (any(lessThan(n, ivec2(0))) || any(greaterThanEqual(n, size))) continue;
         ivec3 s = shadedSource(parity, n);
         if (s.x < 0) continue;
-        vec3 c = max(FETCH(cur_color, s.yz, s.x).rgb, vec3(0.0));
+        vec3 c = max(FETCH_CUR_COLOR(s.yz, s.x), vec3(0.0));
         float w = 1.0 / (1.0 + luma(c));
         sum += c * w;
         weight += w;
@@ -144,7 +146,7 @@ vec3 reconstruct(ivec2 p, int parity, ivec2 size, out uint cls) {
         }
     }
     cls = kReused;
-    return FETCH(prev_color, prev_src.yz, prev_src.x).rgb;
+    return FETCH_PREV_COLOR(prev_src.yz, prev_src.x);
 }
 
 void main() {
@@ -160,7 +162,7 @@ void main() {
         vec3 color;
         ivec3 own = shadedSource(parity, p);
         if (own.x >= 0) {
-            color = FETCH(cur_color, own.yz, own.x).rgb;
+            color = FETCH_CUR_COLOR(own.yz, own.x);
         } else if (patternEntry(parity, p & 1).x >= 0) {
             cls = kOffscreen;  // shaded this frame in principle, but in the lost column
             color = fillFromNeighbours(p, parity, size);

@@ -23,6 +23,7 @@ struct FrameUniforms {
     // Checkerboard rendering (zero elsewhere):
     vec4 view_offsets;     // clip-space xy offsets of view/sample 0 (xy) and view 1 (zw)
     mat4 reproject;        // current unjittered clip -> previous clip (static geometry)
+    mat4 inv_view_proj;    // unjittered clip -> world (deferred lighting)
     vec4 depth_params;     // view depth = B / (d + A): x A, y B (current), z A, w B (previous)
     uvec4 frame_info;      // x parity (0 even, 1 odd), y history reset, z width, w height
 };
@@ -47,7 +48,7 @@ struct GpuLight {
 #define CBR_TEX_OCCLUSION 16u
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameUniforms) == 4 * 64 + 7 * 16);
+static_assert(sizeof(FrameUniforms) == 5 * 64 + 7 * 16);
 static_assert(sizeof(MaterialUniforms) == 4 * 16);
 static_assert(sizeof(GpuLight) == 3 * 16);
 }  // namespace cbr::shaders

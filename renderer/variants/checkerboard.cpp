@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "renderer/passes/cbr_resolve_pass.h"
+#include "renderer/passes/lighting_pass.h"
 #include "renderer/passes/tonemap_pass.h"
 #include "renderer/shaders/cbr_pattern.h"
 #include "renderer/vk/check.h"
@@ -26,7 +27,7 @@ glm::ivec2 quadrantOf(int route, int parity, int s) {
 class CheckerboardVariant final : public VariantRenderer {
 public:
     CheckerboardVariant(vk::Context& ctx, const gpu::GpuScene& scene, const render::Settings& s, bool cso)
-        : ctx_(ctx), scene_(scene), settings_(s), cso_(cso) {
+        : ctx_(ctx), scene_(scene), settings_(s), cso_(cso), deferred_(s.deferred) {
         route_ = chooseRoute(ctx, s.cbr_route);
         msaa_ = route_.route != CBR_ROUTE_MULTIVIEW;
         has_motion_ = scene.cpu->info.animated_instances > 0;
@@ -37,11 +38,26 @@ public:
             return vk::createImage(ctx, {std::string(name) + std::to_string(i), format, quarter_,
                                          usage | VK_IMAGE_USAGE_SAMPLED_BIT, 1, layers, samples});
         };
+        bool blend = !scene.blend.empty();
         for (int i = 0; i < 2; ++i) {
-            sets_[i].color = target("cbr_color", i, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
-            sets_[i].depth = target("cbr_depth", i, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+            auto& set = sets_[i];
+            set.depth = target("cbr_depth", i, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
             if (has_motion_)
-                sets_[i].motion = target("cbr_motion", i, passes::kMotionFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+                set.motion = target("cbr_motion", i, passes::kMotionFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+            if (!deferred_) {
+                set.color = target("cbr_color", i, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+                continue;
+            }
+            // Deferred: a checkerboard G-buffer, the Shade Resolve Target (one texel per
+            // sample: twice the width), and the Checkerboard Forward Buffer for transparency.
+            const char* names[3] = {"cbr_gb_albedo", "cbr_gb_normal", "cbr_gb_emissive"};
+            vk::Image* gb[3] = {&gbuffers_[i].albedo, &gbuffers_[i].normal, &gbuffers_[i].emissive};
+            for (int k = 0; k < 3; ++k)
+                *gb[k] = target(names[k], i, passes::kGBufferFormats[k], VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+            gbuffers_[i].depth = &set.depth;
+            set.srt = vk::createImage(ctx, {"cbr_srt" + std::to_string(i), kHdrFormat, {quarter_.width * 2, quarter_.height},
+                                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+            if (blend) set.cfb = target("cbr_cfb", i, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
         }
         VkExtent2D full{s.width, s.height};
         hdr_ = vk::createImage(ctx, {"hdr", kHdrFormat, full, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
@@ -53,15 +69,25 @@ public:
         desc.samples = samples;
         desc.sample_shading = msaa_;
         desc.view_mask = msaa_ || route_.sequential_layers ? 0 : 0b11;
-        desc.motion = has_motion_;
+        // Deferred: these forward pipelines draw only the CFB, which has no motion target.
+        desc.motion = has_motion_ && !deferred_;
         desc.sample_locations = route_.route == CBR_ROUTE_MSAA_LOCATIONS;
         pipelines_ = passes::createScenePipelines(ctx, scene, desc);
+        if (deferred_) {
+            passes::ScenePipelineDesc gdesc = desc;
+            gdesc.gbuffer = true;
+            gdesc.motion = has_motion_;
+            gbuffer_pipelines_ = passes::createScenePipelines(ctx, scene, gdesc);
+            lighting_ = passes::createSrtLighting(ctx, scene.frame_layout, gbuffers_, &sets_[0].srt, &sets_[1].srt,
+                                                  msaa_, route_.route);
+        }
         passes::CbrResolveDesc rdesc;
         rdesc.route = route_.route;
         rdesc.check_occlusion = cso_;
         rdesc.cso_absolute = s.cso_absolute;
         rdesc.cso_tolerance = float(s.cso_tolerance);
         rdesc.has_motion = has_motion_;
+        rdesc.deferred = deferred_;
         resolve_ = passes::createCbrResolve(ctx, rdesc, scene.frame_layout, sets_, hdr_, class_, msaa_);
         tonemap_ = passes::createTonemap(ctx, hdr_, display_);
         if (desc.sample_locations)
@@ -74,8 +100,12 @@ public:
         passes::destroyTonemap(ctx_, tonemap_);
         passes::destroyCbrResolve(ctx_, resolve_);
         passes::destroyScenePipelines(ctx_, pipelines_);
+        passes::destroyScenePipelines(ctx_, gbuffer_pipelines_);
+        passes::destroyLighting(ctx_, lighting_);
         for (auto& set : sets_)
-            for (vk::Image* img : {&set.color, &set.depth, &set.motion}) vk::destroyImage(ctx_, *img);
+            for (vk::Image* img : {&set.color, &set.depth, &set.motion, &set.srt, &set.cfb}) vk::destroyImage(ctx_, *img);
+        for (auto& g : gbuffers_)
+            for (vk::Image* img : {&g.albedo, &g.normal, &g.emissive}) vk::destroyImage(ctx_, *img);
         for (vk::Image* img : {&hdr_, &class_, &display_}) vk::destroyImage(ctx_, *img);
     }
 
@@ -104,13 +134,34 @@ public:
 
         std::shared_ptr<const passes::SceneFrame> shared = setup.scene_frame;
         passes::CheckerboardSet& set = sets_[current];
-        passes::SceneTargets targets{&set.color, has_motion_ ? &set.motion : nullptr, &set.depth,
-                                     msaa_ || route_.sequential_layers ? 0u : 0b11u, route_.sequential_layers};
-        passes::addOpaquePass(graph, targets, shared);
-        if (!scene_.blend.empty())
-            passes::addTransparentPass(graph, targets, shared);
-        else
-            graph.leaveOut("transparent", "scene has no BLEND materials");
+        uint32_t view_mask = msaa_ || route_.sequential_layers ? 0u : 0b11u;
+        if (deferred_) {
+            // G-buffer with two samples per quarter-res pixel, every sample lit into the
+            // SRT, transparent objects into the CFB, all reconstructed together.
+            auto gframe = std::make_shared<passes::SceneFrame>(frame);
+            gframe->pipelines = &gbuffer_pipelines_;
+            passes::SceneTargets gtargets{&gbuffers_[current].albedo, has_motion_ ? &set.motion : nullptr, &set.depth,
+                                          view_mask, route_.sequential_layers};
+            gtargets.extra[0] = &gbuffers_[current].normal;
+            gtargets.extra[1] = &gbuffers_[current].emissive;
+            passes::addGBufferPass(graph, gtargets, gframe);
+            passes::addLightingPass(graph, lighting_, frame.frame_set, gbuffers_[current], current, set.srt,
+                                    set.srt.extent);
+            if (set.cfb.image) {
+                passes::SceneTargets ctargets{&set.cfb, nullptr, &set.depth, view_mask, route_.sequential_layers};
+                passes::addTransparentPass(graph, ctargets, shared, true);
+            } else {
+                graph.leaveOut("cfb", "scene has no BLEND materials");
+            }
+        } else {
+            passes::SceneTargets targets{&set.color, has_motion_ ? &set.motion : nullptr, &set.depth, view_mask,
+                                         route_.sequential_layers};
+            passes::addOpaquePass(graph, targets, shared);
+            if (!scene_.blend.empty())
+                passes::addTransparentPass(graph, targets, shared);
+            else
+                graph.leaveOut("transparent", "scene has no BLEND materials");
+        }
         passes::addCbrResolvePass(graph, resolve_, frame.frame_set, sets_, current, hdr_, class_);
         passes::addTonemapPass(graph, tonemap_, hdr_, display_, settings_.exposure, settings_.debug_pixel_id);
     }
@@ -132,6 +183,9 @@ public:
             {"motion", has_motion_ ? "per-pixel motion vectors from the scene pass (moving objects present)"
                                    : "camera motion from depth reprojection (static scene)"},
             {"fill", "tone-mapped average of frame N's cardinal neighbours, weights 1/(1+luma)"},
+            {"pipeline_detail", deferred_ ? "deferred: checkerboard G-buffer, per-sample lighting into the SRT, "
+                                     "transparency in the CFB"
+                                   : "forward"},
             {"lost_border", route_.route == CBR_ROUTE_MSAA_JITTER
                                 ? "top-right quadrants of the last quarter-res column (full-res column 2*ceil(W/2)-1) "
                                   "are never shaded; filled from neighbours"
@@ -156,6 +210,10 @@ private:
     vk::Image hdr_, class_, display_;
     passes::ScenePipelines pipelines_;
     passes::CbrResolve resolve_;
+    bool deferred_;
+    passes::GBuffer gbuffers_[2];
+    passes::ScenePipelines gbuffer_pipelines_;
+    passes::Lighting lighting_;
     passes::Tonemap tonemap_;
     PFN_vkCmdSetSampleLocationsEXT set_sample_locations_ = nullptr;
     int warmup_counter_ = 0;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/passes/lighting_pass.h"
 #include "renderer/passes/tonemap_pass.h"
 #include "renderer/passes/upscale_pass.h"
 #include "renderer/vk/context.h"
@@ -19,12 +20,28 @@ public:
     // supersample k > 1: the reference, rendered at k x k the size and box-filtered down.
     ForwardVariant(vk::Context& ctx, const gpu::GpuScene& scene, const render::Settings& s, bool scaled,
                    int supersample = 1)
-        : ctx_(ctx), scene_(scene), settings_(s), scaled_(scaled), supersample_(supersample) {
+        : ctx_(ctx), scene_(scene), settings_(s), scaled_(scaled), supersample_(supersample),
+          deferred_(s.deferred && supersample == 1) {  // the ssaa reference is always forward
         VkExtent2D full{s.width, s.height};
         VkExtent2D target{s.width * uint32_t(supersample), s.height * uint32_t(supersample)};
+        VkImageUsageFlags lit = deferred_ ? VK_IMAGE_USAGE_STORAGE_BIT : 0;  // written by the lighting pass
         color_ = vk::createImage(ctx, {"hdr", kHdrFormat, target,
-                                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
-        depth_ = vk::createImage(ctx, {"depth", kDepthFormat, target, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
+                                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | lit});
+        depth_ = vk::createImage(ctx, {"depth", kDepthFormat, target,
+                                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
+                                           (deferred_ ? VK_IMAGE_USAGE_SAMPLED_BIT : 0)});
+        if (deferred_) {
+            const char* names[3] = {"gb_albedo", "gb_normal", "gb_emissive"};
+            vk::Image* targets[3] = {&gbuffer_.albedo, &gbuffer_.normal, &gbuffer_.emissive};
+            for (int i = 0; i < 3; ++i)
+                *targets[i] = vk::createImage(ctx, {names[i], passes::kGBufferFormats[i], target,
+                                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+            passes::ScenePipelineDesc gdesc;
+            gdesc.gbuffer = true;
+            gbuffer_pipelines_ = passes::createScenePipelines(ctx, scene, gdesc);
+            gbuffer_.depth = &depth_;
+            lighting_ = passes::createLighting(ctx, scene.frame_layout, gbuffer_, color_);
+        }
         display_ = vk::createImage(ctx, {"display", VK_FORMAT_R8G8B8A8_UNORM, full,
                                          VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
         pipelines_ = passes::createScenePipelines(ctx, scene, {kHdrFormat, kDepthFormat, VK_SAMPLE_COUNT_1_BIT});
@@ -52,7 +69,11 @@ public:
         passes::destroyUpscale(ctx_, upscale_);
         passes::destroyDownsample(ctx_, downsample_);
         passes::destroyScenePipelines(ctx_, pipelines_);
-        for (vk::Image* img : {&color_, &depth_, &display_, &upscaled_}) vk::destroyImage(ctx_, *img);
+        passes::destroyScenePipelines(ctx_, gbuffer_pipelines_);
+        passes::destroyLighting(ctx_, lighting_);
+        for (vk::Image* img : {&color_, &depth_, &display_, &upscaled_, &gbuffer_.albedo, &gbuffer_.normal,
+                               &gbuffer_.emissive})
+            vk::destroyImage(ctx_, *img);
     }
 
     VkExtent2D renderExtent(double scale) const override {
@@ -70,7 +91,19 @@ public:
         setup.scene_frame->pipelines = &pipelines_;
         std::shared_ptr<const passes::SceneFrame> frame = setup.scene_frame;
         passes::SceneTargets targets{&color_, nullptr, &depth_, 0};
-        passes::addOpaquePass(graph, targets, frame);
+        if (deferred_) {
+            // G-buffer, then the lighting resolve over the rendered region; transparent
+            // objects forward on top with the same lights.
+            auto gframe = std::make_shared<passes::SceneFrame>(*setup.scene_frame);
+            gframe->pipelines = &gbuffer_pipelines_;
+            passes::SceneTargets gtargets{&gbuffer_.albedo, nullptr, &depth_, 0};
+            gtargets.extra[0] = &gbuffer_.normal;
+            gtargets.extra[1] = &gbuffer_.emissive;
+            passes::addGBufferPass(graph, gtargets, gframe);
+            passes::addLightingPass(graph, lighting_, frame->frame_set, gbuffer_, 0, color_, render);
+        } else {
+            passes::addOpaquePass(graph, targets, frame);
+        }
         if (!scene_.blend.empty())
             passes::addTransparentPass(graph, targets, frame);
         else
@@ -93,6 +126,10 @@ private:
     passes::ScenePipelines pipelines_;
     passes::Upscale upscale_;
     passes::Downsample downsample_;
+    bool deferred_;
+    passes::GBuffer gbuffer_;
+    passes::ScenePipelines gbuffer_pipelines_;
+    passes::Lighting lighting_;
     passes::Tonemap tonemap_;
 };
 

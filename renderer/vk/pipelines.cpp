@@ -17,7 +17,7 @@ VkShaderModule createShaderModule(Context& ctx, const uint32_t* spirv, size_t si
     return module;
 }
 
-VkDescriptorSetLayout createSetLayout(Context& ctx, std::initializer_list<Binding> bindings) {
+VkDescriptorSetLayout createSetLayout(Context& ctx, const std::vector<Binding>& bindings) {
     std::vector<VkDescriptorSetLayoutBinding> b;
     for (const auto& x : bindings) b.push_back({x.binding, x.type, 1, x.stages, nullptr});
     VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
@@ -28,7 +28,7 @@ VkDescriptorSetLayout createSetLayout(Context& ctx, std::initializer_list<Bindin
     return layout;
 }
 
-VkDescriptorPool createPool(Context& ctx, std::initializer_list<Binding> bindings, uint32_t sets) {
+VkDescriptorPool createPool(Context& ctx, const std::vector<Binding>& bindings, uint32_t sets) {
     std::map<VkDescriptorType, uint32_t> counts;
     for (const auto& x : bindings) counts[x.type] += sets;
     std::vector<VkDescriptorPoolSize> sizes;
@@ -77,7 +77,7 @@ void writeBuffer(Context& ctx, VkDescriptorSet set, uint32_t binding, VkDescript
 }
 
 ComputeKernel createComputeKernel(Context& ctx, const uint32_t* spirv, size_t size_bytes,
-                                  std::initializer_list<Binding> bindings, uint32_t push_bytes,
+                                  const std::vector<Binding>& bindings, uint32_t push_bytes,
                                   std::vector<SpecConstant> spec, VkDescriptorSetLayout shared_set0) {
     ComputeKernel k;
     k.set_layout = createSetLayout(ctx, bindings);

@@ -2,7 +2,7 @@
 #pragma once
 
 #include <cstdint>
-#include <initializer_list>
+#include <vector>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -18,10 +18,10 @@ struct Binding {
     VkDescriptorType type;
     VkShaderStageFlags stages;
 };
-VkDescriptorSetLayout createSetLayout(Context& ctx, std::initializer_list<Binding> bindings);
+VkDescriptorSetLayout createSetLayout(Context& ctx, const std::vector<Binding>& bindings);
 
 // One pool sized for `sets` sets of the given bindings; sets are never freed singly.
-VkDescriptorPool createPool(Context& ctx, std::initializer_list<Binding> bindings, uint32_t sets);
+VkDescriptorPool createPool(Context& ctx, const std::vector<Binding>& bindings, uint32_t sets);
 VkDescriptorSet allocateSet(Context& ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout);
 
 void writeImage(Context& ctx, VkDescriptorSet set, uint32_t binding, VkDescriptorType type, VkImageView view,
@@ -44,7 +44,7 @@ struct ComputeKernel {
 // With `shared_set0`, the kernel's own bindings are set 1 and set 0 is that layout (the
 // renderer's per-frame set); otherwise its bindings are set 0.
 ComputeKernel createComputeKernel(Context& ctx, const uint32_t* spirv, size_t size_bytes,
-                                  std::initializer_list<Binding> bindings, uint32_t push_bytes,
+                                  const std::vector<Binding>& bindings, uint32_t push_bytes,
                                   std::vector<SpecConstant> spec = {},
                                   VkDescriptorSetLayout shared_set0 = VK_NULL_HANDLE);
 void destroyComputeKernel(Context& ctx, ComputeKernel& kernel);

@@ -1,0 +1,118 @@
+// lavapipe tier for the deferred pipeline: it agrees with forward, its checkerboard
+// reconstructs a static scene exactly, and passes a scene does not need never run.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "renderer/variants/variants.h"
+#include "tests/render/bench_runner.h"
+
+namespace cbr::test {
+namespace {
+
+struct Run {
+    std::filesystem::path dir;
+    BenchResult result;
+    Csv frames, summary;
+    nlohmann::json run;
+};
+
+Run run(const std::string& name, std::vector<std::string> args) {
+    Run r;
+    auto work = scratchDir(name);
+    r.dir = work / "out";
+    std::vector<std::string> all = {"run", "--repeat", "1", "--warmup", "1", "--validate", "--out", r.dir.string()};
+    all.insert(all.end(), args.begin(), args.end());
+    r.result = runBench(all, work);
+    if (r.result.exit_code == 0) {
+        r.frames = readCsv(r.dir / "frames.csv");
+        r.summary = readCsv(r.dir / "summary.csv");
+        r.run = readJson(r.dir / "run.json");
+        EXPECT_EQ(r.run["validation"]["errors"], 0) << r.run["validation"]["first_messages"].dump(1);
+        EXPECT_EQ(r.run["validation"]["warnings"], 0) << r.run["validation"]["first_messages"].dump(1);
+    }
+    return r;
+}
+
+std::string allVariants() {
+    std::string s;
+    for (const auto& v : variants::allVariants()) {
+        if (!s.empty()) s += ',';
+        s += v.name;
+    }
+    return s;
+}
+
+bool ran(const nlohmann::json& variant, const std::string& pass) {
+    for (const auto& p : variant["passes"])
+        if (p["name"] == pass) return p["ran"].get<bool>();
+    return false;
+}
+
+TEST(Deferred, ForwardAndDeferredFullAgreeOnAnOpaqueScene) {
+    auto fwd = run("def-fwd", {"--scene", "blocks", "--path", "orbit", "--res", "128x80", "--frames", "3",
+                               "--variants", "full", "--save-frames"});
+    auto def = run("def-def", {"--scene", "blocks", "--path", "orbit", "--res", "128x80", "--frames", "3",
+                               "--variants", "full", "--save-frames", "--pipeline", "deferred"});
+    ASSERT_EQ(fwd.result.exit_code, 0) << fwd.result.err;
+    ASSERT_EQ(def.result.exit_code, 0) << def.result.err;
+    EXPECT_EQ(def.run["settings"]["pipeline"], "deferred");
+    for (int f = 0; f < 3; ++f) {
+        char name[32];
+        std::snprintf(name, sizeof name, "full_%04d.png", f);
+        auto score = runBench({"score", (fwd.dir / "frames" / name).string(), (def.dir / "frames" / name).string()},
+                              fwd.dir.parent_path());
+        ASSERT_EQ(score.exit_code, 0) << score.err;
+        double psnr = score.out.find("inf") != std::string::npos ? INFINITY : std::stod(score.out.substr(8));
+        EXPECT_GE(psnr, 40.0) << name;
+    }
+}
+
+TEST(Deferred, EveryVariantValidatesAndAtriumRunsItsTransparentPasses) {
+    auto r = run("def-atrium", {"--scene", "atrium", "--path", "flythrough", "--res", "128x72", "--frames", "4",
+                                "--variants", allVariants(), "--pipeline", "deferred", "--save-frames"});
+    ASSERT_EQ(r.result.exit_code, 0) << r.result.err;
+    for (const auto& v : r.run["variants"]) {
+        EXPECT_EQ(v["status"], "ok") << v.dump();
+        EXPECT_EQ(v["pipeline"], "deferred");
+        EXPECT_TRUE(ran(v, "gbuffer")) << v["name"];
+        EXPECT_TRUE(ran(v, "lighting")) << v["name"];
+        bool cbr = v["name"].get<std::string>().rfind("cbr-", 0) == 0;
+        EXPECT_TRUE(ran(v, cbr ? "cfb" : "transparent")) << v["name"];
+    }
+    for (size_t i = 0; i < r.summary.rows.size(); ++i) {
+        if (r.summary.at(i, "variant") == "full") continue;
+        double psnr = std::stod(r.summary.at(i, "psnr_db_mean"));
+        EXPECT_TRUE(std::isfinite(psnr));
+        EXPECT_GT(psnr, 12.0) << r.summary.at(i, "variant");
+    }
+}
+
+TEST(Deferred, SceneWithoutTransparencyRunsNoTransparentPassOrCfb) {
+    std::string model = std::string(CBR_ASSIMP_MODELS) + "/glTF2/BoxTextured-glTF/BoxTextured.gltf";
+    for (const char* pipeline : {"forward", "deferred"}) {
+        auto r = run(std::string("def-gltf-") + pipeline, {"--scene", model, "--path", "orbit", "--res", "96x64",
+                                                           "--frames", "3", "--variants", allVariants(), "--pipeline",
+                                                           pipeline});
+        ASSERT_EQ(r.result.exit_code, 0) << r.result.err;
+        for (const auto& v : r.run["variants"]) {
+            EXPECT_FALSE(ran(v, "transparent")) << v["name"] << " " << pipeline;
+            EXPECT_FALSE(ran(v, "cfb")) << v["name"] << " " << pipeline;
+        }
+    }
+}
+
+TEST(Deferred, CheckerboardStaticUntexturedEqualsDeferredFull) {
+    auto r = run("def-static", {"--scene", "blocks", "--path", "static", "--res", "128x80", "--frames", "5",
+                                "--variants", "cbr-aso,cbr-cso", "--pipeline", "deferred"});
+    ASSERT_EQ(r.result.exit_code, 0) << r.result.err;
+    for (size_t i = 0; i < r.frames.rows.size(); ++i) {
+        std::string v = r.frames.at(i, "variant");
+        if (v == "full" || r.frames.at(i, "frame") == "0") continue;
+        double psnr = r.frames.at(i, "psnr_db") == "inf" ? INFINITY : std::stod(r.frames.at(i, "psnr_db"));
+        EXPECT_GE(psnr, 60.0) << v << " frame " << r.frames.at(i, "frame");
+    }
+}
+
+}  // namespace
+}  // namespace cbr::test
