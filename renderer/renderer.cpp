@@ -330,7 +330,11 @@ void Renderer::writeUniforms(Slot& slot, const FrameRequest& request, const vari
     u.reproject = glm::mat4(prev_view_proj * glm::inverse(view_proj));  // composed in double
     u.inv_view_proj = glm::mat4(glm::inverse(view_proj));
     u.depth_params = glm::vec4(glm::vec2(depth_ab(request.camera)), glm::vec2(depth_ab(prev)));
-    u.frame_info = glm::uvec4(params.parity, request.history_reset ? 1u : 0u, settings_.width, settings_.height);
+    // Nothing moved (static camera, no moving objects): the reconstruction needs no motion.
+    bool still = !request.history_reset && scene_.cpu->info.animated_instances == 0 &&
+                 request.camera.view == request.prev_camera.view && request.camera.fov_y_rad == request.prev_camera.fov_y_rad;
+    u.frame_info = glm::uvec4(params.parity, request.history_reset ? 1u : still ? 2u : 0u, settings_.width,
+                              settings_.height);
     std::memcpy(slot.frame_ubo.mapped, &u, sizeof(u));
 }
 

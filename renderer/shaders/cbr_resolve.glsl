@@ -82,8 +82,18 @@ vec3 fillFromNeighbours(ivec2 p, int parity, ivec2 size) {
 
 // Frame N's data for a pixel it did not shade: reused from N-1, or filled (with the class).
 vec3 reconstruct(ivec2 p, int parity, ivec2 size, out uint cls) {
-    if (frame.frame_info.y != 0u) {
+    if (frame.frame_info.y == 1u) {
         cls = kReset;
+        return fillFromNeighbours(p, parity, size);
+    }
+    if (frame.frame_info.y == 2u) {
+        // Static camera, no moving objects: no motion work, frame N-1 holds this pixel.
+        ivec3 prev_src = shadedSource(1 - parity, p);
+        if (prev_src.x >= 0) {
+            cls = kReused;
+            return FETCH_PREV_COLOR(prev_src.yz, prev_src.x);
+        }
+        cls = kOffscreen;  // the jitter route's lost column
         return fillFromNeighbours(p, parity, size);
     }
     // Frame N's four cardinal neighbours: all shaded this frame (checkerboard).

@@ -25,7 +25,7 @@ struct FrameUniforms {
     mat4 reproject;        // current unjittered clip -> previous clip (static geometry)
     mat4 inv_view_proj;    // unjittered clip -> world (deferred lighting)
     vec4 depth_params;     // view depth = B / (d + A): x A, y B (current), z A, w B (previous)
-    uvec4 frame_info;      // x parity (0 even, 1 odd), y history reset, z width, w height
+    uvec4 frame_info;      // x parity (0 even, 1 odd), y 0 / 1 history reset / 2 nothing moved, z width, w height
 };
 
 struct MaterialUniforms {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "renderer/variants/variants.h"
 #include "tests/render/bench_runner.h"
@@ -80,6 +81,23 @@ TEST(Deferred, EveryVariantValidatesAndAtriumRunsItsTransparentPasses) {
         bool cbr = v["name"].get<std::string>().rfind("cbr-", 0) == 0;
         EXPECT_TRUE(ran(v, cbr ? "cfb" : "transparent")) << v["name"];
     }
+    // The panes are visible in every variant wherever they are in view: their pass shaded
+    // fragments that passed the depth test against the opaque G-buffer depth in the same
+    // frames as full's (at the end of the flythrough the camera faces the far wall).
+    std::map<std::string, bool> visible_in_full;
+    std::map<std::string, std::map<std::string, bool>> visible;
+    for (size_t i = 0; i < r.frames.rows.size(); ++i) {
+        std::string v = r.frames.at(i, "variant");
+        bool cbr = v.rfind("cbr-", 0) == 0;
+        std::string col = cbr ? "fs_invocations_cfb" : "fs_invocations_transparent";
+        visible[v][r.frames.at(i, "frame")] = std::stoll(r.frames.at(i, col)) > 0;
+    }
+    int frames_with_panes = 0;
+    for (const auto& [frame, in_full] : visible["full"]) {
+        frames_with_panes += in_full;
+        for (const auto& [v, by_frame] : visible) EXPECT_EQ(by_frame.at(frame), in_full) << v << " frame " << frame;
+    }
+    EXPECT_GT(frames_with_panes, 0);
     for (size_t i = 0; i < r.summary.rows.size(); ++i) {
         if (r.summary.at(i, "variant") == "full") continue;
         double psnr = std::stod(r.summary.at(i, "psnr_db_mean"));
