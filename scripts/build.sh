@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
-# Configures (once) and builds cbrbench in Release, incrementally, into build/.
+# Configures (once) and builds in Release, incrementally, into build/: every target, or
+# only those named in CBR_BUILD_TARGETS (scripts/bench builds just cbrbench).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${CBR_BUILD_DIR:-$root/build}
 if [[ ! -f "$build/CMakeCache.txt" ]]; then
   cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "$@" >&2
 fi
-cmake --build "$build" -j"$(nproc)" >&2
+targets=()
+for t in ${CBR_BUILD_TARGETS:-}; do targets+=(--target "$t"); done
+cmake --build "$build" -j"$(nproc)" "${targets[@]}" >&2

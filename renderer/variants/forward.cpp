@@ -28,8 +28,8 @@ public:
         color_ = vk::createImage(ctx, {"hdr", kHdrFormat, target,
                                        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | lit});
         depth_ = vk::createImage(ctx, {"depth", kDepthFormat, target,
-                                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
-                                           (deferred_ ? VK_IMAGE_USAGE_SAMPLED_BIT : 0)});
+                                       VkImageUsageFlags(VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT) |
+                                           VkImageUsageFlags(deferred_ ? VK_IMAGE_USAGE_SAMPLED_BIT : 0)});
         if (deferred_) {
             const char* names[3] = {"gb_albedo", "gb_normal", "gb_emissive"};
             vk::Image* targets[3] = {&gbuffer_.albedo, &gbuffer_.normal, &gbuffer_.emissive};
