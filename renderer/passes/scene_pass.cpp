@@ -285,25 +285,15 @@ void destroyScenePipelines(vk::Context& ctx, ScenePipelines& p) {
     p = {};
 }
 
-void addOpaquePass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame) {
-    graph::Pass pass;
-    pass.name = "opaque";
-    pass.uses = {{targets.color, graph::Use::ColorWrite}, {targets.depth, graph::Use::DepthWrite}};
-    if (targets.motion) pass.uses.push_back({targets.motion, graph::Use::ColorWrite});
-    pass.record = [frame, targets](VkCommandBuffer cmd) {
-        forEachLayer(targets, [&](int layer) {
-            beginScene(cmd, *frame, targets, true, layer);
-            if (!frame->scene->opaque.empty()) drawItems(cmd, *frame, frame->scene->opaque, frame->pipelines->opaque);
-            if (!frame->scene->masked.empty()) drawItems(cmd, *frame, frame->scene->masked, frame->pipelines->masked);
-            vkCmdEndRendering(cmd);
-        });
-    };
-    graph.addPass(std::move(pass));
-}
+namespace {
 
-void addGBufferPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame) {
+// Opaque and alpha-tested draws into cleared targets: the `opaque`, `gbuffer` and
+// `analysis` passes differ only in name, pipelines (in `frame`) and targets.
+void addClearedGeometryPass(graph::Graph& graph, const char* name, bool timed, const SceneTargets& targets,
+                            std::shared_ptr<const SceneFrame> frame) {
     graph::Pass pass;
-    pass.name = "gbuffer";
+    pass.name = name;
+    pass.timed = timed;
     pass.uses = {{targets.color, graph::Use::ColorWrite}, {targets.depth, graph::Use::DepthWrite}};
     for (vk::Image* extra : targets.extra)
         if (extra) pass.uses.push_back({extra, graph::Use::ColorWrite});
@@ -319,18 +309,18 @@ void addGBufferPass(graph::Graph& graph, const SceneTargets& targets, std::share
     graph.addPass(std::move(pass));
 }
 
+}  // namespace
+
+void addOpaquePass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame) {
+    addClearedGeometryPass(graph, "opaque", true, targets, std::move(frame));
+}
+
+void addGBufferPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame) {
+    addClearedGeometryPass(graph, "gbuffer", true, targets, std::move(frame));
+}
+
 void addAnalysisPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame) {
-    graph::Pass pass;
-    pass.name = "analysis";
-    pass.timed = false;
-    pass.uses = {{targets.color, graph::Use::ColorWrite}, {targets.depth, graph::Use::DepthWrite}};
-    pass.record = [frame, targets](VkCommandBuffer cmd) {
-        beginScene(cmd, *frame, targets, true, -1);
-        if (!frame->scene->opaque.empty()) drawItems(cmd, *frame, frame->scene->opaque, frame->pipelines->opaque);
-        if (!frame->scene->masked.empty()) drawItems(cmd, *frame, frame->scene->masked, frame->pipelines->masked);
-        vkCmdEndRendering(cmd);
-    };
-    graph.addPass(std::move(pass));
+    addClearedGeometryPass(graph, "analysis", false, targets, std::move(frame));
 }
 
 void addTransparentPass(graph::Graph& graph, const SceneTargets& targets, std::shared_ptr<const SceneFrame> frame,

@@ -6,12 +6,7 @@
 
 namespace cbr::passes {
 
-struct Tonemap {
-    vk::ComputeKernel kernel;
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    VkDescriptorSet set = VK_NULL_HANDLE;
-    VkSampler sampler = VK_NULL_HANDLE;
-};
+using Tonemap = vk::ImageKernel;
 
 Tonemap createTonemap(vk::Context& ctx, vk::Image& hdr, vk::Image& display);
 void destroyTonemap(vk::Context& ctx, Tonemap& t);

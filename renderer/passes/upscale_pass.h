@@ -9,12 +9,7 @@ namespace cbr::passes {
 
 enum class UpscaleFilter { Bilinear = 0, CatmullRom = 1 };
 
-struct Upscale {
-    vk::ComputeKernel kernel;
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    VkDescriptorSet set = VK_NULL_HANDLE;
-    VkSampler sampler = VK_NULL_HANDLE;
-};
+using Upscale = vk::ImageKernel;
 
 Upscale createUpscale(vk::Context& ctx, vk::Image& source, vk::Image& target, UpscaleFilter filter);
 void destroyUpscale(vk::Context& ctx, Upscale& u);
@@ -22,12 +17,7 @@ void addUpscalePass(graph::Graph& graph, const Upscale& u, vk::Image& source, Vk
                     vk::Image& target);
 
 // The `downsample` pass of the supersampled reference: k x k box filter in HDR.
-struct Downsample {
-    vk::ComputeKernel kernel;
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    VkDescriptorSet set = VK_NULL_HANDLE;
-    VkSampler sampler = VK_NULL_HANDLE;
-};
+using Downsample = vk::ImageKernel;
 Downsample createDownsample(vk::Context& ctx, vk::Image& source, vk::Image& target);
 void destroyDownsample(vk::Context& ctx, Downsample& d);
 void addDownsamplePass(graph::Graph& graph, const Downsample& d, vk::Image& source, int factor, vk::Image& target);

@@ -4,6 +4,7 @@
 // edge-crawl metric's motion compensation and disocclusion test (method/metrics.md).
 #extension GL_GOOGLE_include_directive : require
 #include "shared.h"
+#include "motion.glsl"
 
 layout(constant_id = 0) const int ALPHA_MODE = 0;  // 1: alpha-tested (MASK)
 
@@ -25,9 +26,6 @@ void main() {
         if ((material.flags.x & CBR_TEX_BASE_COLOR) != 0u) alpha *= texture(base_color_tex, in_uv).a;
         if (alpha < material.params.z) discard;
     }
-    vec2 ndc = in_clip.xy / in_clip.w;
-    vec2 prev_ndc = in_prev_clip.xy / in_prev_clip.w;
     // Perspective projections put view depth in clip w.
-    vec2 motion = in_prev_clip.w > 0.0 ? (prev_ndc - ndc) * 0.5 * vec2(frame.frame_info.zw) : vec2(1e9);
-    out_analysis = vec4(motion, in_clip.w, in_prev_clip.w);
+    out_analysis = vec4(motionToPrevious(in_clip, in_prev_clip, vec2(frame.frame_info.zw)), in_clip.w, in_prev_clip.w);
 }

@@ -3,6 +3,7 @@
 // does about K times the work for (almost bit-) identical images. Included by
 // scene.frag and scene_motion.frag, which differ only in the motion output.
 #include "shared.h"
+#include "motion.glsl"
 
 // 0 opaque, 1 alpha-tested (MASK), 2 blended (BLEND).
 layout(constant_id = 0) const int ALPHA_MODE = 0;
@@ -10,26 +11,7 @@ layout(constant_id = 0) const int ALPHA_MODE = 0;
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = 1) readonly buffer Lights { GpuLight lights[]; };
 
-layout(set = 1, binding = 0) uniform Material { MaterialUniforms material; };
-layout(set = 1, binding = 1) uniform sampler2D base_color_tex;
-layout(set = 1, binding = 2) uniform sampler2D metallic_roughness_tex;
-layout(set = 1, binding = 3) uniform sampler2D normal_tex;
-layout(set = 1, binding = 4) uniform sampler2D emissive_tex;
-layout(set = 1, binding = 5) uniform sampler2D occlusion_tex;
-
-// Checkerboard MSAA shades per sample: inputs are evaluated at the sample position, which
-// is a full-res pixel centre (cbr_pattern.h).
-#ifdef CBR_SAMPLE_INTERPOLATION
-#define CBR_INTERP sample
-#else
-#define CBR_INTERP
-#endif
-layout(location = 0) CBR_INTERP in vec3 in_world;
-layout(location = 1) CBR_INTERP in vec3 in_normal;
-layout(location = 2) CBR_INTERP in vec2 in_uv;
-
-layout(location = 3) CBR_INTERP in vec4 in_clip;
-layout(location = 4) CBR_INTERP in vec4 in_prev_clip;
+#include "surface.glsl"
 
 layout(location = 0) out vec4 out_color;
 #ifdef CBR_WRITE_MOTION
@@ -37,7 +19,6 @@ layout(location = 0) out vec4 out_color;
 layout(location = 1) out vec2 out_motion;
 #endif
 
-#include "surface.glsl"
 #include "lighting.glsl"
 
 // Test mode (`--debug-shading pixel-id`): the colour encodes the full-res pixel whose
@@ -66,8 +47,6 @@ void main() {
                               surf.emissive);
     out_color = vec4(color, ALPHA_MODE == 2 ? surf.alpha : 1.0);
 #ifdef CBR_WRITE_MOTION
-    vec2 ndc = in_clip.xy / in_clip.w;
-    vec2 prev_ndc = in_prev_clip.xy / in_prev_clip.w;
-    out_motion = in_prev_clip.w > 0.0 ? (prev_ndc - ndc) * 0.5 * vec2(frame.frame_info.zw) : vec2(1e9);
+    out_motion = motionToPrevious(in_clip, in_prev_clip, vec2(frame.frame_info.zw));
 #endif
 }

@@ -1,8 +1,30 @@
-// Material evaluation shared by forward shading and the G-buffer pass: the glTF
-// metallic-roughness inputs at a fragment. The includer declares the material set (set 1)
-// and the inputs in_world, in_normal, in_uv, and ALPHA_MODE.
+// Material evaluation shared by forward shading and the G-buffer pass: the material set,
+// the fragment inputs from scene.vert, and the glTF metallic-roughness inputs at a
+// fragment. The includer declares ALPHA_MODE and includes shared.h first.
 #ifndef CBR_SURFACE_GLSL
 #define CBR_SURFACE_GLSL
+
+layout(set = 1, binding = 0) uniform Material { MaterialUniforms material; };
+layout(set = 1, binding = 1) uniform sampler2D base_color_tex;
+layout(set = 1, binding = 2) uniform sampler2D metallic_roughness_tex;
+layout(set = 1, binding = 3) uniform sampler2D normal_tex;
+layout(set = 1, binding = 4) uniform sampler2D emissive_tex;
+layout(set = 1, binding = 5) uniform sampler2D occlusion_tex;
+
+// Checkerboard MSAA shades per sample: inputs are evaluated at the sample position, which
+// is a full-res pixel centre (cbr_pattern.h).
+#ifdef CBR_SAMPLE_INTERPOLATION
+#define CBR_INTERP sample
+#else
+#define CBR_INTERP
+#endif
+layout(location = 0) CBR_INTERP in vec3 in_world;
+layout(location = 1) CBR_INTERP in vec3 in_normal;
+layout(location = 2) CBR_INTERP in vec2 in_uv;
+
+layout(location = 3) CBR_INTERP in vec4 in_clip;
+layout(location = 4) CBR_INTERP in vec4 in_prev_clip;
+
 
 struct Surface {
     vec3 albedo;

@@ -5,6 +5,7 @@
 
 #include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
+#include "renderer/vk/resources.h"
 
 namespace cbr::vk {
 
@@ -127,6 +128,36 @@ VkSampler createSampler(Context& ctx, VkFilter filter, VkSamplerAddressMode addr
     VkSampler sampler;
     VK_CHECK(vkCreateSampler(ctx.device, &info, nullptr, &sampler));
     return sampler;
+}
+
+ImageKernel createImageKernel(Context& ctx, const uint32_t* spirv, size_t size_bytes, Image& source, Image& target,
+                              uint32_t push_bytes, std::vector<SpecConstant> spec) {
+    ImageKernel k;
+    std::vector<Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+                                     {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
+    k.kernel = createComputeKernel(ctx, spirv, size_bytes, bindings, push_bytes, std::move(spec));
+    k.pool = createPool(ctx, bindings, 1);
+    k.set = allocateSet(ctx, k.pool, k.kernel.set_layout);
+    k.sampler = createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 0.0f);
+    writeImage(ctx, k.set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, source.view,
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, k.sampler);
+    writeImage(ctx, k.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, target.view, VK_IMAGE_LAYOUT_GENERAL);
+    return k;
+}
+
+void destroyImageKernel(Context& ctx, ImageKernel& k) {
+    destroyComputeKernel(ctx, k.kernel);
+    if (k.pool) vkDestroyDescriptorPool(ctx.device, k.pool, nullptr);
+    if (k.sampler) vkDestroySampler(ctx.device, k.sampler, nullptr);
+    k = {};
+}
+
+void dispatchImageKernel(VkCommandBuffer cmd, const ImageKernel& k, const void* push, uint32_t push_bytes,
+                         uint32_t width, uint32_t height) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, k.kernel.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, k.kernel.layout, 0, 1, &k.set, 0, nullptr);
+    vkCmdPushConstants(cmd, k.kernel.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push);
+    vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
 }
 
 }  // namespace cbr::vk

@@ -51,4 +51,21 @@ void destroyComputeKernel(Context& ctx, ComputeKernel& kernel);
 
 VkSampler createSampler(Context& ctx, VkFilter filter, VkSamplerAddressMode address, float max_lod);
 
+struct Image;
+
+// The common image-to-image compute pass: binding 0 samples `source` (nearest, clamped,
+// texelFetch), binding 1 stores to `target` (tone map, upscale, downsample).
+struct ImageKernel {
+    ComputeKernel kernel;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    VkSampler sampler = VK_NULL_HANDLE;
+};
+ImageKernel createImageKernel(Context& ctx, const uint32_t* spirv, size_t size_bytes, Image& source, Image& target,
+                              uint32_t push_bytes, std::vector<SpecConstant> spec = {});
+void destroyImageKernel(Context& ctx, ImageKernel& k);
+// Binds the kernel, pushes `push_bytes` of `push` and dispatches 8x8 groups over width x height.
+void dispatchImageKernel(VkCommandBuffer cmd, const ImageKernel& k, const void* push, uint32_t push_bytes,
+                         uint32_t width, uint32_t height);
+
 }  // namespace cbr::vk

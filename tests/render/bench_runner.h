@@ -121,4 +121,31 @@ inline Csv readCsv(const std::filesystem::path& p) {
 
 inline nlohmann::json readJson(const std::filesystem::path& p) { return nlohmann::json::parse(slurp(p)); }
 
+// A `cbrbench run` with one repetition, one warm-up frame and the validation layer on, in
+// a fresh scratch directory; on success its files are read back.
+struct ValidatedRun {
+    std::filesystem::path dir;
+    BenchResult result;
+    Csv frames, summary;
+    nlohmann::json run;
+    bool validationClean() const {
+        return run["validation"]["errors"] == 0 && run["validation"]["warnings"] == 0;
+    }
+};
+
+inline ValidatedRun runValidated(const std::string& name, const std::vector<std::string>& args) {
+    ValidatedRun r;
+    auto work = scratchDir(name);
+    r.dir = work / "out";
+    std::vector<std::string> all = {"run", "--repeat", "1", "--warmup", "1", "--validate", "--out", r.dir.string()};
+    all.insert(all.end(), args.begin(), args.end());
+    r.result = runBench(all, work);
+    if (r.result.exit_code == 0) {
+        r.frames = readCsv(r.dir / "frames.csv");
+        r.summary = readCsv(r.dir / "summary.csv");
+        r.run = readJson(r.dir / "run.json");
+    }
+    return r;
+}
+
 }  // namespace cbr::test

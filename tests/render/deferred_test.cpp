@@ -11,26 +11,13 @@
 namespace cbr::test {
 namespace {
 
-struct Run {
-    std::filesystem::path dir;
-    BenchResult result;
-    Csv frames, summary;
-    nlohmann::json run;
-};
+using Run = ValidatedRun;
 
+// Every run of these tests must leave the validation layer silent.
 Run run(const std::string& name, std::vector<std::string> args) {
-    Run r;
-    auto work = scratchDir(name);
-    r.dir = work / "out";
-    std::vector<std::string> all = {"run", "--repeat", "1", "--warmup", "1", "--validate", "--out", r.dir.string()};
-    all.insert(all.end(), args.begin(), args.end());
-    r.result = runBench(all, work);
+    Run r = runValidated(name, args);
     if (r.result.exit_code == 0) {
-        r.frames = readCsv(r.dir / "frames.csv");
-        r.summary = readCsv(r.dir / "summary.csv");
-        r.run = readJson(r.dir / "run.json");
-        EXPECT_EQ(r.run["validation"]["errors"], 0) << r.run["validation"]["first_messages"].dump(1);
-        EXPECT_EQ(r.run["validation"]["warnings"], 0) << r.run["validation"]["first_messages"].dump(1);
+        EXPECT_TRUE(r.validationClean()) << r.run["validation"]["first_messages"].dump(1);
     }
     return r;
 }
