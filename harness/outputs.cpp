@@ -83,7 +83,17 @@ nlohmann::json number(const std::optional<double>& v) {
     return *v;
 }
 
-void writeFramesCsv(const std::filesystem::path& file, const RunResults& r, uint32_t width, uint32_t height) {
+// Reports NaNs that reached a table (written as empty cells) instead of hiding them.
+size_t reportNaNs(const reports::CsvTable& table, const char* file) {
+    if (table.nanCells() == 0) return 0;
+    std::string where;
+    for (const auto& w : table.nanWhere()) where += (where.empty() ? "" : ", ") + w;
+    std::fprintf(stderr, "cbrbench: warning: %zu non-finite value(s) written as empty cells in %s (%s)\n",
+                 table.nanCells(), file, where.c_str());
+    return table.nanCells();
+}
+
+size_t writeFramesCsv(const std::filesystem::path& file, const RunResults& r, uint32_t width, uint32_t height) {
     std::vector<std::string> passes = passColumns(r);
     std::vector<std::string> cols = {"variant",      "repeat",        "frame",        "time_s",
                                      "width",        "height",        "render_width", "render_height",
@@ -145,6 +155,7 @@ void writeFramesCsv(const std::filesystem::path& file, const RunResults& r, uint
         table.addRow(m);
     }
     reports::writeTextAtomically(file, table.str());
+    return reportNaNs(table, "frames.csv");
 }
 
 }  // namespace
@@ -262,7 +273,7 @@ std::vector<VariantSummary> summarize(const RunResults& r) {
 
 void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
     const RunResults& r = rc.results;
-    writeFramesCsv(dir / "frames.csv", r, rc.settings.width, rc.settings.height);
+    size_t nan_cells = writeFramesCsv(dir / "frames.csv", r, rc.settings.width, rc.settings.height);
     auto summaries = summarize(r);
 
     std::vector<std::string> passes = passColumns(r);
@@ -312,6 +323,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
         table.addRow(m);
     }
     table.write(dir / "summary.csv");
+    nan_cells += reportNaNs(table, "summary.csv");
 
     using nlohmann::json;
     const auto& d = rc.ctx.description;
@@ -434,6 +446,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
         variants.push_back(v);
     }
     j["variants"] = variants;
+    j["non_finite_cells"] = nan_cells;  // NaNs written as empty CSV cells (0 in a healthy run)
     auto& val = rc.ctx.validation;
     json messages = json::array();
     {

@@ -10,7 +10,10 @@
 namespace cbr::reports {
 
 Cell::Cell(double v) {
-    if (std::isnan(v)) throw std::logic_error("NaN reached a CSV cell: a metric failed to report its reason");
+    if (std::isnan(v)) {
+        nan_ = true;  // empty cell; the table counts it
+        return;
+    }
     if (std::isinf(v)) {
         text_ = v > 0 ? "inf" : "-inf";
         return;
@@ -38,6 +41,10 @@ void CsvTable::addRow(const std::map<std::string, Cell>& row) {
         if (it != row.end()) {
             cells[i] = it->second.text();
             ++used;
+            if (it->second.wasNaN()) {
+                ++nan_cells_;
+                if (nan_where_.size() < 10) nan_where_.push_back(columns_[i] + "@" + std::to_string(rows_.size() + 1));
+            }
         }
     }
     if (used != row.size())

@@ -10,8 +10,8 @@
 namespace cbr::reports {
 
 // A cell: empty, text, or a number. Numbers print with up to 9 significant digits;
-// +inf prints as `inf` (PSNR of identical images); NaN is refused: callers must have
-// decided what a missing number means before it reaches a file.
+// +inf prints as `inf` (PSNR of identical images). A NaN never reaches a file: it becomes
+// an empty cell, flagged, and the table counts it so the run reports it (keep going).
 class Cell {
 public:
     Cell() = default;
@@ -25,9 +25,11 @@ public:
     Cell(unsigned long v) : text_(std::to_string(v)) {}
     Cell(bool v) : text_(v ? "true" : "false") {}
     const std::string& text() const { return text_; }
+    bool wasNaN() const { return nan_; }
 
 private:
     std::string text_;
+    bool nan_ = false;
 };
 
 class CsvTable {
@@ -37,12 +39,17 @@ public:
     void addRow(const std::map<std::string, Cell>& row);
     const std::vector<std::string>& columns() const { return columns_; }
     size_t rows() const { return rows_.size(); }
+    // Cells that were given a NaN (written empty), with "column@row" for the first few.
+    size_t nanCells() const { return nan_cells_; }
+    const std::vector<std::string>& nanWhere() const { return nan_where_; }
     std::string str() const;
     void write(const std::filesystem::path& file) const;
 
 private:
     std::vector<std::string> columns_;
     std::vector<std::vector<std::string>> rows_;
+    size_t nan_cells_ = 0;
+    std::vector<std::string> nan_where_;
 };
 
 // RFC 4180 quoting where needed.

@@ -57,6 +57,7 @@ TEST(RenderVariants, AtriumEveryVariantValidatesCleanly) {
     EXPECT_EQ(r.run["validation"]["enabled"], true);
     EXPECT_EQ(r.run["validation"]["errors"], 0) << r.run["validation"]["first_messages"].dump(1);
     EXPECT_EQ(r.run["validation"]["warnings"], 0) << r.run["validation"]["first_messages"].dump(1);
+    EXPECT_EQ(r.run["non_finite_cells"], 0);
 
     size_t variant_count = variants::allVariants().size();
     EXPECT_EQ(r.summary.rows.size(), variant_count);
