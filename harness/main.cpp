@@ -13,6 +13,7 @@
 #include "metrics/image_io.h"
 #include "reports/report.h"
 #include "metrics/metrics.h"
+#include "harness/compare.h"
 #include "harness/options.h"
 #include "harness/run.h"
 #include "renderer/scene/scene.h"
@@ -82,6 +83,17 @@ int main(int argc, char** argv) {
     auto* report = app.add_subcommand("report", "rebuild DIR/report.html from the files in DIR, without rendering");
     std::string report_dir;
     report->add_option("DIR", report_dir, "a run's output directory")->required();
+    auto* compare = app.add_subcommand("compare", "regression verdicts: CURRENT_DIR against BASELINE_DIR (exit 0 same, "
+                                                   "1 regression, 2 inconclusive with --strict, 3 bad input)");
+    cbr::harness::CompareOptions cmp;
+    compare->add_option("BASELINE_DIR", cmp.baseline_dir, "the baseline run's output directory")->required();
+    compare->add_option("CURRENT_DIR", cmp.current_dir, "the current run's output directory (gets compare.*)")->required();
+    compare->add_option("--threshold", cmp.threshold, "time change that counts (e.g. 3% or 0.03)")->capture_default_str();
+    compare->add_option("--alpha", cmp.alpha, "false discovery rate across cells")->capture_default_str();
+    compare->add_option("--psnr-threshold", cmp.psnr_db, "PSNR change that counts, dB")->capture_default_str();
+    compare->add_option("--ssim-threshold", cmp.ssim, "SSIM change that counts")->capture_default_str();
+    compare->add_option("--eci-threshold", cmp.eci, "relative ECI change that counts")->capture_default_str();
+    compare->add_flag("--strict", cmp.strict, "UNKNOWN cells give exit code 2");
     auto* metric_cost = app.add_subcommand("metric-cost", "benchmark: PSNR, SSIM and ECI milliseconds per frame");
     std::string cost_res = "1920x1080";
     int cost_frames = 10;
@@ -124,6 +136,8 @@ int main(int argc, char** argv) {
     run->add_option("--debug-shading", o.debug_shading,
                     "none, or pixel-id: colours encode the full-res pixel each sample lands on (tests)")
         ->capture_default_str();
+    run->add_option("--debug-slowdown", o.debug_slowdown,
+                    "PASS=PCT: make one pass PCT percent slower with calibrated extra GPU work (tests the detector)");
     run->add_option("--pipeline", o.pipeline, "forward or deferred (G-buffer, lighting resolve)")->capture_default_str();
     run->add_option("--reference", o.reference, "what variants are scored against: full or ssaa")
         ->capture_default_str();
@@ -138,7 +152,8 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "cbrbench: %s (see cbrbench --help)\n", e.what());
-        return kExitBadInput;
+        // compare's callers read exit 2 as "inconclusive": its bad input is 3.
+        return compare->parsed() ? cbr::harness::kCompareBadInput : kExitBadInput;
     }
 
     try {
@@ -158,6 +173,7 @@ int main(int argc, char** argv) {
                 std::printf("%-8s %s\n", std::string(v.name).c_str(), std::string(v.description).c_str());
             return 0;
         }
+        if (*compare) return cbr::harness::runCompare(cmp);
         if (*score) return scoreImages(score_ref, score_img, score_crop);
         if (*report) {
             if (!std::filesystem::is_directory(report_dir))

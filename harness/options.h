@@ -31,6 +31,7 @@ struct RunOptions {
     std::string cso_mode = "relative";
     std::string debug_shading = "none";  // none | pixel-id
     std::string pipeline = "forward";    // forward | deferred
+    std::string debug_slowdown;          // PASS=PCT: a known slowdown for testing regression detection
     std::string reference = "full";      // full | ssaa: what variants are scored against
     int ssaa = 4;                        // k x k samples per pixel of the ssaa reference
     std::vector<std::string> argv;    // the command line, for run.json

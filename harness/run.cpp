@@ -111,6 +111,21 @@ Prepared prepare(const RunOptions& o) {
     if (o.debug_shading != "none" && o.debug_shading != "pixel-id")
         throw std::invalid_argument("--debug-shading " + o.debug_shading + ": expected none or pixel-id");
     p.settings.debug_pixel_id = o.debug_shading == "pixel-id";
+    if (!o.debug_slowdown.empty()) {
+        size_t eq = o.debug_slowdown.find('=');
+        std::string pass = eq == std::string::npos ? "" : o.debug_slowdown.substr(0, eq);
+        std::string pct = eq == std::string::npos ? "" : o.debug_slowdown.substr(eq + 1);
+        if (!pct.empty() && pct.back() == '%') pct.pop_back();
+        char* end = nullptr;
+        double value = pct.empty() ? -1 : std::strtod(pct.c_str(), &end);
+        if (pass.empty() || !end || *end != '\0' || !(value >= 0 && value <= 1000))
+            throw std::invalid_argument("--debug-slowdown " + o.debug_slowdown +
+                                        ": expected PASS=PCT with a pass name (e.g. opaque) and 0 <= PCT <= 1000");
+        if (value > 0 && o.warmup < 2)
+            throw std::invalid_argument("--debug-slowdown needs --warmup 2 or more (the warm-up calibrates it)");
+        p.settings.debug_slowdown_pass = pass;
+        p.settings.debug_slowdown_pct = value;
+    }
     if (o.pipeline != "forward" && o.pipeline != "deferred")
         throw std::invalid_argument("--pipeline " + o.pipeline + ": expected forward or deferred");
     p.settings.deferred = o.pipeline == "deferred";
@@ -391,6 +406,9 @@ int runBenchmark(const RunOptions& options) {
         }
     }
     results.worst_files = scorer.finish(out.path());
+    // Descriptions again: some (the calibrated debug slowdown) are known only after warm-up.
+    for (size_t vi = 0; vi < p.order.size(); ++vi)
+        if (renderers[vi]) results.variants[vi].description = renderers[vi]->describe();
     if (p.poses.size() >= 3 && moving(p.poses, mid))
         for (size_t vi = 0; vi < p.order.size(); ++vi)
             if (!(p.order[vi]->name == "full" && full_is_reference) && mid_images[vi] && reference_frames[mid - 1] && reference_frames[mid] && reference_frames[mid + 1])

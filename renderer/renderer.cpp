@@ -10,8 +10,19 @@
 #include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
 #include "renderer/vk/pipelines.h"
+#include "shaders/spin.comp.h"
 
 namespace cbr::render {
+namespace {
+
+constexpr uint32_t kSpinCalibration = 1u << 15;  // iterations timed during warm-up
+
+double medianOf(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+}  // namespace
 
 glm::dmat4 projection(double fov_y_rad, double aspect, double near, double far) {
     // Reversed Z, finite far: depth = near at 1, far at 0; float depth keeps precision
@@ -76,6 +87,15 @@ Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants:
         passes::ScenePipelineDesc desc;
         desc.analysis = true;
         analysis_pipelines_ = passes::createScenePipelines(ctx, scene, desc);
+    }
+
+    if (!settings.debug_slowdown_pass.empty() && settings.debug_slowdown_pct > 0) {
+        std::vector<vk::Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+        spin_ = vk::createComputeKernel(ctx, kSpirv_spin_comp, sizeof(kSpirv_spin_comp), bindings, sizeof(uint32_t));
+        spin_pool_ = vk::createPool(ctx, bindings, 1);
+        spin_set_ = vk::allocateSet(ctx, spin_pool_, spin_.set_layout);
+        spin_sink_ = vk::createBuffer(ctx, 64 * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+        vk::writeBuffer(ctx, spin_set_, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, spin_sink_.buffer, 0, VK_WHOLE_SIZE);
     }
 
     int n = std::max(1, settings.frames_in_flight);
@@ -147,6 +167,9 @@ Renderer::~Renderer() {
     }
     vkDestroyDescriptorPool(ctx_.device, frame_pool_, nullptr);
     vk::destroyBuffer(ctx_, lights_);
+    vk::destroyComputeKernel(ctx_, spin_);
+    if (spin_pool_) vkDestroyDescriptorPool(ctx_.device, spin_pool_, nullptr);
+    vk::destroyBuffer(ctx_, spin_sink_);
     passes::destroyScenePipelines(ctx_, analysis_pipelines_);
     vk::destroyImage(ctx_, analysis_);
     vk::destroyImage(ctx_, analysis_depth_);
@@ -160,6 +183,7 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
     if (slot.in_flight) {
         done.push_back(collect(slot));
         updateScale(done.back());
+        calibrateSlowdown(done.back());
     }
 
     auto frame = std::make_shared<passes::SceneFrame>();
@@ -201,12 +225,44 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
         }
     }
     writeUniforms(slot, request, setup.params);
+    if (spin_.pipeline) {
+        // Warm-up frames time the spin on its own (a pass kept despite writing no image);
+        // measured frames run the calibrated amount inside the chosen pass.
+        bool calibrating = request.index < 0;
+        uint32_t iterations =
+            calibrating ? kSpinCalibration * uint32_t(1 + (calibration_frames_++ & 1)) : spin_iterations_;
+        auto spin = [this, iterations](VkCommandBuffer cmd) {
+            // The sink is rewritten every frame: order the writes (no image, so not the graph's).
+            VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+            b.srcStageMask = b.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+            b.srcAccessMask = b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+            dep.memoryBarrierCount = 1;
+            dep.pMemoryBarriers = &b;
+            vkCmdPipelineBarrier2(cmd, &dep);
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, spin_.pipeline);
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, spin_.layout, 0, 1, &spin_set_, 0, nullptr);
+            vkCmdPushConstants(cmd, spin_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(iterations), &iterations);
+            vkCmdDispatch(cmd, 1, 1, 1);
+        };
+        if (calibrating) {
+            graph::Pass pass;
+            pass.name = iterations == kSpinCalibration ? "debug_spin_1" : "debug_spin_2";
+            pass.graphics = false;
+            pass.keep = true;
+            pass.record = spin;
+            graph.addPass(std::move(pass));
+        } else if (iterations > 0) {
+            graph.addWorkAfter(settings_.debug_slowdown_pass, spin);
+        }
+    }
 
     VK_CHECK(vkResetCommandBuffer(slot.cmd, 0));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(slot.cmd, &begin));
     slot.recorded = graph.record(slot.cmd, slot.queries);
+    if (slot.recorded.extra_work_recorded) slowdown_applied_ = true;
     {
         // The host reads copies and counters after the fence: make the writes visible to it.
         VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
@@ -239,6 +295,7 @@ std::vector<FrameResult> Renderer::finish() {
         if (slot.in_flight) {
             done.push_back(collect(slot));
             updateScale(done.back());
+            calibrateSlowdown(done.back());
         }
     }
     return done;
@@ -336,6 +393,29 @@ void Renderer::writeUniforms(Slot& slot, const FrameRequest& request, const vari
     u.frame_info = glm::uvec4(params.parity, request.history_reset ? 1u : still ? 2u : 0u, settings_.width,
                               settings_.height);
     std::memcpy(slot.frame_ubo.mapped, &u, sizeof(u));
+}
+
+void Renderer::calibrateSlowdown(const FrameResult& warmup) {
+    if (!spin_.pipeline || warmup.index >= 0) return;
+    for (const auto& p : warmup.passes) {
+        if (p.name == settings_.debug_slowdown_pass) pass_ms_.push_back(p.gpu_ms);
+        if (p.name == "debug_spin_1") spin_ms_[0].push_back(p.gpu_ms);
+        if (p.name == "debug_spin_2") spin_ms_[1].push_back(p.gpu_ms);
+    }
+    // The spin is a dependent loop: time = fixed dispatch cost + slope x iterations.
+    double pass = medianOf(pass_ms_);
+    double slope = (medianOf(spin_ms_[1]) - medianOf(spin_ms_[0])) / double(kSpinCalibration);
+    if (pass > 0 && slope > 0)
+        spin_iterations_ = uint32_t(std::min(4.0e9, settings_.debug_slowdown_pct / 100.0 * pass / slope));
+}
+
+std::vector<std::pair<std::string, std::string>> Renderer::describe() const {
+    auto d = variant_->describe();
+    if (spin_.pipeline)
+        d.push_back({"debug_slowdown", settings_.debug_slowdown_pass + " +" + std::to_string(settings_.debug_slowdown_pct) +
+                                           "%: " + std::to_string(spin_iterations_) + " spin iterations" +
+                                           (slowdown_applied_ ? "" : " (pass not in this variant: not applied)")});
+    return d;
 }
 
 void Renderer::updateScale(const FrameResult& result) {

@@ -7,6 +7,7 @@
 
 #include "renderer/gpu/gpu_scene.h"
 #include "renderer/passes/scene_pass.h"
+#include "renderer/vk/pipelines.h"
 #include "renderer/settings.h"
 #include "renderer/variants/variants.h"
 #include "renderer/vk/resources.h"
@@ -29,13 +30,26 @@ public:
     // Waits for every frame in flight and returns them.
     std::vector<FrameResult> finish();
     double currentScale() const { return scale_; }
-    std::vector<std::pair<std::string, std::string>> describe() const { return variant_->describe(); }
+    std::vector<std::pair<std::string, std::string>> describe() const;
 
 private:
     struct Slot;
     FrameResult collect(Slot& slot);
     void updateScale(const FrameResult& result);
     void writeUniforms(Slot& slot, const FrameRequest& request, const variants::FrameParams& params);
+    void calibrateSlowdown(const FrameResult& warmup);
+
+    // --debug-slowdown: the spin kernel and its calibration from warm-up frames.
+    vk::ComputeKernel spin_;
+    VkDescriptorPool spin_pool_ = VK_NULL_HANDLE;
+    VkDescriptorSet spin_set_ = VK_NULL_HANDLE;
+    vk::Buffer spin_sink_;
+    // Warm-up samples: the pass, and the spin at kSpinCalibration and twice as many
+    // iterations (the slope excludes the dispatch's fixed cost).
+    std::vector<double> pass_ms_, spin_ms_[2];
+    int calibration_frames_ = 0;
+    uint32_t spin_iterations_ = 0;          // applied in measured frames
+    bool slowdown_applied_ = false;
 
     // The untimed analysis pass (motion and depths at output size, for the crawl metric).
     vk::Image analysis_, analysis_depth_;

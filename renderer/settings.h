@@ -39,6 +39,10 @@ struct Settings {
     bool debug_pixel_id = false;     // colours encode the full-res pixel each sample lands on
     bool analysis = false;           // quality frames also read back motion and depths (edge crawl)
     int supersample = 1;             // the supersampled reference: k x k samples per output pixel
+    // --debug-slowdown PASS=PCT: PASS made PCT percent more expensive by calibrated extra
+    // GPU work inside its timestamps (needs warm-up frames to calibrate).
+    std::string debug_slowdown_pass;
+    double debug_slowdown_pct = 0;
 };
 
 struct Camera {

@@ -101,6 +101,7 @@ RecordedFrame Graph::record(VkCommandBuffer cmd, const QueryPools& queries) {
         if (!p.timed && std::none_of(p.uses.begin(), p.uses.end(),
                                      [](const auto& u) { return stateFor(u.second).writes; }))
             feeds = true;  // readback-like passes consume the outputs themselves
+        if (p.keep) feeds = true;
         if (!feeds) continue;
         keep[i] = true;
         for (const auto& [image, use] : p.uses)
@@ -130,6 +131,11 @@ RecordedFrame Graph::record(VkCommandBuffer cmd, const QueryPools& queries) {
         bool stats = p.timed && p.graphics && queries.statistics;
         if (stats) vkCmdBeginQuery(cmd, queries.statistics, stamp - 1, 0);
         p.record(cmd);
+        for (auto& [name, work] : extra_work_)
+            if (name == p.name) {
+                work(cmd);
+                out.extra_work_recorded = true;
+            }
         if (stats) vkCmdEndQuery(cmd, queries.statistics, stamp - 1);
         if (!p.timed) continue;
         // All commands of this pass complete before its end stamp: chained stamps give

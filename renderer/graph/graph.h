@@ -31,6 +31,7 @@ struct Pass {
     std::function<void(VkCommandBuffer)> record;
     bool graphics = true;  // graphics passes report fragment-shader invocations
     bool timed = true;     // untimed passes (readback) run after the last timestamp
+    bool keep = false;     // never culled (side effects outside the tracked images)
 };
 
 // Per-slot query pools: timestamps (kMaxPasses + 1) and pipeline statistics (kMaxPasses).
@@ -50,6 +51,7 @@ struct RecordedFrame {
     std::vector<std::string> timed_passes;  // in execution order; stamp i+1 ends pass i
     std::vector<bool> graphics;             // per timed pass: has a statistics query
     std::vector<LeftOut> left_out;          // never declared (scene/variant) or culled
+    bool extra_work_recorded = false;       // addWorkAfter found its pass
 };
 
 class Graph {
@@ -61,6 +63,11 @@ public:
     }
     // The images the caller wants; every kept pass must feed one of them.
     void setOutputs(std::vector<vk::Image*> outputs) { outputs_ = std::move(outputs); }
+    // Extra commands recorded right after the named pass, inside its timestamps
+    // (`--debug-slowdown`). Returns false when the frame has no such pass.
+    void addWorkAfter(std::string pass, std::function<void(VkCommandBuffer)> work) {
+        extra_work_.emplace_back(std::move(pass), std::move(work));
+    }
 
     RecordedFrame record(VkCommandBuffer cmd, const QueryPools& queries);
 
@@ -68,6 +75,7 @@ private:
     std::vector<Pass> passes_;
     std::vector<vk::Image*> outputs_;
     std::vector<LeftOut> left_out_;
+    std::vector<std::pair<std::string, std::function<void(VkCommandBuffer)>>> extra_work_;
 };
 
 // Emits the barrier that makes `image` ready for `use` and updates its tracked state.
