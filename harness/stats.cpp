@@ -57,3 +57,88 @@ Interval bootstrapMedianOverRuns(const std::vector<std::vector<double>>& runs, i
 }
 
 }  // namespace cbr::harness
+
+namespace cbr::harness {
+
+namespace {
+
+// Above this many values in all the exact count table gets large; normal approximation.
+constexpr size_t kExactLimit = 60;
+
+double normalTail(double z) { return 0.5 * std::erfc(z / std::sqrt(2.0)); }
+
+}  // namespace
+
+double mannWhitneyMinP(int nx, int ny) {
+    if (nx <= 0 || ny <= 0) return 1.0;
+    // C(nx + ny, nx) as a double: exact enough for the sizes this is used with.
+    double combos = 1;
+    for (int i = 1; i <= nx; ++i) combos = combos * double(ny + i) / double(i);
+    return std::min(1.0, 2.0 / combos);
+}
+
+double mannWhitneyTwoSided(const std::vector<double>& x, const std::vector<double>& y) {
+    const size_t nx = x.size(), ny = y.size(), n = nx + ny;
+    if (nx == 0 || ny == 0) return 1.0;
+    // Midranks, doubled so ties stay integers: rank r (1-based) of a group spanning
+    // sorted positions [i, j) is (i + 1 + j), i.e. twice the mean rank.
+    std::vector<std::pair<double, int>> all;
+    for (double v : x) all.push_back({v, 0});
+    for (double v : y) all.push_back({v, 1});
+    std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<int> rank2(n);
+    std::vector<int> is_x(n);
+    double tie_term = 0;  // sum of t^3 - t over tie groups
+    for (size_t i = 0; i < n;) {
+        size_t j = i;
+        while (j < n && all[j].first == all[i].first) ++j;
+        for (size_t k = i; k < j; ++k) rank2[k] = int(i + 1 + j), is_x[k] = all[k].second == 0;
+        double t = double(j - i);
+        tie_term += t * t * t - t;
+        i = j;
+    }
+    long w2 = 0;  // doubled rank sum of x
+    for (size_t k = 0; k < n; ++k)
+        if (is_x[k]) w2 += rank2[k];
+
+    if (n <= kExactLimit) {
+        // ways[k][s]: subsets of k values whose doubled ranks sum to s. Counts reach
+        // C(60, 30) ~ 1.2e17, so doubles (exact to 2^53, relative 1e-16 above) suffice.
+        const long max_sum = long(n) * long(n + 1);
+        std::vector<std::vector<double>> ways(nx + 1, std::vector<double>(size_t(max_sum + 1), 0.0));
+        ways[0][0] = 1;
+        for (size_t item = 0; item < n; ++item)
+            for (size_t k = std::min(nx, item + 1); k >= 1; --k)
+                for (long s = max_sum; s >= rank2[item]; --s) ways[k][size_t(s)] += ways[k - 1][size_t(s - rank2[item])];
+        double total = 0, low = 0, high = 0;
+        for (long s = 0; s <= max_sum; ++s) {
+            double c = ways[nx][size_t(s)];
+            total += c;
+            if (s <= w2) low += c;
+            if (s >= w2) high += c;
+        }
+        return std::min(1.0, 2.0 * std::min(low, high) / total);
+    }
+    double u = double(w2) / 2.0 - double(nx) * double(nx + 1) / 2.0;
+    double mu = double(nx) * double(ny) / 2.0;
+    double var = double(nx) * double(ny) / 12.0 * (double(n + 1) - tie_term / (double(n) * double(n - 1)));
+    if (var <= 0) return 1.0;
+    double z = (std::abs(u - mu) - 0.5) / std::sqrt(var);
+    return std::min(1.0, 2.0 * normalTail(std::max(z, 0.0)));
+}
+
+std::vector<double> benjaminiHochberg(const std::vector<double>& p) {
+    const size_t m = p.size();
+    std::vector<size_t> order(m);
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return p[a] < p[b]; });
+    std::vector<double> q(m);
+    double running = 1.0;
+    for (size_t i = m; i-- > 0;) {
+        running = std::min(running, p[order[i]] * double(m) / double(i + 1));
+        q[order[i]] = std::min(1.0, running);
+    }
+    return q;
+}
+
+}  // namespace cbr::harness

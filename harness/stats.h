@@ -23,4 +23,18 @@ struct Interval {
 Interval bootstrapMedianOverRuns(const std::vector<std::vector<double>>& runs, int resamples = 2000,
                                  double confidence = 0.95, uint64_t seed = 0x5eed);
 
+// Mann-Whitney U test, two-sided, of x against y (regression verdicts, method/timing.md).
+// Exact: the permutation distribution of the rank sum of x, midranks for ties, counted
+// by dynamic programming over all C(n, nx) splits (what scipy's method='exact' gives
+// without ties). Used up to 60 values in all; above that the normal approximation with
+// tie correction and continuity correction. p = min(1, 2 min(P(W <= w), P(W >= w))).
+// 1.0 when either side is empty.
+double mannWhitneyTwoSided(const std::vector<double>& x, const std::vector<double>& y);
+// The smallest two-sided p any nx vs ny comparison can reach (complete separation):
+// 2 / C(nx + ny, nx). With 3 vs 3 it is 0.1, so no such cell can pass alpha 0.05.
+double mannWhitneyMinP(int nx, int ny);
+// Benjamini-Hochberg adjusted p-values (q-values), in the input's order: q_(i) =
+// min over j >= i of p_(j) m / j on the ascending order, capped at 1.
+std::vector<double> benjaminiHochberg(const std::vector<double>& p);
+
 }  // namespace cbr::harness

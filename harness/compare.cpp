@@ -1,0 +1,407 @@
+// `cbrbench compare`: per-cell time and quality verdicts between a baseline and a current run.
+#include "harness/compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/stats.h"
+#include "reports/csv.h"
+#include "reports/html.h"
+#include "reports/report_data.h"
+
+namespace cbr::harness {
+
+namespace {
+
+namespace fs = std::filesystem;
+using reports::RunData;
+
+// The rule, stated once: the comment, compare.html and the README say the same.
+constexpr const char* kTimeRule =
+    "Per cell the samples are the per-repetition medians of gpu_ms (frames.csv rows with status ok). "
+    "UNKNOWN when either side has fewer than 3 repetitions, when the noise (coefficient of variation of "
+    "the per-repetition medians, the larger of the two sides) exceeds the threshold, or when the "
+    "repetitions cannot reach significance at all (smallest exact two-sided p, 2/C(n1+n2,n1), not below "
+    "alpha: 3 vs 3 gives 0.1). Otherwise a two-sided exact Mann-Whitney U p-value per cell, "
+    "Benjamini-Hochberg adjusted across the cells tested (q). SLOWER or FASTER only when q < alpha AND "
+    "|change| > threshold AND |change| > noise, change = median(current)/median(baseline) - 1 over "
+    "the per-repetition medians; else SAME.";
+
+// The settings in run.json that change timings or images: part of a cell's key.
+// (debug_slowdown is left out on purpose: it is how a detector test makes a known regression.)
+const std::vector<std::string> kKeySettings = {"shading_cost", "drr_scale",     "drr_filter",   "cso_tolerance",
+                                               "cso_mode",     "cbr_route",     "cbr_lod_bias", "reference"};
+
+struct Side {
+    RunData data;
+    std::string context;  // scene#hash|path#hash|pipeline|WxH|settings
+    std::string scene, path, pipeline, resolution, settings;
+};
+
+struct Cell {
+    std::string variant;
+    const Side* base = nullptr;
+    const Side* cur = nullptr;
+    std::vector<double> base_reps, cur_reps;  // per-repetition median gpu_ms
+    std::optional<double> base_ms, cur_ms, change, noise, p, q;
+    std::string time_verdict = "UNKNOWN";
+    std::string note;
+    struct Quality {
+        std::optional<double> base, cur, delta;
+        std::string verdict = "n/a";
+    } psnr, ssim, eci;
+};
+
+double parseFraction(const std::string& text, const std::string& option) {
+    std::string t = text;
+    bool pct = !t.empty() && t.back() == '%';
+    if (pct) t.pop_back();
+    size_t used = 0;
+    double v = 0;
+    try {
+        v = std::stod(t, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (t.empty() || used != t.size() || !std::isfinite(v) || v < 0)
+        throw std::invalid_argument("compare: " + option + " '" + text +
+                                    "': accepted: a non-negative percentage such as 3% or a fraction such as 0.03");
+    return pct ? v / 100.0 : v;
+}
+
+std::string jsonString(const nlohmann::json& run, const std::string& pointer) {
+    const nlohmann::json* j = reports::jsonAt(run, pointer);
+    if (!j || j->is_null()) return "";
+    if (j->is_string()) return j->get<std::string>();
+    return j->dump();
+}
+
+Side loadSide(const std::string& dir, const std::string& role) {
+    if (!fs::is_directory(dir))
+        throw std::invalid_argument("compare: " + role + " " + dir + ": not a directory; expected a run's output directory");
+    Side s;
+    try {
+        s.data = reports::loadRun(dir);
+    } catch (const nlohmann::json::exception& e) {
+        throw std::invalid_argument("compare: " + role + " " + (fs::path(dir) / "run.json").string() + ": " + e.what());
+    } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("compare: " + role + " " + e.what());
+    }
+    const auto& run = s.data.run;
+    s.scene = jsonString(run, "/scene/name") + "#" + jsonString(run, "/scene/hash");
+    s.path = jsonString(run, "/path/name") + "#" + jsonString(run, "/path/hash");
+    s.pipeline = jsonString(run, "/settings/pipeline");
+    if (s.pipeline.empty()) s.pipeline = "forward";
+    s.resolution = jsonString(run, "/settings/width") + "x" + jsonString(run, "/settings/height");
+    if (s.resolution == "x")
+        throw std::invalid_argument("compare: " + role + " " + (fs::path(dir) / "run.json").string() +
+                                    ": /settings/width and /settings/height missing; expected a cbrbench run.json");
+    for (const auto& k : kKeySettings) {
+        std::string v = jsonString(run, "/settings/" + k);
+        // Older runs record the reference only under metrics.
+        if (v.empty() && k == "reference") v = jsonString(run, "/metrics/reference_kind");
+        s.settings += (s.settings.empty() ? "" : ";") + k + "=" + v;
+    }
+    s.context = s.scene + "|" + s.path + "|" + s.pipeline + "|" + s.resolution + "|" + s.settings;
+    return s;
+}
+
+std::string deviceText(const RunData& d) {
+    return "'" + jsonString(d.run, "/device/name") + "' driver " + jsonString(d.run, "/device/driver_id") + " " +
+           jsonString(d.run, "/device/driver_version");
+}
+
+std::vector<double> repetitionMedians(const RunData& d, const std::string& variant) {
+    std::map<double, std::vector<double>> by_rep;
+    const auto& f = d.frames;
+    for (size_t r = 0; r < f.rows.size(); ++r) {
+        if (f.text(r, "variant") != variant || f.text(r, "status") != "ok") continue;
+        auto ms = f.num(r, "gpu_ms");
+        auto rep = f.num(r, "repeat");
+        if (ms && rep && std::isfinite(*ms)) by_rep[*rep].push_back(*ms);
+    }
+    std::vector<double> out;
+    for (auto& [rep, v] : by_rep) out.push_back(median(v));
+    return out;
+}
+
+// Higher is better for PSNR and SSIM (absolute threshold), lower for ECI (relative).
+void judgeQuality(Cell::Quality& q, bool higher_better, double threshold, bool relative) {
+    if (!q.base || !q.cur) return;
+    double b = *q.base, c = *q.cur;
+    if (b == c) {  // covers inf == inf (full against itself)
+        q.delta = 0;
+        q.verdict = "SAME";
+        return;
+    }
+    double delta = relative ? (b != 0 ? (c - b) / std::abs(b) : (c > b ? INFINITY : -INFINITY)) : c - b;
+    if (std::isfinite(delta)) q.delta = delta;
+    bool up = c > b;
+    if (std::abs(delta) <= threshold) q.verdict = "SAME";
+    else q.verdict = up == higher_better ? "BETTER" : "WORSE";
+}
+
+std::string num(std::optional<double> v) { return v ? reports::Cell(*v).text() : std::string(); }
+
+const std::vector<std::string> kCsvColumns = {
+    "scene",          "path",           "pipeline",      "variant",      "resolution",    "settings",
+    "baseline_reps",  "current_reps",   "baseline_gpu_ms", "current_gpu_ms", "time_change_pct", "noise_cv_pct",
+    "p_value",        "q_value",        "time_verdict",  "baseline_psnr_db", "current_psnr_db", "psnr_delta_db",
+    "psnr_verdict",   "baseline_ssim",  "current_ssim",  "ssim_delta",   "ssim_verdict",  "baseline_eci",
+    "current_eci",    "eci_change_pct", "eci_verdict",   "note"};
+
+std::optional<double> pct(std::optional<double> fraction) {
+    if (!fraction) return std::nullopt;
+    return *fraction * 100.0;
+}
+
+const Side& sideOf(const Cell& c) { return c.cur ? *c.cur : *c.base; }
+
+std::string verdictClass(const std::string& v) {
+    if (v == "SLOWER" || v == "WORSE") return "bad";
+    if (v == "FASTER" || v == "BETTER") return "good";
+    if (v == "UNKNOWN") return "unk";
+    return "";
+}
+
+std::string compareHtml(const CompareOptions& o, const Side& base, const Side& cur, const std::vector<Cell>& cells,
+                        double threshold, double eci_threshold, const std::string& outcome) {
+    using reports::esc;
+    using reports::fmt;
+    std::ostringstream h;
+    h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>cbrbench compare</title>\n"
+      << "<style>body{font:14px system-ui,sans-serif;margin:2em;max-width:90em}table{border-collapse:collapse}"
+         "td,th{border:1px solid #ccc;padding:3px 6px;text-align:right}td.l,th.l{text-align:left}"
+         ".bad{background:#f8d0d0}.good{background:#d0f0d0}.unk{background:#f4ecc8}code{font-size:90%}</style>"
+         "</head><body>\n";
+    h << "<h1>cbrbench compare: " << esc(outcome) << "</h1>\n";
+    h << "<p>Baseline <code>" << esc(base.data.dir.string()) << "</code> against current <code>"
+      << esc(cur.data.dir.string()) << "</code>, device " << esc(deviceText(cur.data)) << ".</p>\n";
+    h << "<p>Threshold " << fmt(threshold * 100, 2) << "%, alpha " << fmt(o.alpha, 3) << " (false discovery rate), PSNR "
+      << fmt(o.psnr_db, 3) << " dB, SSIM " << fmt(o.ssim, 4) << ", ECI " << fmt(eci_threshold * 100, 2)
+      << "% relative.</p>\n";
+    h << "<h2>Rule</h2><p>" << esc(kTimeRule)
+      << " Quality: PSNR (psnr_db_mean) and SSIM (ssim_mean) BETTER or WORSE when they change by more than their "
+         "absolute thresholds, ECI (lower is better) when it changes by more than its relative threshold; else SAME. "
+         "Runs on different devices or drivers are refused. Exit code 1 for any SLOWER or WORSE cell.</p>\n";
+    h << "<h2>Cells</h2><table><tr><th class=l>variant</th><th class=l>cell</th><th>reps</th><th>baseline ms</th>"
+         "<th>current ms</th><th>change</th><th>noise</th><th>p</th><th>q</th><th>time</th><th>PSNR &Delta; dB</th>"
+         "<th>PSNR</th><th>SSIM &Delta;</th><th>SSIM</th><th>ECI change</th><th>ECI</th><th class=l>note</th></tr>\n";
+    for (const auto& c : cells) {
+        const Side& s = sideOf(c);
+        auto td = [&](const std::string& text) { h << "<td>" << text << "</td>"; };
+        auto verdict = [&](const std::string& v) { h << "<td class=\"" << verdictClass(v) << "\">" << esc(v) << "</td>"; };
+        h << "<tr><td class=l>" << esc(c.variant) << "</td><td class=l><code>" << esc(s.context) << "</code></td>";
+        td(std::to_string(c.base_reps.size()) + " / " + std::to_string(c.cur_reps.size()));
+        td(fmt(c.base_ms, 4));
+        td(fmt(c.cur_ms, 4));
+        td(c.change ? fmt(*c.change * 100, 2) + "%" : reports::kDash);
+        td(c.noise ? fmt(*c.noise * 100, 2) + "%" : reports::kDash);
+        td(fmt(c.p, 4));
+        td(fmt(c.q, 4));
+        verdict(c.time_verdict);
+        td(fmt(c.psnr.delta, 3));
+        verdict(c.psnr.verdict);
+        td(fmt(c.ssim.delta, 4));
+        verdict(c.ssim.verdict);
+        td(c.eci.delta ? fmt(*c.eci.delta * 100, 2) + "%" : reports::kDash);
+        verdict(c.eci.verdict);
+        h << "<td class=l>" << esc(c.note) << "</td></tr>\n";
+    }
+    h << "</table>\n</body></html>\n";
+    return h.str();
+}
+
+// Writes compare.csv and compare.html into the current run's directory and prints a
+// short table; returns the exit code.
+int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, const std::vector<Cell>& cells,
+                 double threshold, double eci_threshold) {
+    bool regression = false, unknown = false, matched = false;
+    for (const auto& c : cells) {
+        regression |= c.time_verdict == "SLOWER" || c.psnr.verdict == "WORSE" || c.ssim.verdict == "WORSE" ||
+                      c.eci.verdict == "WORSE";
+        unknown |= c.time_verdict == "UNKNOWN";
+        matched |= c.base && c.cur;
+    }
+    int code = regression ? kCompareRegression : unknown && o.strict ? kCompareInconclusive : kCompareSame;
+    std::string outcome = regression ? "regression" : unknown ? "no regression found, some cells UNKNOWN" : "no regression";
+
+    reports::CsvTable csv(kCsvColumns);
+    for (const auto& c : cells) {
+        const Side& s = sideOf(c);
+        csv.addRow({{"scene", s.scene},
+                    {"path", s.path},
+                    {"pipeline", s.pipeline},
+                    {"variant", c.variant},
+                    {"resolution", s.resolution},
+                    {"settings", s.settings},
+                    {"baseline_reps", int(c.base_reps.size())},
+                    {"current_reps", int(c.cur_reps.size())},
+                    {"baseline_gpu_ms", num(c.base_ms)},
+                    {"current_gpu_ms", num(c.cur_ms)},
+                    {"time_change_pct", num(pct(c.change))},
+                    {"noise_cv_pct", num(pct(c.noise))},
+                    {"p_value", num(c.p)},
+                    {"q_value", num(c.q)},
+                    {"time_verdict", c.time_verdict},
+                    {"baseline_psnr_db", num(c.psnr.base)},
+                    {"current_psnr_db", num(c.psnr.cur)},
+                    {"psnr_delta_db", num(c.psnr.delta)},
+                    {"psnr_verdict", c.psnr.verdict},
+                    {"baseline_ssim", num(c.ssim.base)},
+                    {"current_ssim", num(c.ssim.cur)},
+                    {"ssim_delta", num(c.ssim.delta)},
+                    {"ssim_verdict", c.ssim.verdict},
+                    {"baseline_eci", num(c.eci.base)},
+                    {"current_eci", num(c.eci.cur)},
+                    {"eci_change_pct", num(pct(c.eci.delta))},
+                    {"eci_verdict", c.eci.verdict},
+                    {"note", c.note}});
+    }
+    fs::path out = o.current_dir;
+    reports::writeTextAtomically(out / "compare.csv", csv.str());
+    reports::writeTextAtomically(out / "compare.html",
+                                 compareHtml(o, base, cur, cells, threshold, eci_threshold, outcome));
+
+    if (!matched)
+        std::fprintf(stderr, "cbrbench: compare: no cell matches (scene, path, pipeline, resolution or settings differ)\n");
+    std::printf("%-10s %6s %10s %10s %8s %7s %7s %-8s %-7s %-7s %-7s\n", "variant", "reps", "base_ms", "cur_ms",
+                "change", "noise", "q", "time", "psnr", "ssim", "eci");
+    for (const auto& c : cells) {
+        auto p2 = [](std::optional<double> v) {
+            char b[32];
+            if (!v) return std::string("-");
+            std::snprintf(b, sizeof b, "%+.1f%%", *v * 100);
+            return std::string(b);
+        };
+        auto f = [](std::optional<double> v, const char* spec) {
+            char b[32];
+            if (!v) return std::string("-");
+            std::snprintf(b, sizeof b, spec, *v);
+            return std::string(b);
+        };
+        std::string reps = std::to_string(c.base_reps.size()) + "/" + std::to_string(c.cur_reps.size());
+        std::printf("%-10s %6s %10s %10s %8s %7s %7s %-8s %-7s %-7s %-7s%s%s\n", c.variant.c_str(), reps.c_str(),
+                    f(c.base_ms, "%.4f").c_str(), f(c.cur_ms, "%.4f").c_str(), p2(c.change).c_str(),
+                    f(pct(c.noise), "%.1f%%").c_str(), f(c.q, "%.3f").c_str(), c.time_verdict.c_str(),
+                    c.psnr.verdict.c_str(), c.ssim.verdict.c_str(), c.eci.verdict.c_str(), c.note.empty() ? "" : "  ",
+                    c.note.c_str());
+    }
+    std::printf("compare: %s (exit %d); %s, %s\n", outcome.c_str(), code, (out / "compare.csv").c_str(),
+                (out / "compare.html").c_str());
+    return code;
+}
+
+}  // namespace
+
+int runCompare(const CompareOptions& o) {
+    double threshold = 0, eci_threshold = 0;
+    std::vector<Cell> cells;
+    Side base, cur;
+    try {
+        threshold = parseFraction(o.threshold, "--threshold");
+        eci_threshold = parseFraction(o.eci, "--eci-threshold");
+        if (!(o.alpha > 0 && o.alpha < 1))
+            throw std::invalid_argument("compare: --alpha " + std::to_string(o.alpha) + ": accepted: 0 < alpha < 1");
+        if (!(o.psnr_db >= 0) || !(o.ssim >= 0))
+            throw std::invalid_argument("compare: --psnr-threshold and --ssim-threshold must be >= 0");
+        base = loadSide(o.baseline_dir, "baseline");
+        cur = loadSide(o.current_dir, "current");
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "cbrbench: %s\n", e.what());
+        return kCompareBadInput;
+    }
+    // Different devices or drivers are never a regression: refuse, naming both.
+    if (deviceText(base.data) != deviceText(cur.data)) {
+        std::fprintf(stderr,
+                     "cbrbench: compare: refusing to compare different devices or drivers: baseline %s, current %s\n",
+                     deviceText(base.data).c_str(), deviceText(cur.data).c_str());
+        return kCompareBadInput;
+    }
+
+    // Cells: baseline variants in order, then those only the current run has.
+    std::vector<std::string> names = base.data.variants;
+    for (const auto& v : cur.data.variants)
+        if (std::find(names.begin(), names.end(), v) == names.end()) names.push_back(v);
+    const bool same_context = base.context == cur.context;
+    for (const auto& v : names) {
+        bool in_base = std::find(base.data.variants.begin(), base.data.variants.end(), v) != base.data.variants.end();
+        bool in_cur = std::find(cur.data.variants.begin(), cur.data.variants.end(), v) != cur.data.variants.end();
+        // Different settings make different cells: each side then stands alone, unmatched.
+        std::vector<std::pair<const Side*, const Side*>> pairs;
+        if (same_context && in_base && in_cur) pairs.push_back({&base, &cur});
+        else {
+            if (in_base) pairs.push_back({&base, nullptr});
+            if (in_cur) pairs.push_back({nullptr, &cur});
+        }
+        for (auto [b, c] : pairs) {
+            Cell cell;
+            cell.variant = v;
+            cell.base = b;
+            cell.cur = c;
+            if (!b || !c) {
+                cell.note = b ? "only in baseline" : "only in current";
+                cells.push_back(cell);
+                continue;
+            }
+            cell.base_reps = repetitionMedians(b->data, v);
+            cell.cur_reps = repetitionMedians(c->data, v);
+            if (!cell.base_reps.empty()) cell.base_ms = median(cell.base_reps);
+            if (!cell.cur_reps.empty()) cell.cur_ms = median(cell.cur_reps);
+            if (cell.base_ms && cell.cur_ms && *cell.base_ms > 0) cell.change = *cell.cur_ms / *cell.base_ms - 1.0;
+            if (cell.base_reps.size() >= 2 && cell.cur_reps.size() >= 2)
+                cell.noise = std::max(coefficientOfVariation(cell.base_reps), coefficientOfVariation(cell.cur_reps));
+            if (cell.base_reps.size() >= 3 && cell.cur_reps.size() >= 3)
+                cell.p = mannWhitneyTwoSided(cell.cur_reps, cell.base_reps);
+            auto quality = [&](Cell::Quality& q, const char* column) {
+                q.base = reports::summaryNum(b->data, v, column);
+                q.cur = reports::summaryNum(c->data, v, column);
+            };
+            quality(cell.psnr, "psnr_db_mean");
+            quality(cell.ssim, "ssim_mean");
+            quality(cell.eci, "eci");
+            judgeQuality(cell.psnr, true, o.psnr_db, false);
+            judgeQuality(cell.ssim, true, o.ssim, false);
+            judgeQuality(cell.eci, false, eci_threshold, true);
+            cells.push_back(cell);
+        }
+    }
+
+    // Benjamini-Hochberg over every cell that got a p-value.
+    std::vector<double> ps;
+    for (const auto& c : cells)
+        if (c.p) ps.push_back(*c.p);
+    auto qs = benjaminiHochberg(ps);
+    size_t qi = 0;
+    for (auto& c : cells) {
+        if (c.p) c.q = qs[qi++];
+        if (!c.base || !c.cur) continue;
+        size_t nb = c.base_reps.size(), nc = c.cur_reps.size();
+        if (nb < 3 || nc < 3) {
+            c.note = "fewer than 3 repetitions (" + std::to_string(nb) + " vs " + std::to_string(nc) + ")";
+        } else if (c.noise && *c.noise > threshold) {
+            c.note = "noise above threshold: more repetitions needed";
+        } else if (mannWhitneyMinP(int(nb), int(nc)) >= o.alpha) {
+            c.note = "too few repetitions to reach alpha";
+        } else {
+            double change = c.change.value_or(0), noise = c.noise.value_or(0);
+            bool significant = c.q && *c.q < o.alpha;
+            if (significant && std::abs(change) > threshold && std::abs(change) > noise)
+                c.time_verdict = change > 0 ? "SLOWER" : "FASTER";
+            else c.time_verdict = "SAME";
+        }
+    }
+    return writeCompare(o, base, cur, cells, threshold, eci_threshold);
+}
+
+}  // namespace cbr::harness

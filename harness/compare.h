@@ -1,0 +1,29 @@
+// `cbrbench compare`: regression verdicts between two run directories (method/timing.md).
+#pragma once
+
+#include <string>
+
+namespace cbr::harness {
+
+struct CompareOptions {
+    std::string baseline_dir;
+    std::string current_dir;
+    std::string threshold = "3%";  // time change that counts, relative ("3%" or 0.03)
+    double alpha = 0.05;           // false discovery rate across cells (Benjamini-Hochberg)
+    double psnr_db = 0.1;          // PSNR change that counts, dB
+    double ssim = 0.001;           // SSIM change that counts, absolute
+    std::string eci = "5%";        // ECI change that counts, relative to the baseline
+    bool strict = false;           // UNKNOWN cells make the exit code 2
+};
+
+inline constexpr int kCompareSame = 0;
+inline constexpr int kCompareRegression = 1;
+inline constexpr int kCompareInconclusive = 2;
+inline constexpr int kCompareBadInput = 3;
+
+// Reads both directories, writes CURRENT_DIR/compare.csv and compare.html (only after
+// every input parsed), prints a short table. Returns one of the kCompare* codes; bad
+// input prints one line on stderr and writes nothing.
+int runCompare(const CompareOptions& o);
+
+}  // namespace cbr::harness

@@ -1,0 +1,170 @@
+// `cbrbench compare` end to end: A/A runs, a synthetic slowdown, refused devices, bad input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "tests/render/bench_runner.h"
+
+namespace fs = std::filesystem;
+using cbr::test::BenchResult;
+using cbr::test::runBench;
+
+namespace {
+
+// Two runs of the same settings, made once for the whole suite (the slow part).
+struct Runs {
+    fs::path work, base, cur;
+    BenchResult base_run, cur_run;
+};
+
+Runs& runs() {
+    static Runs r = [] {
+        Runs x;
+        x.work = cbr::test::scratchDir("compare");
+        x.base = x.work / "base";
+        x.cur = x.work / "cur";
+        std::vector<std::string> args = {"run",    "--scene",  "blocks", "--path",    "orbit", "--res",
+                                         "64x48",  "--frames", "4",      "--repeat", "5",     "--warmup",
+                                         "1",      "--variants", "cbr-cso"};
+        auto a = args, b = args;
+        a.insert(a.end(), {"--out", x.base.string()});
+        b.insert(b.end(), {"--out", x.cur.string()});
+        x.base_run = runBench(a, x.work);
+        x.cur_run = runBench(b, x.work);
+        return x;
+    }();
+    return r;
+}
+
+// A fresh copy of a run directory (each test edits its own).
+fs::path copyRun(const fs::path& from, const std::string& name) {
+    fs::path to = runs().work / name;
+    fs::remove_all(to);
+    fs::copy(from, to, fs::copy_options::recursive);
+    fs::remove(to / "compare.csv");
+    fs::remove(to / "compare.html");
+    return to;
+}
+
+int lines(const std::string& s) {
+    int n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+
+void writeFile(const fs::path& p, const std::string& text) {
+    std::ofstream(p, std::ios::binary) << text;
+}
+
+// Rewrites frames.csv's gpu_ms: `ms` plus a tiny per-repetition offset (low noise).
+void setGpuMs(const fs::path& dir, const std::string& variant, double ms) {
+    auto csv = cbr::test::readCsv(dir / "frames.csv");
+    int c_ms = csv.col("gpu_ms"), c_rep = csv.col("repeat"), c_var = csv.col("variant");
+    std::ostringstream out;
+    for (size_t i = 0; i < csv.header.size(); ++i) out << (i ? "," : "") << csv.header[i];
+    out << "\n";
+    for (auto& row : csv.rows) {
+        if (row[size_t(c_var)] == variant)
+            row[size_t(c_ms)] = std::to_string(ms * (1.0 + 0.001 * std::stod(row[size_t(c_rep)])));
+        for (size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << row[i];
+        out << "\n";
+    }
+    writeFile(dir / "frames.csv", out.str());
+}
+
+void expectBadInput(const BenchResult& r, const fs::path& cur, const std::string& mention) {
+    EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(mention), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(cur / "compare.csv"));
+    EXPECT_FALSE(fs::exists(cur / "compare.html"));
+}
+
+}  // namespace
+
+TEST(Compare, SameSettingsTwiceFindNoChange) {
+    auto& r = runs();
+    ASSERT_EQ(r.base_run.exit_code, 0) << r.base_run.err;
+    ASSERT_EQ(r.cur_run.exit_code, 0) << r.cur_run.err;
+    auto cur = copyRun(r.cur, "aa");
+    auto res = runBench({"compare", r.base.string(), cur.string()}, r.work);
+    EXPECT_EQ(res.exit_code, 0) << res.out << res.err;
+    auto csv = cbr::test::readCsv(cur / "compare.csv");
+    ASSERT_EQ(csv.rows.size(), 2u);  // full and cbr-cso
+    for (size_t i = 0; i < csv.rows.size(); ++i) {
+        std::string v = csv.at(i, "time_verdict");
+        EXPECT_TRUE(v == "SAME" || v == "UNKNOWN") << csv.at(i, "variant") << ": " << v;
+        EXPECT_EQ(csv.at(i, "baseline_reps"), "5");
+        EXPECT_EQ(csv.at(i, "psnr_verdict"), "SAME");
+        EXPECT_EQ(csv.at(i, "ssim_verdict"), "SAME");
+        EXPECT_EQ(csv.at(i, "eci_verdict"), "SAME");
+    }
+    auto html = cbr::test::slurp(cur / "compare.html");
+    EXPECT_NE(html.find("Benjamini-Hochberg"), std::string::npos);
+    EXPECT_EQ(html.find("<script"), std::string::npos);
+    EXPECT_EQ(html.find("http"), std::string::npos);
+    EXPECT_EQ(html.find("<link"), std::string::npos);
+}
+
+TEST(Compare, SyntheticSlowdownIsARegression) {
+    auto& r = runs();
+    ASSERT_EQ(r.base_run.exit_code, 0) << r.base_run.err;
+    auto base = copyRun(r.base, "slow-base"), cur = copyRun(r.cur, "slow-cur");
+    for (const char* v : {"full", "cbr-cso"}) setGpuMs(base, v, 1.0);
+    setGpuMs(cur, "full", 1.0);
+    setGpuMs(cur, "cbr-cso", 1.5);
+    auto res = runBench({"compare", base.string(), cur.string()}, r.work);
+    EXPECT_EQ(res.exit_code, 1) << res.out << res.err;
+    auto csv = cbr::test::readCsv(cur / "compare.csv");
+    ASSERT_EQ(csv.rows.size(), 2u);
+    EXPECT_EQ(csv.at(0, "time_verdict"), "SAME");
+    EXPECT_EQ(csv.at(1, "variant"), "cbr-cso");
+    EXPECT_EQ(csv.at(1, "time_verdict"), "SLOWER");
+    // And the other way round it is faster, no regression.
+    auto res2 = runBench({"compare", cur.string(), base.string()}, r.work);
+    EXPECT_EQ(res2.exit_code, 0) << res2.out << res2.err;
+    EXPECT_EQ(cbr::test::readCsv(base / "compare.csv").at(1, "time_verdict"), "FASTER");
+}
+
+TEST(Compare, DifferentDevicesAreRefused) {
+    auto& r = runs();
+    ASSERT_EQ(r.cur_run.exit_code, 0) << r.cur_run.err;
+    auto cur = copyRun(r.cur, "other-device");
+    auto j = cbr::test::readJson(cur / "run.json");
+    std::string base_name = j["device"]["name"];
+    j["device"]["name"] = "Imaginary GPU 9000";
+    writeFile(cur / "run.json", j.dump(2));
+    auto res = runBench({"compare", r.base.string(), cur.string()}, r.work);
+    expectBadInput(res, cur, "Imaginary GPU 9000");
+    EXPECT_NE(res.err.find(base_name), std::string::npos) << res.err;
+}
+
+TEST(Compare, MissingBaselineIsBadInput) {
+    auto& r = runs();
+    ASSERT_EQ(r.cur_run.exit_code, 0) << r.cur_run.err;
+    auto cur = copyRun(r.cur, "missing-base");
+    auto res = runBench({"compare", (r.work / "no-such-run").string(), cur.string()}, r.work);
+    expectBadInput(res, cur, "no-such-run");
+    // A directory without frames.csv.
+    auto base = copyRun(r.base, "missing-frames");
+    fs::remove(base / "frames.csv");
+    expectBadInput(runBench({"compare", base.string(), cur.string()}, r.work), cur, "frames.csv");
+}
+
+TEST(Compare, MalformedBaselineIsBadInput) {
+    auto& r = runs();
+    ASSERT_EQ(r.cur_run.exit_code, 0) << r.cur_run.err;
+    auto cur = copyRun(r.cur, "malformed-cur");
+    auto base = copyRun(r.base, "malformed-csv");
+    std::ofstream(base / "frames.csv", std::ios::app) << "full,0,1,2\n";  // too few cells
+    expectBadInput(runBench({"compare", base.string(), cur.string()}, r.work), cur, "frames.csv");
+    auto base2 = copyRun(r.base, "malformed-json");
+    writeFile(base2 / "run.json", "{\"device\": ");
+    expectBadInput(runBench({"compare", base2.string(), cur.string()}, r.work), cur, "run.json");
+    // A bad option value is bad input too, exit 3.
+    expectBadInput(runBench({"compare", r.base.string(), cur.string(), "--threshold", "lots"}, r.work), cur,
+                   "--threshold");
+}
