@@ -64,7 +64,7 @@ public:
     // The images the caller wants; every kept pass must feed one of them.
     void setOutputs(std::vector<vk::Image*> outputs) { outputs_ = std::move(outputs); }
     // Extra commands recorded right after the named pass, inside its timestamps
-    // (`--debug-slowdown`). Returns false when the frame has no such pass.
+    // (`--debug-slowdown`); RecordedFrame::extra_work_recorded says whether the pass ran.
     void addWorkAfter(std::string pass, std::function<void(VkCommandBuffer)> work) {
         extra_work_.emplace_back(std::move(pass), std::move(work));
     }

@@ -12,6 +12,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 namespace cbr::test {
@@ -122,7 +123,8 @@ inline Csv readCsv(const std::filesystem::path& p) {
 inline nlohmann::json readJson(const std::filesystem::path& p) { return nlohmann::json::parse(slurp(p)); }
 
 // A `cbrbench run` with one repetition, one warm-up frame and the validation layer on, in
-// a fresh scratch directory; on success its files are read back.
+// a fresh scratch directory; on success its files are read back, and the calling test
+// fails unless the validation layer stayed silent.
 struct ValidatedRun {
     std::filesystem::path dir;
     BenchResult result;
@@ -144,6 +146,7 @@ inline ValidatedRun runValidated(const std::string& name, const std::vector<std:
         r.frames = readCsv(r.dir / "frames.csv");
         r.summary = readCsv(r.dir / "summary.csv");
         r.run = readJson(r.dir / "run.json");
+        EXPECT_TRUE(r.validationClean()) << r.run["validation"]["first_messages"].dump(1);
     }
     return r;
 }
