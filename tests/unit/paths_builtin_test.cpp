@@ -1,8 +1,6 @@
 // Built-in camera paths: valid for any bounds, placed sensibly, moving as documented.
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <string>
 #include <tuple>
@@ -10,50 +8,19 @@
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
-#include <nlohmann/json.hpp>
 
 #include "camera_paths/path.h"
+#include "tests/unit/paths_test_util.h"
 
 namespace cbr::paths {
 namespace {
 
-using nlohmann::json;
-
-const std::filesystem::path kExample = std::filesystem::path(CBR_TEST_DATA) / "../../docs/examples/path.json";
 
 const double kNan = std::numeric_limits<double>::quiet_NaN();
 
-json validDoc() {
-    return json::parse(R"({
-      "fps": 30,
-      "keyframes": [
-        {"time": 0, "position": [0, 1, 0], "target": [0, 1, -5]},
-        {"time": 1, "position": [1, 1, 0], "target": [1, 1, -5]},
-        {"time": 2, "position": [2, 1, 0], "orientation": [1, 0, 0, 0]}
-      ]})");
-}
-
-// The error message for a document, or "" when it parses.
-std::filesystem::path writeTemp(const std::string& name, const std::string& text) {
-    const auto file = std::filesystem::temp_directory_path() / ("cbr_paths_test_" + name);
-    std::ofstream(file, std::ios::binary) << text;
-    return file;
-}
-
-glm::dvec3 forwardOf(const CameraPose& pose) { return pose.orientation * glm::dvec3(0, 0, -1); }
-
-bool finite(const CameraPose& p) {
-    const double values[] = {p.position.x,    p.position.y,    p.position.z,    p.orientation.w, p.orientation.x,
-                             p.orientation.y, p.orientation.z, p.fov_y_rad,     p.near,          p.far};
-    return std::all_of(std::begin(values), std::end(values), [](double v) { return std::isfinite(v); });
-}
-
-// Pixel position of a world point at width x height.
-glm::dvec2 project(const CameraPose& pose, const glm::dvec3& point, int width, int height) {
-    const glm::dmat4 proj = glm::perspective(pose.fov_y_rad, double(width) / height, pose.near, pose.far);
-    const glm::dvec4 clip = proj * pose.view() * glm::dvec4(point, 1);
-    return {(clip.x / clip.w * 0.5 + 0.5) * width, (clip.y / clip.w * 0.5 + 0.5) * height};
-}
+using test::finite;
+using test::forwardOf;
+using test::project;
 
 // ---- parsing
 
