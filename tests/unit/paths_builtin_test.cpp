@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "camera_paths/path.h"
