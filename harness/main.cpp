@@ -14,6 +14,7 @@
 #include "reports/report.h"
 #include "metrics/metrics.h"
 #include "harness/compare.h"
+#include "harness/matrix.h"
 #include "harness/options.h"
 #include "harness/run.h"
 #include "renderer/scene/scene.h"
@@ -70,6 +71,46 @@ std::vector<std::string> splitList(const std::string& s) {
     return out;
 }
 
+// The options of `run` and `sweep` (a sweep is a run over configurations).
+void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& variant_list) {
+    cmd->add_option("--scene", o.scene, "procedural scene name or a .gltf/.glb file")->capture_default_str();
+    cmd->add_option("--path", o.path, "built-in path name or a path .json file")->capture_default_str();
+    cmd->add_option("--variants", variant_list, "comma-separated variants (default: all; full always runs)");
+    cmd->add_option("--res", o.resolution, "output resolution WIDTHxHEIGHT")->capture_default_str();
+    cmd->add_option("--frames", o.frames, "frames sampled evenly over the path (0: the path's own length)")
+        ->capture_default_str();
+    cmd->add_option("--repeat", o.repeat, "repetitions of the whole flythrough, variants interleaved")
+        ->capture_default_str();
+    cmd->add_option("--warmup", o.warmup, "untimed warm-up frames per variant and repetition")->capture_default_str();
+    cmd->add_option("--device", o.device, "device index or name substring (default: lavapipe, else the first)");
+    cmd->add_flag("--validate", o.validate, "enable the Khronos validation layer and count its messages");
+    cmd->add_flag("--save-frames", o.save_frames, "save display images as PNG (repetition 0)");
+    cmd->add_option("--out", o.out, "output directory (default out/<scene>-<path>-<date-time>)");
+    cmd->add_option("--drr-scale", o.drr_scale, "drr per-axis render scale in (0, 1]")->capture_default_str();
+    cmd->add_option("--drr-filter", o.drr_filter, "drr upscale filter: bilinear or catmull-rom")->capture_default_str();
+    cmd->add_option("--drr-target-ms", o.drr_target_ms, "dynamic drr: target GPU frame time in ms (0: fixed scale)")
+        ->capture_default_str();
+    cmd->add_option("--shading-cost", o.shading_cost, "fragment shading about K times more expensive, same image")
+        ->capture_default_str();
+    cmd->add_option("--exposure", o.exposure, "exposure multiplier before tone mapping")->capture_default_str();
+    cmd->add_option("--cbr-route", o.cbr_route, "checkerboard route: auto, msaa-jitter, msaa-locations, multiview")
+        ->capture_default_str();
+    cmd->add_option("--cbr-lod-bias", o.cbr_lod_bias, "texture LOD bias of checkerboard scene passes")
+        ->capture_default_str();
+    cmd->add_option("--cso-tolerance", o.cso_tolerance, "cbr-cso depth tolerance (relative, or scene units)")
+        ->capture_default_str();
+    cmd->add_option("--debug-shading", o.debug_shading,
+                    "none, or pixel-id: colours encode the full-res pixel each sample lands on (tests)")
+        ->capture_default_str();
+    cmd->add_option("--debug-slowdown", o.debug_slowdown,
+                    "PASS=PCT: make one pass PCT percent slower with calibrated extra GPU work (tests the detector)");
+    cmd->add_option("--pipeline", o.pipeline, "forward or deferred (G-buffer, lighting resolve)")->capture_default_str();
+    cmd->add_option("--reference", o.reference, "what variants are scored against: full or ssaa")
+        ->capture_default_str();
+    cmd->add_option("--ssaa", o.ssaa, "samples per axis of the ssaa reference (box filter)")->capture_default_str();
+    cmd->add_option("--cso-mode", o.cso_mode, "cbr-cso tolerance mode: relative or absolute")->capture_default_str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -107,42 +148,28 @@ int main(int argc, char** argv) {
 
     cbr::harness::RunOptions o;
     std::string variant_list;
-    run->add_option("--scene", o.scene, "procedural scene name or a .gltf/.glb file")->capture_default_str();
-    run->add_option("--path", o.path, "built-in path name or a path .json file")->capture_default_str();
-    run->add_option("--variants", variant_list, "comma-separated variants (default: all; full always runs)");
-    run->add_option("--res", o.resolution, "output resolution WIDTHxHEIGHT")->capture_default_str();
-    run->add_option("--frames", o.frames, "frames sampled evenly over the path (0: the path's own length)")
-        ->capture_default_str();
-    run->add_option("--repeat", o.repeat, "repetitions of the whole flythrough, variants interleaved")
-        ->capture_default_str();
-    run->add_option("--warmup", o.warmup, "untimed warm-up frames per variant and repetition")->capture_default_str();
-    run->add_option("--device", o.device, "device index or name substring (default: lavapipe, else the first)");
-    run->add_flag("--validate", o.validate, "enable the Khronos validation layer and count its messages");
-    run->add_flag("--save-frames", o.save_frames, "save display images as PNG (repetition 0)");
-    run->add_option("--out", o.out, "output directory (default out/<scene>-<path>-<date-time>)");
-    run->add_option("--drr-scale", o.drr_scale, "drr per-axis render scale in (0, 1]")->capture_default_str();
-    run->add_option("--drr-filter", o.drr_filter, "drr upscale filter: bilinear or catmull-rom")->capture_default_str();
-    run->add_option("--drr-target-ms", o.drr_target_ms, "dynamic drr: target GPU frame time in ms (0: fixed scale)")
-        ->capture_default_str();
-    run->add_option("--shading-cost", o.shading_cost, "fragment shading about K times more expensive, same image")
-        ->capture_default_str();
-    run->add_option("--exposure", o.exposure, "exposure multiplier before tone mapping")->capture_default_str();
-    run->add_option("--cbr-route", o.cbr_route, "checkerboard route: auto, msaa-jitter, msaa-locations, multiview")
-        ->capture_default_str();
-    run->add_option("--cbr-lod-bias", o.cbr_lod_bias, "texture LOD bias of checkerboard scene passes")
-        ->capture_default_str();
-    run->add_option("--cso-tolerance", o.cso_tolerance, "cbr-cso depth tolerance (relative, or scene units)")
-        ->capture_default_str();
-    run->add_option("--debug-shading", o.debug_shading,
-                    "none, or pixel-id: colours encode the full-res pixel each sample lands on (tests)")
-        ->capture_default_str();
-    run->add_option("--debug-slowdown", o.debug_slowdown,
-                    "PASS=PCT: make one pass PCT percent slower with calibrated extra GPU work (tests the detector)");
-    run->add_option("--pipeline", o.pipeline, "forward or deferred (G-buffer, lighting resolve)")->capture_default_str();
-    run->add_option("--reference", o.reference, "what variants are scored against: full or ssaa")
-        ->capture_default_str();
-    run->add_option("--ssaa", o.ssaa, "samples per axis of the ssaa reference (box filter)")->capture_default_str();
-    run->add_option("--cso-mode", o.cso_mode, "cbr-cso tolerance mode: relative or absolute")->capture_default_str();
+    addRunOptions(run, o, variant_list);
+    std::string shard_flag;
+    run->add_option("--shard", shard_flag,
+                    "I/N: run shard I (0-based) of N of a job matrix (comma lists in --scene, --path, --pipeline, "
+                    "--res); a matrix also reads SLURM_ARRAY_TASK_ID/COUNT or GTEST_SHARD_INDEX/TOTAL_SHARDS");
+    auto* plan = app.add_subcommand("plan", "print the job matrix (scene x path x pipeline x resolution) with stable "
+                                            "job ids and shards; takes run's options");
+    int plan_shards = 1;
+    addRunOptions(plan, o, variant_list);
+    plan->add_option("--shards", plan_shards, "number of shards to assign jobs to")->capture_default_str();
+    auto* merge = app.add_subcommand("merge", "merge shard outputs of one plan into one directory (refuses mixed "
+                                              "devices, plans and duplicate jobs)");
+    std::vector<std::string> merge_dirs;
+    std::string merge_out;
+    merge->add_option("DIR", merge_dirs, "shard output directories")->required();
+    merge->add_option("--out", merge_out, "the merged directory (must not exist)")->required();
+    auto* sweep = app.add_subcommand("sweep", "run the variants over swept settings, interleaved in one process; write "
+                                              "sweep.csv and sweep.html (recommended CSO tolerance, quality at equal cost)");
+    addRunOptions(sweep, o, variant_list);
+    sweep->add_option("--param", o.params,
+                      "NAME=LO:HI:log|lin:N or NAME=V1,V2,...; NAME: cso-tolerance, drr-scale, shading-cost (repeatable)")
+        ->required();
 
     try {
         app.parse(argc, argv);
@@ -193,6 +220,14 @@ int main(int argc, char** argv) {
         }
         o.variants = splitList(variant_list);
         o.argv.assign(argv, argv + argc);
+        o.sweep = sweep->parsed();
+        if (*merge) return cbr::harness::mergeRuns(merge_dirs, merge_out);
+        if (*plan) return cbr::harness::printPlan(o, plan_shards);
+        if (*run && (cbr::harness::isMatrix(o) || !shard_flag.empty()))
+            return cbr::harness::runMatrix(o, cbr::harness::resolveShard(shard_flag));
+        if (cbr::harness::isMatrix(o))
+            throw std::invalid_argument("sweep: comma lists in --scene, --path, --pipeline or --res; expected one of "
+                                        "each (a sweep is one job: its configurations are compared with each other)");
         return cbr::harness::runBenchmark(o);
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "cbrbench: %s\n", e.what());

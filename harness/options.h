@@ -1,6 +1,7 @@
 // Every setting of a `cbrbench run`, as parsed from the command line.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,12 @@ struct RunOptions {
     std::string debug_slowdown;          // PASS=PCT: a known slowdown for testing regression detection
     std::string reference = "full";      // full | ssaa: what variants are scored against
     int ssaa = 4;                        // k x k samples per pixel of the ssaa reference
+    // Placement: world' = offset + scale * world, scene and path together (not yet applied).
+    std::string scene_offset;            // "X,Y,Z" ("": none)
+    double scene_scale = 1.0;
+    std::optional<double> near, far;     // every keyframe's clip planes, after placement
+    std::vector<std::string> params;  // `cbrbench sweep --param` specs (empty: a plain run)
+    bool sweep = false;               // write sweep.csv and sweep.html besides the run's files
     std::vector<std::string> argv;    // the command line, for run.json
 };
 

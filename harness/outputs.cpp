@@ -13,6 +13,7 @@
 #include "metrics/metrics.h"
 #include "renderer/vk/context.h"
 #include "reports/csv.h"
+#include "reports/sweep.h"
 
 namespace cbr::harness {
 namespace {
@@ -162,12 +163,16 @@ size_t writeFramesCsv(const std::filesystem::path& file, const RunResults& r, ui
 
 std::vector<VariantSummary> summarize(const RunResults& r) {
     std::vector<VariantSummary> out;
-    // full's per-(repeat, frame) times, for paired ratios.
-    std::map<std::pair<int, int>, double> full_ms;
+    // Each baseline's (full's) per-(repeat, frame) times, for paired ratios; a sweep pairs
+    // each configuration with the full configuration at its shading cost.
+    std::map<std::string, std::map<std::pair<int, int>, double>> baseline_ms;
+    for (const auto& vr : r.variants) baseline_ms[vr.baseline];
     for (const auto& row : r.rows)
-        if (row.variant == "full" && row.status == "ok") full_ms[{row.repeat, row.frame}] = row.gpu_ms;
+        if (row.status == "ok" && baseline_ms.count(row.variant))
+            baseline_ms[row.variant][{row.repeat, row.frame}] = row.gpu_ms;
 
     for (const auto& vr : r.variants) {
+        const auto& full_ms = baseline_ms[vr.baseline];
         VariantSummary s;
         s.variant = vr.name;
         s.status = vr.status;
@@ -227,6 +232,16 @@ std::vector<VariantSummary> summarize(const RunResults& r) {
         for (const auto& rep : per_rep)
             if (!rep.empty()) rep_medians.push_back(median(rep));
         s.noise_cv = coefficientOfVariation(rep_medians);
+        {
+            std::vector<std::vector<double>> rep_ms;
+            for (const auto& rep : per_rep)
+                if (!rep.empty()) rep_ms.push_back(rep);
+            if (rep_ms.size() >= 2) {
+                Interval ci = bootstrapMedianOverRuns(rep_ms);
+                s.gpu_ms_ci_low = ci.low;
+                s.gpu_ms_ci_high = ci.high;
+            }
+        }
         std::vector<double> pooled;
         std::vector<std::vector<double>> runs;
         for (const auto& rr : ratios)
@@ -424,6 +439,13 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                   {"pipeline", rc.settings.deferred ? "deferred" : "forward"},
                   {"passes", passes}};
         if (!vr.note.empty()) v["note"] = vr.note;
+        if (!vr.settings.empty() || vr.variant != vr.name) {
+            v["variant"] = vr.variant;
+            v["speedup_baseline"] = vr.baseline;
+            json set = json::object();
+            for (const auto& [key, value] : vr.settings) set[key] = value;
+            v["settings"] = set;
+        }
         for (const auto& [key, value] : vr.description) v[key] = value;
         if (vr.alignment) {
             const auto& a = *vr.alignment;
@@ -466,11 +488,57 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
     reports::writeTextAtomically(dir / "run.json", j.dump(2) + "\n");
 }
 
+void writeSweepCsv(const std::filesystem::path& dir, const RunContext& rc) {
+    const RunResults& r = rc.results;
+    auto summaries = summarize(r);
+    reports::CsvTable table(reports::sweepColumns());
+    for (size_t i = 0; i < r.variants.size(); ++i) {
+        const auto& vr = r.variants[i];
+        const auto& sm = summaries[i];
+        std::map<std::string, Cell> row{{"config", vr.name},
+                                        {"variant", vr.variant},
+                                        {"pipeline", rc.settings.deferred ? "deferred" : "forward"},
+                                        {"shading_cost", rc.settings.shading_cost},
+                                        {"status", sm.status},
+                                        {"note", sm.note},
+                                        {"frames", sm.frames},
+                                        {"repeats", r.repeats}};
+        if (vr.variant == "drr") row["drr_scale"] = rc.settings.drr_scale;
+        if (vr.variant == "cbr-cso") row["cso_tolerance"] = rc.settings.cso_tolerance;
+        for (const auto& [name, value] : vr.settings) {
+            if (name == "shading-cost") row["shading_cost"] = value;
+            if (name == "drr-scale") row["drr_scale"] = value;
+            if (name == "cso-tolerance") row["cso_tolerance"] = value;
+        }
+        if (sm.frames > 0) {
+            row["gpu_ms_median"] = sm.gpu_ms_median;
+            row["gpu_ms_ci_low"] = optional(sm.gpu_ms_ci_low);
+            row["gpu_ms_ci_high"] = optional(sm.gpu_ms_ci_high);
+            row["noise_cv"] = sm.noise_cv;
+            row["speedup_vs_full"] = optional(sm.speedup);
+            row["speedup_ci_low"] = optional(sm.speedup_low);
+            row["speedup_ci_high"] = optional(sm.speedup_high);
+            row["psnr_db"] = optional(sm.psnr_db);
+            row["ssim"] = optional(sm.ssim_mean);
+            row["eci"] = optional(sm.eci);
+            row["flicker_ratio"] = optional(sm.flicker_ratio_mean);
+            for (const auto& [name, value] : sm.stats_mean)
+                for (const auto& col : reports::sweepColumns())
+                    if (col == name) row[name] = value;
+        }
+        table.addRow(row);
+    }
+    reportNaNs(table, "sweep.csv");
+    table.write(dir / "sweep.csv");
+}
+
 void printSummary(std::ostream& out, const std::filesystem::path& dir, const RunContext& rc) {
     auto summaries = summarize(rc.results);
-    char line[256];
-    std::snprintf(line, sizeof line, "%-10s %-8s %10s %10s %9s %10s %8s %8s\n", "variant", "status", "render",
-                  "gpu_ms", "speedup", "psnr_db", "ssim", "eci");
+    char line[512];
+    int name_width = 10;  // a sweep's configuration labels are longer than variant names
+    for (const auto& s : summaries) name_width = std::max(name_width, int(std::min<size_t>(s.variant.size(), 60)));
+    std::snprintf(line, sizeof line, "%-*s %-8s %10s %10s %9s %10s %8s %8s\n", name_width, "variant", "status",
+                  "render", "gpu_ms", "speedup", "psnr_db", "ssim", "eci");
     out << "cbrbench: " << rc.scene.name << " / " << rc.path.name << " at " << rc.settings.width << "x"
         << rc.settings.height << ", " << rc.results.frames << " frames x " << rc.results.repeats << " repeats on "
         << rc.ctx.description.name << "\n" << line;
@@ -483,7 +551,8 @@ void printSummary(std::ostream& out, const std::filesystem::path& dir, const Run
     };
     for (const auto& s : summaries) {
         std::string render = std::to_string(s.render_width) + "x" + std::to_string(s.render_height);
-        std::snprintf(line, sizeof line, "%-10s %-8s %10s %10s %9s %10s %8s %8s\n", s.variant.c_str(), s.status.c_str(),
+        std::snprintf(line, sizeof line, "%-*s %-8s %10s %10s %9s %10s %8s %8s\n", name_width, s.variant.c_str(),
+                      s.status.c_str(),
                       s.frames ? render.c_str() : "-",
                       s.frames ? fmt(s.gpu_ms_median, "%.3f").c_str() : "-", fmt(s.speedup, "%.3fx").c_str(),
                       fmt(s.psnr_db, "%.2f").c_str(), fmt(s.ssim_mean, "%.4f").c_str(), fmt(s.eci, "%.4f").c_str());

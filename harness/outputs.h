@@ -35,6 +35,7 @@ struct VariantSummary {
     int frames = 0;
     double gpu_ms_median = 0, gpu_ms_p5 = 0, gpu_ms_p95 = 0, gpu_ms_p99 = 0, gpu_ms_mean = 0;
     double noise_cv = 0;  // across repetitions, of each repetition's median
+    std::optional<double> gpu_ms_ci_low, gpu_ms_ci_high;  // 95% bootstrap interval of the median over repetitions
     std::optional<double> speedup, speedup_low, speedup_high;
     std::optional<double> psnr_db, psnr_db_min, psnr_db_p5, ssim_mean, ssim_min, ssim_luma_mean;
     std::optional<double> eci, eci_p95, eci_max, flicker_ratio_mean;
@@ -46,6 +47,8 @@ struct VariantSummary {
 
 std::vector<VariantSummary> summarize(const RunResults& results);
 void writeOutputs(const std::filesystem::path& dir, const RunContext& rc);
+// sweep.csv: one row per configuration (reports/sweep.h sweepColumns()).
+void writeSweepCsv(const std::filesystem::path& dir, const RunContext& rc);
 void printSummary(std::ostream& out, const std::filesystem::path& dir, const RunContext& rc);
 
 }  // namespace cbr::harness

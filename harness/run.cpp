@@ -13,6 +13,7 @@
 #include "harness/outputs.h"
 #include "harness/quality.h"
 #include "harness/results.h"
+#include "harness/sweep.h"
 #include "harness/worker_pool.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
@@ -24,6 +25,7 @@
 #include "renderer/vk/context.h"
 #include "reports/output_dir.h"
 #include "reports/report.h"
+#include "reports/sweep.h"
 
 namespace cbr::harness {
 namespace {
@@ -80,6 +82,15 @@ struct Prepared {
     std::vector<double> times;
     std::vector<paths::CameraPose> poses;
     std::vector<const variants::Variant*> order;
+    // What runs, in order within each repetition: a variant with its settings (a plain
+    // run: one per variant; a sweep: one per configuration).
+    struct Config {
+        const variants::Variant* variant = nullptr;
+        render::Settings settings;
+        SweepConfig sweep;
+    };
+    std::vector<Config> configs;
+    std::vector<SweepParam> params;
     std::filesystem::path out;
 };
 
@@ -159,6 +170,22 @@ Prepared prepare(const RunOptions& o) {
         const variants::Variant& v = variants::findVariant(name);
         if (std::find(p.order.begin(), p.order.end(), &v) == p.order.end()) p.order.push_back(&v);
     }
+    for (const auto& spec : o.params) p.params.push_back(parseSweepParam(spec));
+    std::vector<SweepConfig> configs;
+    if (o.sweep) {
+        configs = expandSweep(p.params, o.variants);
+    } else {
+        for (const auto* v : p.order) configs.push_back({std::string(v->name), {}, std::string(v->name), "full"});
+    }
+    for (auto& sc : configs) {
+        Prepared::Config c{&variants::findVariant(sc.variant), p.settings, sc};
+        for (const auto& s : sc.settings) {
+            if (s.name == "cso-tolerance") c.settings.cso_tolerance = s.value;
+            if (s.name == "drr-scale") c.settings.drr_scale = s.value;
+            if (s.name == "shading-cost") c.settings.shading_cost = int(s.value);
+        }
+        p.configs.push_back(std::move(c));
+    }
 
     p.scene = scene::loadScene(o.scene);
     paths::BuiltinContext bctx;
@@ -172,6 +199,8 @@ Prepared prepare(const RunOptions& o) {
     p.poses = paths::sampleFrames(p.path, o.frames);
     p.out = o.out.empty() ? std::filesystem::path("out") / (stem(o.scene) + "-" + stem(o.path) + "-" + timestampForName())
                           : std::filesystem::path(o.out);
+    if (o.sweep && o.out.empty())
+        p.out = std::filesystem::path("out") / ("sweep-" + stem(o.scene) + "-" + stem(o.path) + "-" + timestampForName());
     if (std::filesystem::exists(p.out))
         throw std::invalid_argument("--out " + p.out.string() + ": already exists; expected a new directory");
     return p;
@@ -218,15 +247,7 @@ AlignmentCheck checkAlignment(const std::vector<uint8_t>& variant, const std::ve
 
 }  // namespace
 
-void parseResolution(const std::string& text, uint32_t& width, uint32_t& height) {
-    unsigned long w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%lu%c%lu%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w == 0 ||
-        h == 0 || w > 65536 || h > 65536)
-        throw std::invalid_argument("--res " + text + ": expected WIDTHxHEIGHT with both at least 1, e.g. 960x540");
-    width = uint32_t(w);
-    height = uint32_t(h);
-}
+void checkRunOptions(const RunOptions& options) { (void)prepare(options); }
 
 int runBenchmark(const RunOptions& options) {
     auto wall_start = std::chrono::steady_clock::now();
@@ -253,9 +274,14 @@ int runBenchmark(const RunOptions& options) {
     RunResults results;
     results.frames = int(p.poses.size());
     results.repeats = options.repeat;
-    for (const auto* v : p.order) {
-        results.order.emplace_back(v->name);
-        results.variants.push_back({std::string(v->name)});
+    for (const auto& c : p.configs) {
+        results.order.push_back(c.sweep.label);
+        VariantRun vr;
+        vr.name = c.sweep.label;
+        vr.variant = c.sweep.variant;
+        vr.baseline = c.sweep.baseline;
+        for (const auto& s : c.sweep.settings) vr.settings.push_back({s.name, s.value});
+        results.variants.push_back(std::move(vr));
     }
 
     const int w = int(p.settings.width), h = int(p.settings.height);
@@ -264,9 +290,9 @@ int runBenchmark(const RunOptions& options) {
     QualityScorer scorer(w, h, p.poses.size(), workers);
     // The alignment check looks at the middle frame of a path of at least 3 frames.
     const size_t mid = p.poses.size() / 2;
-    std::vector<Bytes> mid_images(p.order.size());
+    std::vector<Bytes> mid_images(p.configs.size());
     std::vector<Bytes> reference_frames(p.poses.size());
-    Progress progress(int(p.order.size() * p.poses.size()) * options.repeat +
+    Progress progress(int(p.configs.size() * p.poses.size()) * options.repeat +
                       (options.reference == "ssaa" ? int(p.poses.size()) : 0));
 
     auto request = [&](size_t i, bool readback) {
@@ -311,11 +337,12 @@ int runBenchmark(const RunOptions& options) {
     const bool full_is_reference = options.reference != "ssaa";
 
     // One renderer per variant for the whole run: pipelines and targets are built once.
-    std::vector<std::unique_ptr<render::Renderer>> renderers(p.order.size());
-    for (size_t vi = 0; vi < p.order.size(); ++vi) {
+    std::vector<std::unique_ptr<render::Renderer>> renderers(p.configs.size());
+    for (size_t vi = 0; vi < p.configs.size(); ++vi) {
         VariantRun& vr = results.variants[vi];
         try {
-            renderers[vi] = std::make_unique<render::Renderer>(ctx, gpu_scene, *p.order[vi], p.settings);
+            renderers[vi] = std::make_unique<render::Renderer>(ctx, gpu_scene, *p.configs[vi].variant,
+                                                               p.configs[vi].settings);
             vr.description = renderers[vi]->describe();
         } catch (const vk::Unsupported& e) {
             vr.status = "skipped";
@@ -327,9 +354,9 @@ int runBenchmark(const RunOptions& options) {
     }
 
     for (int rep = 0; rep < options.repeat; ++rep) {
-        for (size_t vi = 0; vi < p.order.size(); ++vi) {
+        for (size_t vi = 0; vi < p.configs.size(); ++vi) {
             VariantRun& vr = results.variants[vi];
-            const std::string name(p.order[vi]->name);
+            const std::string& name = vr.name;
             std::vector<bool> done(p.poses.size(), false);
             auto failRemaining = [&] {
                 // A failed variant becomes rows that say so, not a crash of the run.
@@ -350,7 +377,9 @@ int runBenchmark(const RunOptions& options) {
             }
             render::Renderer& renderer = *renderers[vi];
             bool quality = rep == 0;
-            bool is_reference = name == "full" && full_is_reference;
+            // The first configuration is full: the reference (a sweep's other full
+            // configurations differ only in shading cost and are scored against it).
+            bool is_reference = vi == 0 && full_is_reference;
             auto handle = [&](render::FrameResult&& fr) {
                 FrameRow& row = results.rows.emplace_back();
                 done[size_t(fr.index)] = true;
@@ -407,11 +436,11 @@ int runBenchmark(const RunOptions& options) {
     }
     results.worst_files = scorer.finish(out.path());
     // Descriptions again: some (the calibrated debug slowdown) are known only after warm-up.
-    for (size_t vi = 0; vi < p.order.size(); ++vi)
+    for (size_t vi = 0; vi < p.configs.size(); ++vi)
         if (renderers[vi]) results.variants[vi].description = renderers[vi]->describe();
     if (p.poses.size() >= 3 && moving(p.poses, mid))
-        for (size_t vi = 0; vi < p.order.size(); ++vi)
-            if (!(p.order[vi]->name == "full" && full_is_reference) && mid_images[vi] && reference_frames[mid - 1] && reference_frames[mid] && reference_frames[mid + 1])
+        for (size_t vi = 0; vi < p.configs.size(); ++vi)
+            if (!(vi == 0 && full_is_reference) && mid_images[vi] && reference_frames[mid - 1] && reference_frames[mid] && reference_frames[mid + 1])
                 results.variants[vi].alignment =
                     checkAlignment(*mid_images[vi], *reference_frames[mid - 1], *reference_frames[mid],
                                    *reference_frames[mid + 1], w, h, int(mid));
@@ -422,8 +451,20 @@ int runBenchmark(const RunOptions& options) {
     RunContext rc{options, p.settings, p.scene, p.path, p.times, p.poses, ctx, results};
     writeOutputs(out.path(), rc);
     reports::writeReport(out.path());
+    if (options.sweep) {
+        writeSweepCsv(out.path(), rc);
+        reports::writeSweepReport(out.path());
+    }
     out.commit();
     printSummary(std::cout, out.finalPath(), rc);
+    if (options.sweep) {
+        const auto sweep = reports::loadSweep(out.finalPath());
+        const auto choices = reports::recommendTolerance(sweep.points);
+        for (const auto& c : choices) std::cout << "recommended " << c.sentence << "\n";
+        for (const auto& e : reports::equalCost(sweep.points, choices)) std::cout << "equal cost: " << e.verdict << "\n";
+        std::cout << "sweep: " << (out.finalPath() / "sweep.csv").string() << ", "
+                  << (out.finalPath() / "sweep.html").string() << "\n";
+    }
     return 0;
 }
 

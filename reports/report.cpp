@@ -257,6 +257,14 @@ std::string reportHtml(const std::filesystem::path& run_dir) {
     return html;
 }
 
+std::string pageStart(const std::string& title) {
+    return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+           "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
+           "<title>" + esc(title) + "</title><style>" + kStyle + "</style></head><body><main>";
+}
+
+std::string pageEnd() { return "</main><script>" + std::string(kScript) + "</script></body></html>\n"; }
+
 void writeReport(const std::filesystem::path& run_dir) {
     // Build everything first: a bad input throws before report.html is touched.
     const std::string html = reportHtml(run_dir);

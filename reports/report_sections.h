@@ -10,6 +10,11 @@
 
 namespace cbr::reports {
 
+// report.cpp: the page around the sections (style and the small script), the same for
+// every page the suite writes (report.html, compare.html, sweep.html).
+std::string pageStart(const std::string& title);
+std::string pageEnd();
+
 // report.cpp: provenance, settings, the summary table, passes.
 std::string provenanceSection(const RunData& d);
 std::string summarySection(const RunData& d);

@@ -153,7 +153,8 @@ std::string lineChartSvg(const LineChart& c) {
     Scale ys{lo, hi, f.y0(), f.y1()};
 
     std::string out = svgOpen(f, c.y_label + " per " + c.x_label);
-    gridAndAxes(out, f, xs, ys, integerTicks(xmin, xmax), yticks, c.x_label, c.y_label);
+    gridAndAxes(out, f, xs, ys, c.x_integer ? integerTicks(xmin, xmax) : niceTicks(xmin, xmax, 6), yticks, c.x_label,
+                c.y_label);
     if (any_inf) infinityLane(out, f, lane_y);
 
     size_t points_total = 0;

@@ -22,6 +22,7 @@ struct LineChart {
     std::vector<double> x;
     std::vector<Series> series;
     std::optional<double> y_min, y_max;  // forced bounds, else from the data
+    bool x_integer = true;               // integer x ticks (frames); false: 1-2-5 ticks
 };
 std::string lineChartSvg(const LineChart& chart);
 

@@ -44,10 +44,16 @@ inline std::string shellQuote(const std::string& s) {
     return out + "'";
 }
 
-inline BenchResult runBench(const std::vector<std::string>& args, const std::filesystem::path& cwd) {
+// `env` entries are NAME=VALUE set for cbrbench alone; scheduler shard variables of the
+// test's own environment never reach it.
+inline BenchResult runBench(const std::vector<std::string>& args, const std::filesystem::path& cwd,
+                            const std::vector<std::string>& env = {}) {
     std::string cmd = "cd ";
     cmd += shellQuote(cwd.string());
-    cmd += " && ";
+    cmd += " && env -u SLURM_ARRAY_TASK_ID -u SLURM_ARRAY_TASK_COUNT -u SLURM_ARRAY_TASK_MIN -u GTEST_SHARD_INDEX "
+           "-u GTEST_TOTAL_SHARDS";
+    for (const auto& e : env) cmd += " " + shellQuote(e);
+    cmd += " ";
     cmd += shellQuote(CBR_BENCH_EXE);
     for (const auto& a : args) {
         cmd += ' ';
