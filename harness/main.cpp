@@ -12,6 +12,7 @@
 #include "metrics/cost.h"
 #include "metrics/image_io.h"
 #include "reports/report.h"
+#include "reports/sweep.h"
 #include "metrics/metrics.h"
 #include "harness/compare.h"
 #include "harness/matrix.h"
@@ -205,8 +206,17 @@ int main(int argc, char** argv) {
         if (*report) {
             if (!std::filesystem::is_directory(report_dir))
                 throw std::invalid_argument("report " + report_dir + ": not a directory; expected a run's output directory");
-            cbr::reports::writeReport(report_dir);
-            std::printf("report: %s\n", (std::filesystem::path(report_dir) / "report.html").c_str());
+            const std::filesystem::path dir(report_dir);
+            const bool sweep_dir = std::filesystem::exists(dir / "sweep.csv");
+            // A sweep's directory may be copied without its per-frame files: sweep.html alone.
+            if (!sweep_dir || std::filesystem::exists(dir / "summary.csv")) {
+                cbr::reports::writeReport(dir);
+                std::printf("report: %s\n", (dir / "report.html").c_str());
+            }
+            if (sweep_dir) {
+                cbr::reports::writeSweepReport(dir);
+                std::printf("sweep report: %s\n", (dir / "sweep.html").c_str());
+            }
             return 0;
         }
         if (*metric_cost) {

@@ -288,13 +288,14 @@ std::vector<size_t> paretoFront(const std::vector<ScatterPoint>& p, bool higher)
 }
 
 std::string scatterChartSvg(const ScatterChart& c) {
-    Frame f{320, 250, 52, 16, 26, 36};
+    Frame f{c.width, 250, 52, 16, 26, 36};
     std::vector<double> xs_v, ys_v;
     bool any_inf = false;
+    auto onLane = [&](double y) { return std::isinf(y) || (c.lane_above && y > *c.lane_above); };
     for (const auto& p : c.points) {
         if (!std::isfinite(p.x) || !p.y || std::isnan(*p.y)) continue;
         xs_v.push_back(p.x);
-        if (std::isfinite(*p.y)) ys_v.push_back(*p.y);
+        if (!onLane(*p.y)) ys_v.push_back(*p.y);
         else any_inf = true;
     }
     double xhi = 1;
@@ -313,7 +314,7 @@ std::string scatterChartSvg(const ScatterChart& c) {
     if (any_inf) infinityLane(out, f, lane_y);
 
     auto py = [&](double y) {
-        if (std::isinf(y)) return (y > 0) == c.y_higher_is_better ? lane_y : f.y0();
+        if (onLane(y)) return (y > 0) == c.y_higher_is_better ? lane_y : f.y0();
         return ys(y);
     };
     auto front = paretoFront(c.points, c.y_higher_is_better);
@@ -346,9 +347,11 @@ std::string scatterChartSvg(const ScatterChart& c) {
     std::vector<Box> taken;
     for (const auto& [px, py_] : placed) taken.push_back({px - 7, py_ - 7, px + 7, py_ + 7});
     size_t k = 0;
-    for (const auto& p : c.points) {
+    for (size_t i = 0; i < c.points.size(); ++i) {
+        const auto& p = c.points[i];
         if (!std::isfinite(p.x) || !p.y || std::isnan(*p.y)) continue;
         const auto [x, y] = placed[k++];
+        if (c.label_front_only && std::find(front.begin(), front.end(), i) == front.end()) continue;
         const double w = 6.4 * double(p.label.size()), h = 11;
         const struct {
             double dx, dy;

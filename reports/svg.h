@@ -54,6 +54,9 @@ struct ScatterChart {
     std::string y_label;
     bool y_higher_is_better = false;
     std::vector<ScatterPoint> points;
+    double width = 320;                  // view-box width (many points: wider)
+    bool label_front_only = false;       // label only the Pareto front (many points)
+    std::optional<double> lane_above;    // y above this sits on the top lane (e.g. PSNR of near-identical images)
 };
 std::string scatterChartSvg(const ScatterChart& chart);
 

@@ -36,9 +36,10 @@ struct SweepData {
 };
 SweepData loadSweep(const std::filesystem::path& dir);
 
-// The recommended CSO tolerance at one shading cost: the best sequence PSNR among the
-// cbr-cso tolerances whose median GPU time stays within `margin` of cbr-aso's (ties
-// within 0.02 dB go to the lower ECI, then the larger tolerance), with one sentence why.
+// The recommended CSO tolerance at one shading cost, with one sentence why: of the cbr-cso
+// tolerances whose median GPU time stays within `margin` of cbr-aso's, those within
+// 0.02 dB of the best sequence PSNR, of these the lowest ECI (within 1e-4), of these the
+// loosest tolerance (the edge of the quality plateau).
 struct ToleranceChoice {
     double shading_cost = 1;
     std::optional<double> tolerance;  // nullopt: no cbr-cso configuration ran
