@@ -1,5 +1,6 @@
 // Built-in camera paths, placed relative to the scene bounds (layout: docs/camera_paths.md).
 #include "camera_paths/path.h"
+#include "camera_paths/text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -46,7 +47,7 @@ struct Stage {
 };
 
 [[noreturn]] void badContext(const std::string& name, const std::string& what, const std::string& expected) {
-    throw std::invalid_argument("built-in path '" + name + "': " + what + "; expected " + expected);
+    throw std::invalid_argument("built-in path '" + printable(name) + "': " + what + "; expected " + expected);
 }
 
 Stage makeStage(const BuiltinContext& ctx, const std::string& name) {
@@ -273,7 +274,7 @@ CameraPath builtinPath(const std::string& name, const BuiltinContext& ctx) {
         if (name == b.name) return b.build(makeStage(ctx, name), ctx);
     std::string names;
     for (const Builtin& b : kBuiltins) names += (names.empty() ? "" : ", ") + std::string(b.name);
-    throw std::invalid_argument("camera path '" + name + "': unknown built-in path; expected one of " + names +
+    throw std::invalid_argument("camera path '" + printable(name) + "': unknown built-in path; expected one of " + names +
                                 ", or a .json path file");
 }
 

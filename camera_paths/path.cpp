@@ -2,6 +2,7 @@
 // Centripetal Catmull-Rom: Yuksel, Schaefer, Keyser, "Parameterization and applications
 // of Catmull-Rom curves" (CAD 2011), evaluated in the Barry-Goldman pyramid form.
 #include "camera_paths/path.h"
+#include "camera_paths/text.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -34,6 +35,14 @@ constexpr double kCoincident = 1e-12;
 // Frame counting tolerates this much rounding in duration * fps (2.9999999999999996 s
 // at 30 fps is 91 frames, not 90).
 constexpr double kFrameSlack = 1e-9;
+// Smallest far / near: keeps near < far through the rounding of interpolated clip planes
+// (a thinner depth range renders nothing anyway).
+constexpr double kMinClipRatio = 1 + 1e-9;
+// Times within a billion seconds (31 years) and at most a million frames per second: then
+// 1 / fps spans many doubles at every time, so t0 + i / fps strictly increases (at 1e17 s
+// the doubles are 16 s apart and 30 fps frames would repeat).
+constexpr double kMaxTime = 1e9;
+constexpr double kMaxFps = 1e6;
 
 // ---- error messages: "<source>: <JSON pointer>: <what is wrong>; expected <what is accepted>"
 
@@ -42,9 +51,12 @@ std::string pointerText(const Pointer& at) {
     return text.empty() ? "(root)" : text;
 }
 
+// Every error leaves through here: file names, keys and path names may hold newlines.
+[[noreturn]] void reject(const std::string& message) { throw std::invalid_argument(printable(message)); }
+
 [[noreturn]] void fail(const std::string& source, const Pointer& at, const std::string& what,
                        const std::string& expected) {
-    throw std::invalid_argument(source + ": " + pointerText(at) + ": " + what + "; expected " + expected);
+    reject(source + ": " + pointerText(at) + ": " + what + "; expected " + expected);
 }
 
 // Shortest text that reads back as the same double ("600", not "600.0").
@@ -97,7 +109,8 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
 template <std::size_t N>
 void checkKeys(const json& object, const Pointer& at, const char* const (&accepted)[N],
                const std::string& source) {
-    for (const auto& [key, value] : object.items()) {
+    for (const auto& item : object.items()) {
+        const std::string& key = item.key();  // not a structured binding: clang 14 cannot capture one
         if (std::find_if(std::begin(accepted), std::end(accepted),
                          [&](const char* a) { return key == a; }) != std::end(accepted))
             continue;
@@ -163,12 +176,12 @@ void readClip(const json& object, const Pointer& at, Keyframe& key, const char* 
               const std::string& source) {
     if (object.contains("near")) key.near = readPositive(object["near"], at / "near", "a finite number > 0", source);
     if (object.contains("far")) key.far = readPositive(object["far"], at / "far", "a finite number > near", source);
-    if (key.far <= key.near) {
+    if (!(key.far > key.near * kMinClipRatio)) {
         const bool far_given = object.contains("far");
         fail(source, at / (far_given ? "far" : "near"),
              "far " + numberText(key.far) + (far_given ? "" : inherited) + " is not beyond near " +
                  numberText(key.near),
-             "0 < near < far");
+             "0 < near < far (far / near above 1 + 1e-9)");
     }
 }
 
@@ -180,6 +193,8 @@ Keyframe parseKeyframe(const json& k, const Pointer& at, const Keyframe& inherit
     Keyframe key;
     if (!k.contains("time")) fail(source, at / "time", "missing", "a finite number (seconds)");
     key.time = readNumber(k["time"], at / "time", "a finite number (seconds)", source);
+    if (!(std::abs(key.time) <= kMaxTime))
+        fail(source, at / "time", "time " + numberText(key.time) + " s", "seconds in [-1e9, 1e9]");
     if (!k.contains("position")) fail(source, at / "position", "missing", "an array of 3 finite numbers [x, y, z]");
     key.position = readVec3(k["position"], at / "position", source);
 
@@ -246,6 +261,15 @@ glm::dvec3 centripetal(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dv
     return ((t2 - t) * b1 + (t - t1) * b2) / (t2 - t1);
 }
 
+// a (b / a)^u for positive a and b, in logs where the ratio overflows or underflows (near
+// 1e-300 at one key and 1e300 at the next), and never outside [a, b] through rounding.
+double geometric(double a, double b, double u) {
+    const double ratio = b / a;
+    const double value = std::isfinite(ratio) && ratio > 0 ? a * std::pow(ratio, u)
+                                                           : std::exp((1 - u) * std::log(a) + u * std::log(b));
+    return std::clamp(value, std::min(a, b), std::max(a, b));
+}
+
 std::optional<glm::dvec3> keyPosition(const Keyframe& k) { return k.position; }
 std::optional<glm::dvec3> keyTarget(const Keyframe& k) { return k.target; }
 
@@ -308,6 +332,7 @@ CameraPath parsePath(const json& doc, const std::string& source) {
     }
     if (!doc.contains("fps")) fail(source, root / "fps", "missing", "a finite number > 0 (frames per second)");
     path.fps = readPositive(doc["fps"], root / "fps", "a finite number > 0 (frames per second)", source);
+    if (path.fps > kMaxFps) fail(source, root / "fps", "got " + numberText(path.fps), "at most 1e6 frames per second");
     if (doc.contains("interpolation")) {
         const json& j = doc["interpolation"];
         const std::string expected = "\"catmull-rom\" or \"linear\"";
@@ -374,13 +399,13 @@ CameraPath loadPath(const std::filesystem::path& file) {
     std::error_code error;
     if (!std::filesystem::is_regular_file(file, error)) {
         const char* what = std::filesystem::exists(file, error) ? "not a regular file" : "no such file";
-        throw std::invalid_argument(source + ": " + what + "; expected a camera path JSON file or a built-in path name");
+        reject(source + ": " + what + "; expected a camera path JSON file or a built-in path name");
     }
     std::ifstream in(file, std::ios::binary);
     std::stringstream buffer;
     buffer << in.rdbuf();
     if (!in)
-        throw std::invalid_argument(source + ": cannot be read (" + std::strerror(errno) + "); expected a readable file");
+        reject(source + ": cannot be read (" + std::strerror(errno) + "); expected a readable file");
     const std::string text = buffer.str();
 
     // Line and column of a 1-based byte position, as editors count them.
@@ -422,7 +447,7 @@ CameraPath loadPath(const std::filesystem::path& file) {
             Level& top = levels.back();
             top.key = parsed.get<std::string>();
             if (!top.keys.insert(top.key).second)
-                throw std::invalid_argument(source + ": " + pointerText(top.at / top.key) +
+                reject(source + ": " + pointerText(top.at / top.key) +
                                             ": duplicate key; expected each key at most once per object");
             break;
         }
@@ -438,7 +463,7 @@ CameraPath loadPath(const std::filesystem::path& file) {
         std::string detail = e.what();
         const std::size_t from = detail.find("syntax error");
         if (from != std::string::npos) detail = detail.substr(from);
-        throw std::invalid_argument(place(e.byte) + ": invalid JSON (" + detail + ")" + strict);
+        reject(place(e.byte) + ": invalid JSON (" + detail + ")" + strict);
     } catch (const json::out_of_range& e) {
         // Number overflow (1e400) carries no position: find the literal it names.
         std::string detail = e.what();
@@ -449,7 +474,7 @@ CameraPath loadPath(const std::filesystem::path& file) {
             if (at != std::string::npos) where = place(at + 1);
         }
         detail = detail.substr(detail.find(']') + 2);
-        throw std::invalid_argument(where + ": " + detail + "; expected finite numbers (|x| < 1.8e308)");
+        reject(where + ": " + detail + "; expected finite numbers (|x| < 1.8e308)");
     }
     CameraPath path = parsePath(doc, source);
     if (path.name.empty()) path.name = file.stem().string();
@@ -459,9 +484,9 @@ CameraPath loadPath(const std::filesystem::path& file) {
 CameraPose samplePose(const CameraPath& path, double t) {
     const auto& keys = path.keys;
     if (keys.empty())
-        throw std::invalid_argument("camera path '" + path.name + "': no keyframes; expected at least one");
+        reject("camera path '" + path.name + "': no keyframes; expected at least one");
     if (!std::isfinite(t))
-        throw std::invalid_argument("camera path '" + path.name + "': sample time " + numberText(t) +
+        reject("camera path '" + path.name + "': sample time " + numberText(t) +
                                     "; expected a finite time");
 
     // The cut-free group [first, last] holding t: the latest cut at or before t starts it.
@@ -493,19 +518,19 @@ CameraPose samplePose(const CameraPath& path, double t) {
     pose.fov_y_rad = glm::radians(glm::mix(a.fov_y_deg, b.fov_y_deg, u));
     // Geometric: equal steps in log depth, so a clip range zooming from 0.01 to 10 does not
     // jump to 5 at the midpoint; far/near stays monotone between the two keys' ratios.
-    pose.near = a.near * std::pow(b.near / a.near, u);
-    pose.far = a.far * std::pow(b.far / a.far, u);
+    pose.near = geometric(a.near, b.near, u);
+    pose.far = geometric(a.far, b.far, u);
     return pose;
 }
 
 int frameCount(const CameraPath& path) {
     if (path.keys.empty()) return 0;
     if (!(path.fps > 0) || !std::isfinite(path.fps))
-        throw std::invalid_argument("camera path '" + path.name + "': fps " + numberText(path.fps) +
+        reject("camera path '" + path.name + "': fps " + numberText(path.fps) +
                                     "; expected a finite number > 0");
     const double frames = std::floor(path.duration() * path.fps + kFrameSlack) + 1;
     if (!(frames <= kMaxFrames))
-        throw std::invalid_argument("camera path '" + path.name + "': " + numberText(frames) +
+        reject("camera path '" + path.name + "': " + numberText(frames) +
                                     " frames; expected at most " + std::to_string(kMaxFrames));
     return static_cast<int>(frames);
 }
@@ -513,7 +538,7 @@ int frameCount(const CameraPath& path) {
 std::vector<double> frameTimes(const CameraPath& path, int frames) {
     if (path.keys.empty()) return {};
     if (frames > kMaxFrames)
-        throw std::invalid_argument("frames " + std::to_string(frames) + ": too many; expected at most " +
+        reject("frames " + std::to_string(frames) + ": too many; expected at most " +
                                     std::to_string(kMaxFrames));
     const double t0 = path.keys.front().time;
     std::vector<double> times;
@@ -544,6 +569,20 @@ std::vector<CameraPose> sampleFrames(const CameraPath& path, int frames) {
         poses.push_back(pose);
     }
     return poses;
+}
+
+void placePath(CameraPath& path, glm::dvec3 offset, double scale) {
+    const auto finite = [](glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    if (!(scale > 0 && std::isfinite(scale)) || !finite(offset))
+        reject("path " + path.name + ": placement: offset and scale must be finite, scale > 0");
+    for (Keyframe& k : path.keys) {
+        k.position = k.position * scale + offset;
+        if (k.target) k.target = *k.target * scale + offset;
+        k.near *= scale;
+        k.far *= scale;
+        if (!finite(k.position) || !(k.near > 0 && k.far > k.near && std::isfinite(k.far)))
+            reject("path " + path.name + ": placement: a keyframe leaves the finite range");
+    }
 }
 
 }  // namespace cbr::paths

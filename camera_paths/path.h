@@ -94,6 +94,11 @@ std::vector<double> frameTimes(const CameraPath& path, int frames);
 // (t_{i-1}, t_i] (never on frame 0).
 std::vector<CameraPose> sampleFrames(const CameraPath& path, int frames);
 
+// Moves the path with a scene placed by scene::placeScene: positions and targets become
+// offset + scale * p, near and far scale; orientations, fields of view and times stay.
+// Throws std::invalid_argument unless scale > 0 and everything is finite.
+void placePath(CameraPath& path, glm::dvec3 offset, double scale);
+
 struct BuiltinPathInfo {
     std::string name;
     std::string description;

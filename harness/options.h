@@ -35,7 +35,7 @@ struct RunOptions {
     std::string debug_slowdown;          // PASS=PCT: a known slowdown for testing regression detection
     std::string reference = "full";      // full | ssaa: what variants are scored against
     int ssaa = 4;                        // k x k samples per pixel of the ssaa reference
-    // Placement: world' = offset + scale * world, scene and path together (not yet applied).
+    // Placement (harness/placement.h): world' = offset + scale * world, scene and path together.
     std::string scene_offset;            // "X,Y,Z" ("": none)
     double scene_scale = 1.0;
     std::optional<double> near, far;     // every keyframe's clip planes, after placement

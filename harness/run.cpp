@@ -11,6 +11,7 @@
 
 #include "camera_paths/path.h"
 #include "harness/outputs.h"
+#include "harness/placement.h"
 #include "harness/quality.h"
 #include "harness/results.h"
 #include "harness/sweep.h"
@@ -195,6 +196,7 @@ Prepared prepare(const RunOptions& o) {
     bctx.scene_name = p.scene.name;
     std::filesystem::path path_file(o.path);
     p.path = path_file.extension() == ".json" ? paths::loadPath(path_file) : paths::builtinPath(o.path, bctx);
+    applyPlacement(o, p.scene, p.path);
     p.times = paths::frameTimes(p.path, o.frames);
     p.poses = paths::sampleFrames(p.path, o.frames);
     p.out = o.out.empty() ? std::filesystem::path("out") / (stem(o.scene) + "-" + stem(o.path) + "-" + timestampForName())

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "renderer/passes/readback_pass.h"
 #include "renderer/shaders/shared.h"
 #include "renderer/vk/check.h"
@@ -47,6 +49,7 @@ struct Renderer::Slot {
     vk::Buffer analysis;    // the analysis pass's output, when enabled
     vk::Buffer stats;       // kFrameStats counters, zeroed by the host per frame
     vk::Buffer instances;   // model and previous model matrix per instance
+    vk::Buffer lights;      // GpuLight records, positions relative to this frame's camera
     VkDescriptorSet frame_set = VK_NULL_HANDLE;
     bool in_flight = false;
     bool has_readback = false;
@@ -62,21 +65,21 @@ Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants:
     variant_ = variant.build(ctx, scene, settings);
     scale_ = !variant_->scaled() ? 1.0 : variant_->dynamicScale() ? settings.drr_control.max_scale : settings.drr_scale;
 
-    // Every light `shading_cost` times at 1/cost: K times the work, the same sum.
-    std::vector<shaders::GpuLight> lights;
+    // Every light `shading_cost` times at 1/cost: K times the work, the same sum. Point
+    // light positions are written per frame, relative to the camera (submit).
     int k = std::max(1, settings.shading_cost);
     for (const auto& l : scene.cpu->lights) {
         shaders::GpuLight g{};
         bool point = l.type == scene::Light::Type::Point;
-        g.position = glm::vec4(l.position, point ? 1.0f : 0.0f);
+        g.position = glm::vec4(0.0f, 0.0f, 0.0f, point ? 1.0f : 0.0f);
         glm::vec3 dir = glm::length(l.direction) > 0 ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);
         g.direction = glm::vec4(dir, l.range);
         g.radiance = glm::vec4(l.color * (l.intensity / float(k)), 0.0f);
-        for (int i = 0; i < k; ++i) lights.push_back(g);
+        for (int i = 0; i < k; ++i) {
+            lights_.push_back(g);
+            light_positions_.push_back(l.position);
+        }
     }
-    light_records_ = uint32_t(lights.size());
-    lights_ = vk::uploadBuffer(ctx, lights.data(), lights.size() * sizeof(shaders::GpuLight),
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
     if (settings.analysis) {
         VkExtent2D full{settings.width, settings.height};
@@ -139,10 +142,12 @@ Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants:
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
         slot->instances = vk::createBuffer(ctx, std::max<size_t>(1, scene.cpu->instances.size()) * 2 * sizeof(glm::mat4),
                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        slot->lights = vk::createBuffer(ctx, std::max<size_t>(1, lights_.size()) * sizeof(shaders::GpuLight),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
         slot->frame_set = vk::allocateSet(ctx, frame_pool_, scene.frame_layout);
         vk::writeBuffer(ctx, slot->frame_set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slot->frame_ubo.buffer, 0,
                         sizeof(shaders::FrameUniforms));
-        vk::writeBuffer(ctx, slot->frame_set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, lights_.buffer, 0, VK_WHOLE_SIZE);
+        vk::writeBuffer(ctx, slot->frame_set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, slot->lights.buffer, 0, VK_WHOLE_SIZE);
         vk::writeBuffer(ctx, slot->frame_set, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, slot->stats.buffer, 0,
                         VK_WHOLE_SIZE);
         vk::writeBuffer(ctx, slot->frame_set, 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, slot->instances.buffer, 0,
@@ -164,9 +169,9 @@ Renderer::~Renderer() {
         vk::destroyBuffer(ctx_, slot->analysis);
         vk::destroyBuffer(ctx_, slot->stats);
         vk::destroyBuffer(ctx_, slot->instances);
+        vk::destroyBuffer(ctx_, slot->lights);
     }
     vkDestroyDescriptorPool(ctx_.device, frame_pool_, nullptr);
-    vk::destroyBuffer(ctx_, lights_);
     vk::destroyComputeKernel(ctx_, spin_);
     if (spin_pool_) vkDestroyDescriptorPool(ctx_.device, spin_pool_, nullptr);
     vk::destroyBuffer(ctx_, spin_sink_);
@@ -189,9 +194,14 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
     auto frame = std::make_shared<passes::SceneFrame>();
     frame->scene = &scene_;
     frame->frame_set = slot.frame_set;
-    frame->models = gpu::instanceMatrices(*scene_.cpu, request.time);
-    frame->prev_models = request.history_reset ? frame->models : gpu::instanceMatrices(*scene_.cpu, request.prev_time);
-    frame->camera_position = glm::vec3(request.camera.position);
+    // Camera-relative rendering: everything the GPU sees is relative to this frame's
+    // camera position, subtracted in double, the previous frame's matrices included
+    // (prev_view_proj in writeUniforms adds it back), so far from the origin nothing
+    // large is rounded to float.
+    const glm::dvec3 eye = request.camera.position;
+    frame->models = gpu::instanceMatrices(*scene_.cpu, request.time, eye);
+    frame->prev_models =
+        request.history_reset ? frame->models : gpu::instanceMatrices(*scene_.cpu, request.prev_time, eye);
     frame->clear_color = glm::vec4(scene_.cpu->background, 0.0f);
 
     std::memset(slot.stats.mapped, 0, variants::kFrameStats * sizeof(uint32_t));
@@ -199,6 +209,11 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
     for (size_t i = 0; i < frame->models.size(); ++i) {
         matrices[2 * i] = frame->models[i];
         matrices[2 * i + 1] = frame->prev_models[i];
+    }
+    auto* lights = static_cast<shaders::GpuLight*>(slot.lights.mapped);
+    for (size_t i = 0; i < lights_.size(); ++i) {
+        lights[i] = lights_[i];
+        if (lights_[i].position.w != 0.0f) lights[i].position = glm::vec4(glm::vec3(light_positions_[i] - eye), 1.0f);
     }
     variants::FrameSetup setup;
     setup.scene_frame = frame;
@@ -369,19 +384,23 @@ void Renderer::writeUniforms(Slot& slot, const FrameRequest& request, const vari
     double aspect = double(settings_.width) / double(settings_.height);
     auto proj = [&](const Camera& c) { return projection(c.fov_y_rad, aspect, c.near, c.far); };
     const Camera& prev = request.history_reset ? request.camera : request.prev_camera;
-    glm::dmat4 view_proj = proj(request.camera) * request.camera.view;
-    glm::dmat4 prev_view_proj = proj(prev) * prev.view;
-    // view depth = B / (d + A) for the reversed-Z projection above.
+    // Camera-relative: positions arrive as world - this frame's camera position, so both
+    // views take it back out in double; the current view keeps only its rotation.
+    const glm::dmat4 from_eye = glm::translate(glm::dmat4(1.0), request.camera.position);
+    glm::dmat4 view = request.camera.view * from_eye;
+    glm::dmat4 view_proj = proj(request.camera) * view;
+    glm::dmat4 prev_view_proj = proj(prev) * (prev.view * from_eye);
+    // view depth = B / (d + A) for the reversed-Z projection above: a sum of positive
+    // terms, no cancellation at any near/far (A = n / (f - n), B = f n / (f - n)).
     auto depth_ab = [](const Camera& c) {
         return glm::dvec2(c.near / (c.far - c.near), c.far * c.near / (c.far - c.near));
     };
     shaders::FrameUniforms u{};
     u.view_proj = glm::mat4(view_proj);
     u.prev_view_proj = glm::mat4(prev_view_proj);
-    u.view = glm::mat4(request.camera.view);
-    u.camera_position = glm::vec4(glm::vec3(request.camera.position), 1.0f);
+    u.view = glm::mat4(view);
     u.params = glm::vec4(params.lod_bias, settings_.exposure, 0.03f, settings_.debug_pixel_id ? 1.0f : 0.0f);
-    u.counts = glm::uvec4(light_records_, uint32_t(std::max(1, settings_.shading_cost)), 0, 0);
+    u.counts = glm::uvec4(uint32_t(lights_.size()), uint32_t(std::max(1, settings_.shading_cost)), 0, 0);
     u.background = glm::vec4(scene_.cpu->background, 1.0f);
     u.view_offsets = params.view_offsets;
     u.reproject = glm::mat4(prev_view_proj * glm::inverse(view_proj));  // composed in double

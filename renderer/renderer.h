@@ -9,6 +9,7 @@
 #include "renderer/passes/scene_pass.h"
 #include "renderer/vk/pipelines.h"
 #include "renderer/settings.h"
+#include "renderer/shaders/shared.h"
 #include "renderer/variants/variants.h"
 #include "renderer/vk/resources.h"
 
@@ -58,8 +59,8 @@ private:
     const gpu::GpuScene& scene_;
     Settings settings_;
     std::unique_ptr<variants::VariantRenderer> variant_;
-    vk::Buffer lights_;
-    uint32_t light_records_ = 0;
+    std::vector<shaders::GpuLight> lights_;        // records (lights x shading cost), positions unset
+    std::vector<glm::dvec3> light_positions_;      // world position of each record's light
     VkDescriptorPool frame_pool_ = VK_NULL_HANDLE;
     std::vector<std::unique_ptr<Slot>> slots_;
     size_t next_slot_ = 0;

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "renderer/shaders/shared.h"
 #include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
@@ -21,10 +23,11 @@ vk::Image solidTexture(vk::Context& ctx, const char* name, uint8_t r, uint8_t g,
 
 }  // namespace
 
-std::vector<glm::mat4> instanceMatrices(const scene::Scene& scene, double t) {
+std::vector<glm::mat4> instanceMatrices(const scene::Scene& scene, double t, glm::dvec3 origin) {
     std::vector<glm::mat4> out;
     out.reserve(scene.instances.size());
-    for (const auto& inst : scene.instances) out.push_back(scene::instanceTransform(inst, t));
+    const glm::dmat4 to_origin = glm::translate(glm::dmat4(1.0), -origin);
+    for (const auto& inst : scene.instances) out.push_back(glm::mat4(to_origin * scene::instanceTransform(inst, t)));
     return out;
 }
 

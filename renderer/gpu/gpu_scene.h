@@ -41,7 +41,9 @@ struct GpuScene {
 GpuScene uploadScene(vk::Context& ctx, const scene::Scene& scene);
 void destroyGpuScene(vk::Context& ctx, GpuScene& scene);
 
-// Model matrices of every instance at time t.
-std::vector<glm::mat4> instanceMatrices(const scene::Scene& scene, double t);
+// Model matrices of every instance at time t relative to `origin` (the camera position:
+// camera-relative rendering), translate(-origin) * model composed in double and rounded
+// to float last, so a scene far from the world origin keeps its detail.
+std::vector<glm::mat4> instanceMatrices(const scene::Scene& scene, double t, glm::dvec3 origin);
 
 }  // namespace cbr::gpu

@@ -337,9 +337,9 @@ void addTransparentPass(graph::Graph& graph, const SceneTargets& targets, std::s
         std::vector<std::pair<float, gpu::DrawItem>> sorted;
         for (const auto& d : s.blend) {
             const auto& mesh = s.cpu->meshes[size_t(d.mesh)];
-            glm::vec3 centre = glm::vec3(frame->models[size_t(d.instance)] *
-                                         glm::vec4((mesh.bounds_min + mesh.bounds_max) * 0.5f, 1.0f));
-            glm::vec3 to = centre - frame->camera_position;
+            // Camera-relative models: the centre is the vector from the camera.
+            glm::vec3 to = glm::vec3(frame->models[size_t(d.instance)] *
+                                     glm::vec4((mesh.bounds_min + mesh.bounds_max) * 0.5f, 1.0f));
             sorted.push_back({glm::dot(to, to), d});
         }
         std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first > b.first; });

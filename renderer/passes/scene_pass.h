@@ -66,9 +66,10 @@ struct SceneFrame {
     const gpu::GpuScene* scene = nullptr;
     const ScenePipelines* pipelines = nullptr;
     VkDescriptorSet frame_set = VK_NULL_HANDLE;
+    // Relative to this frame's camera position (camera-relative rendering: the camera
+    // sits at the origin), the previous frame's too.
     std::vector<glm::mat4> models;       // per instance, this frame
     std::vector<glm::mat4> prev_models;  // per instance, previous frame
-    glm::vec3 camera_position{0};
     VkExtent2D viewport{};               // rendered region, at the top-left of the targets
     glm::vec2 viewport_size{0};          // viewport width/height (fractional for odd checkerboard sizes)
     glm::vec4 clear_color{0};

@@ -197,7 +197,7 @@ int addMesh(Scene& scene, std::string name, const MeshBuilder& builder, int mate
     return static_cast<int>(scene.meshes.size()) - 1;
 }
 
-int addInstance(Scene& scene, int mesh, const glm::mat4& model, const Animation& animation) {
+int addInstance(Scene& scene, int mesh, const glm::dmat4& model, const Animation& animation) {
     scene.instances.push_back({mesh, model, animation});
     return static_cast<int>(scene.instances.size()) - 1;
 }

@@ -42,7 +42,7 @@ std::vector<glm::vec3> saggingWire(glm::vec3 from, glm::vec3 to, float sag, int 
 
 // Appends the builder's geometry to the scene as one mesh with object-space bounds.
 int addMesh(Scene& scene, std::string name, const MeshBuilder& builder, int material);
-int addInstance(Scene& scene, int mesh, const glm::mat4& model, const Animation& animation = {});
+int addInstance(Scene& scene, int mesh, const glm::dmat4& model, const Animation& animation = {});
 int addMaterial(Scene& scene, Material material);
 int addTexture(Scene& scene, Texture texture);
 

@@ -21,7 +21,7 @@ namespace {
 // ---- accessors -------------------------------------------------------------------------
 
 struct View {
-    const uint8_t* data = nullptr;  // null: no bufferView, all zeros (glTF 2.0 accessors)
+    const uint8_t* data = nullptr;
     size_t stride = 0, count = 0;
     int components = 0, component_type = 0;
     bool normalized = false;
@@ -86,7 +86,11 @@ View viewAccessor(const GltfContext& ctx, int index, const std::string& used_by,
     view.normalized = a.normalized;
     const size_t element = size_t(view.components) * size_t(componentBytes(a.componentType));
     view.stride = element;
-    if (a.bufferView < 0) return view;
+    // Without a bufferView every element is zero (glTF 2.0 section 3.6.2.1), which only
+    // sparse accessors make useful; a count alone would cost memory without bytes behind it.
+    if (a.bufferView < 0)
+        gltfError(ctx, view.pointer, "has no bufferView (all " + std::to_string(a.count) + " elements would be zero)" + context,
+                  "a bufferView holding the data");
 
     const auto& views = ctx.model.bufferViews;
     if (size_t(a.bufferView) >= views.size())
@@ -123,7 +127,6 @@ View viewAccessor(const GltfContext& ctx, int index, const std::string& used_by,
 
 std::vector<float> readFloats(const GltfContext& ctx, const View& view) {
     std::vector<float> out(view.count * size_t(view.components), 0.0f);
-    if (!view.data) return out;
     for (size_t i = 0; i < view.count; ++i) {
         const uint8_t* element = view.data + i * view.stride;
         for (int c = 0; c < view.components; ++c) {
@@ -149,7 +152,6 @@ std::vector<float> readFloats(const GltfContext& ctx, const View& view) {
 
 std::vector<uint32_t> readIndices(const View& view) {
     std::vector<uint32_t> out(view.count, 0);
-    if (!view.data) return out;
     const int bytes = componentBytes(view.component_type);
     for (size_t i = 0; i < view.count; ++i) {
         const uint8_t* p = view.data + i * view.stride;
@@ -291,7 +293,7 @@ const std::vector<int>& sceneMeshes(GltfContext& ctx, size_t mesh_index) {
 
 // ---- nodes -----------------------------------------------------------------------------
 
-glm::mat4 localTransform(const GltfContext& ctx, const tinygltf::Node& node, size_t index) {
+glm::dmat4 localTransform(const GltfContext& ctx, const tinygltf::Node& node, size_t index) {
     const std::string p = gltfAt("nodes", index);
     glm::dmat4 local(1.0);
     if (node.matrix.size() == 16) {
@@ -306,11 +308,12 @@ glm::mat4 localTransform(const GltfContext& ctx, const tinygltf::Node& node, siz
         }
         if (node.scale.size() == 3) local = glm::scale(local, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
     }
-    const glm::mat4 result(local);
+    // Kept in double (a node far from the origin keeps its detail); it must still fit a
+    // float once made camera-relative.
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(result[c][r])) gltfError(ctx, p, "has a non-finite transform", "finite matrix, translation, rotation and scale");
-    return result;
+            if (!std::isfinite(float(local[c][r]))) gltfError(ctx, p, "has a non-finite transform", "finite matrix, translation, rotation and scale");
+    return local;
 }
 
 // glTF nodes form strict trees: one parent at most, no cycles (RecursiveNodes has one).
@@ -344,7 +347,7 @@ std::vector<int> checkTree(const GltfContext& ctx) {
     return parent;
 }
 
-void addLight(GltfContext& ctx, const tinygltf::Node& node, size_t node_index, const glm::mat4& world) {
+void addLight(GltfContext& ctx, const tinygltf::Node& node, size_t node_index, const glm::dmat4& world) {
     const auto it = node.extensions.find("KHR_lights_punctual");
     if (it == node.extensions.end() || !it->second.Has("light")) return;
     const int index = it->second.Get("light").GetNumberAsInt();
@@ -355,8 +358,8 @@ void addLight(GltfContext& ctx, const tinygltf::Node& node, size_t node_index, c
     Light light;
     // Spot lights are lit as point lights: the renderer has no cone.
     light.type = src.type == "directional" ? Light::Type::Directional : Light::Type::Point;
-    light.position = glm::vec3(world[3]);
-    const glm::vec3 direction = glm::mat3(world) * glm::vec3(0, 0, -1);
+    light.position = glm::dvec3(world[3]);
+    const glm::vec3 direction = glm::vec3(glm::dmat3(world) * glm::dvec3(0, 0, -1));
     if (light.type == Light::Type::Directional && !(glm::length(direction) > 1e-12f))
         gltfError(ctx, gltfAt("nodes", node_index), "a directional light's node has a degenerate rotation", "an invertible transform");
     light.direction = light.type == Light::Type::Directional ? glm::normalize(direction) : glm::vec3(0, -1, 0);
@@ -390,13 +393,20 @@ void flattenNodes(GltfContext& ctx) {
             if (parent[i] < 0) roots.push_back(int(i));
     }
     // Iterative, so a deep hierarchy cannot overflow the stack.
-    std::vector<std::pair<int, glm::mat4>> stack;
-    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::mat4(1.0f));
+    std::vector<std::pair<int, glm::dmat4>> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::dmat4(1.0));
     while (!stack.empty()) {
         const auto [index, parent_world] = stack.back();
         stack.pop_back();
         const tinygltf::Node& node = model.nodes[size_t(index)];
-        const glm::mat4 world = parent_world * localTransform(ctx, node, size_t(index));
+        const glm::dmat4 world = parent_world * localTransform(ctx, node, size_t(index));
+        // Each local transform fits a float, a product along the path need not (scale 1e30
+        // under scale 1e30); the GPU reads the linear part as float.
+        for (int c = 0; c < 3; ++c)
+            for (int r = 0; r < 3; ++r)
+                if (!std::isfinite(float(world[c][r])))
+                    gltfError(ctx, gltfAt("nodes", size_t(index)), "its world transform (its ancestors' times its own) overflows a float",
+                              "scales whose product along the node path stays below 3.4e38");
         if (node.mesh >= 0) {
             if (size_t(node.mesh) >= model.meshes.size())
                 gltfError(ctx, gltfAt("nodes", size_t(index)) + "/mesh", std::to_string(node.mesh) + " does not exist", gltfIndexRange("meshes", model.meshes.size()));
@@ -446,6 +456,7 @@ Scene loadGltf(const std::filesystem::path& file) {
     const std::filesystem::path base_dir = file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
 
     tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(gltfLoadImage, const_cast<std::string*>(&label));
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;

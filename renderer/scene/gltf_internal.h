@@ -43,6 +43,13 @@ inline std::string gltfIndexRange(const char* array, size_t count) {
                  : "no reference: /" + std::string(array) + " is empty";
 }
 
+// tinygltf's image decoder (TinyGLTF::SetImageLoader; user data: the file name as a
+// const std::string*): PNG and JPEG only, the formats glTF 2.0 allows, and only when the
+// bytes can hold the pixels the header claims, so a truncated 150-byte JPEG that says
+// 16384x16384 is refused before the decoder allocates a gigabyte for it.
+bool gltfLoadImage(tinygltf::Image* image, int image_index, std::string* err, std::string* warn, int req_width,
+                   int req_height, const unsigned char* bytes, int size, void* file);
+
 // Scene texture for a glTF texture index, decoded to RGBA8; sRGB for colour, linear for data.
 int gltfTexture(GltfContext& ctx, int index, bool srgb, const std::string& used_by);
 // Scene material for a glTF material index; -1 gives glTF's default material.

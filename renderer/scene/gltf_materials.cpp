@@ -5,6 +5,81 @@
 #include "renderer/scene/gltf_internal.h"
 
 namespace cbr::scene {
+namespace {
+
+// Largest image side gltfTexture accepts; checked here too, before decoding.
+constexpr uint32_t kMaxImageSide = 16384;
+// Deflate cannot compress better than 1032:1 (RFC 1951: a 258-byte match in ~2 bits), so
+// a complete PNG holds at least its raw scanlines / 1032 bytes.
+constexpr double kMaxDeflateRatio = 1032;
+// Every 8x8 block of a JPEG's full-resolution component costs at least one bit (its DC
+// code), so a complete JPEG holds at least width * height / 512 bytes.
+constexpr double kMaxJpegPixelsPerByte = 512;
+
+uint32_t bigEndian(const unsigned char* p, int bytes) {
+    uint32_t v = 0;
+    for (int i = 0; i < bytes; ++i) v = v << 8 | p[i];
+    return v;
+}
+
+struct ImageHeader {
+    const char* format = nullptr;  // null: neither PNG nor JPEG
+    uint32_t width = 0, height = 0;
+    double min_bytes = 0;          // the least a complete file of this size can take
+};
+
+ImageHeader readImageHeader(const unsigned char* bytes, size_t size) {
+    ImageHeader h;
+    static const unsigned char kPng[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (size >= 33 && std::memcmp(bytes, kPng, 8) == 0 && std::memcmp(bytes + 12, "IHDR", 4) == 0) {
+        h.format = "PNG";
+        h.width = bigEndian(bytes + 16, 4);
+        h.height = bigEndian(bytes + 20, 4);
+        const int depth = bytes[24], colour = bytes[25];
+        const int channels = colour == 2 ? 3 : colour == 4 ? 2 : colour == 6 ? 4 : 1;
+        const double row = 1 + std::ceil(double(h.width) * channels * depth / 8);  // filter byte + samples
+        h.min_bytes = row * h.height / kMaxDeflateRatio;
+        return h;
+    }
+    if (size >= 4 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) {
+        h.format = "JPEG";
+        size_t i = 2;
+        while (i + 4 <= size && bytes[i] == 0xff) {
+            const int marker = bytes[i + 1];
+            if (marker == 0xff) { ++i; continue; }  // fill byte
+            if (marker == 0xd8 || marker == 0x01 || (marker >= 0xd0 && marker <= 0xd7)) { i += 2; continue; }
+            if (marker == 0xd9 || marker == 0xda) break;  // end of image or start of scan: no frame seen
+            const bool frame = marker >= 0xc0 && marker <= 0xcf && marker != 0xc4 && marker != 0xc8 && marker != 0xcc;
+            if (frame && i + 9 <= size) {
+                h.height = bigEndian(bytes + i + 5, 2);
+                h.width = bigEndian(bytes + i + 7, 2);
+                h.min_bytes = double(h.width) * h.height / kMaxJpegPixelsPerByte;
+                return h;
+            }
+            i += 2 + bigEndian(bytes + i + 2, 2);
+        }
+        return h;  // no frame header: 0x0, refused below
+    }
+    return h;
+}
+
+}  // namespace
+
+bool gltfLoadImage(tinygltf::Image* image, int image_index, std::string* err, std::string* warn, int req_width,
+                   int req_height, const unsigned char* bytes, int size, void* file) {
+    const std::string& label = *static_cast<const std::string*>(file);
+    const std::string where = gltfAt("images", size_t(image_index < 0 ? 0 : image_index));
+    const ImageHeader h = readImageHeader(bytes, size_t(size < 0 ? 0 : size));
+    if (!h.format) gltfFail(label, where, "data is neither PNG nor JPEG", "image/png or image/jpeg data (glTF 2.0 images)");
+    if (h.width < 1 || h.height < 1 || h.width > kMaxImageSide || h.height > kMaxImageSide)
+        gltfFail(label, where, std::string(h.format) + " header says " + std::to_string(h.width) + "x" + std::to_string(h.height),
+                 "an image from 1x1 up to 16384x16384");
+    if (double(size) < h.min_bytes)
+        gltfFail(label, where, std::string(h.format) + " of " + std::to_string(size) + " bytes cannot hold the " + std::to_string(h.width) +
+                                   "x" + std::to_string(h.height) + " pixels its header claims (truncated)",
+                 "a complete image (at least " + std::to_string(uint64_t(std::ceil(h.min_bytes))) + " bytes)");
+    return tinygltf::LoadImageData(image, image_index, err, warn, req_width, req_height, bytes, size, nullptr);
+}
 
 // Decoded images may have 1-4 channels of 8 or 16 bits; the renderer takes RGBA8.
 int gltfTexture(GltfContext& ctx, int index, bool srgb, const std::string& used_by) {
@@ -23,7 +98,7 @@ int gltfTexture(GltfContext& ctx, int index, bool srgb, const std::string& used_
     const tinygltf::Image& image = ctx.model.images[size_t(source)];
     const std::string pointer = gltfAt("images", size_t(source));
     const int w = image.width, h = image.height, channels = image.component, bits = image.bits;
-    if (w <= 0 || h <= 0 || w > 16384 || h > 16384 || channels < 1 || channels > 4 || (bits != 8 && bits != 16))
+    if (w <= 0 || h <= 0 || w > int(kMaxImageSide) || h > int(kMaxImageSide) || channels < 1 || channels > 4 || (bits != 8 && bits != 16))
         gltfError(ctx, pointer, "decoded to " + std::to_string(w) + "x" + std::to_string(h) + " with " + std::to_string(channels) +
                                " channels of " + std::to_string(bits) + " bits",
              "an image up to 16384x16384 with 1 to 4 channels of 8 or 16 bits");

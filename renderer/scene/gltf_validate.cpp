@@ -5,6 +5,7 @@
 #include "renderer/scene/gltf_validate.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <set>
@@ -419,7 +420,20 @@ void checkOthers(const Checker& c, const json& root) {
 }  // namespace
 
 void gltfFail(const std::string& file, const std::string& where, const std::string& what, const std::string& expected) {
-    throw std::invalid_argument(file + ": " + where + ": " + what + "; expected " + expected);
+    // JSON keys (in pointers) and file names may hold control characters: escaped, the
+    // message stays one line.
+    std::string message;
+    for (const char ch : file + ": " + where + ": " + what + "; expected " + expected) {
+        const auto byte = uint8_t(ch);
+        if (byte >= 0x20 && byte != 0x7f) {
+            message += ch;
+        } else {
+            char escaped[8];
+            std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+            message += escaped;
+        }
+    }
+    throw std::invalid_argument(message);
 }
 
 GlbChunks splitGlb(std::span<const uint8_t> bytes, const std::string& file) {

@@ -33,12 +33,17 @@ constexpr ProceduralEntry kProceduralScenes[] = {
 }
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+// World placement is double, but the GPU reads floats (after subtracting the camera
+// position): every world coordinate must still fit one. False for NaN.
+bool fitsFloat(double x) { return std::abs(x) <= double(std::numeric_limits<float>::max()); }
+bool fitsFloat(glm::dvec3 v) { return fitsFloat(v.x) && fitsFloat(v.y) && fitsFloat(v.z); }
 
 // Orbit plane basis: u is the world axis least aligned with `axis` (x first on ties),
 // made perpendicular; v = axis x u, so increasing angle turns right-handed about axis.
-void orbitBasis(glm::vec3 axis, glm::vec3& u, glm::vec3& v) {
-    const glm::vec3 a = glm::abs(axis);
-    const glm::vec3 e = a.x <= a.y && a.x <= a.z ? glm::vec3(1, 0, 0) : a.y <= a.z ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
+void orbitBasis(glm::dvec3 axis, glm::dvec3& u, glm::dvec3& v) {
+    const glm::dvec3 a = glm::abs(axis);
+    const glm::dvec3 e = a.x <= a.y && a.x <= a.z ? glm::dvec3(1, 0, 0) : a.y <= a.z ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
     u = glm::normalize(e - axis * glm::dot(e, axis));
     v = glm::cross(axis, u);
 }
@@ -86,36 +91,73 @@ void checkScene(const Scene& scene) {
         if (inst.mesh < 0 || size_t(inst.mesh) >= scene.meshes.size())
             fail(scene, where, "mesh " + std::to_string(inst.mesh) + " does not exist");
         for (int c = 0; c < 4; ++c)
-            if (!finite(glm::vec3(inst.model[c])) || !std::isfinite(inst.model[c][3])) fail(scene, where, "model matrix is not finite");
+            if (!fitsFloat(glm::dvec3(inst.model[c])) || !fitsFloat(inst.model[c][3]))
+                fail(scene, where, "model matrix is not finite (or beyond float range)");
         const Animation& a = inst.animation;
-        if (!finite(a.center) || !finite(a.axis) || !std::isfinite(a.radius) || !std::isfinite(a.radians_per_second) ||
+        if (!fitsFloat(a.center) || !finite(a.axis) || !fitsFloat(a.radius) || !std::isfinite(a.radians_per_second) ||
             (a.kind != Animation::Kind::None && glm::length(a.axis) < 1e-6f))
             fail(scene, where, "animation is not finite or has no axis");
     }
     for (size_t i = 0; i < scene.lights.size(); ++i) {
         const Light& l = scene.lights[i];
-        if (!finite(l.position) || !finite(l.direction) || !finite(l.color) || !std::isfinite(l.intensity) || !std::isfinite(l.range))
+        if (!fitsFloat(l.position) || !finite(l.direction) || !finite(l.color) || !std::isfinite(l.intensity) || !std::isfinite(l.range))
             fail(scene, "light " + std::to_string(i), "is not finite");
     }
 }
 
 }  // namespace
 
-glm::mat4 instanceTransform(const Instance& instance, double t) {
+glm::dmat4 instanceTransform(const Instance& instance, double t) {
     const Animation& a = instance.animation;
     if (a.kind == Animation::Kind::None) return instance.model;
-    // Reduce in double so a long run does not lose the angle's precision in float.
+    // Reduce the angle so a long run does not lose its precision.
     const double angle = std::fmod(double(a.radians_per_second) * t, 2.0 * 3.14159265358979323846);
-    const glm::vec3 axis = glm::normalize(a.axis);
+    const glm::dvec3 axis = glm::normalize(glm::dvec3(a.axis));
     if (a.kind == Animation::Kind::Orbit) {
-        glm::vec3 u, v;
+        glm::dvec3 u, v;
         orbitBasis(axis, u, v);
-        const glm::vec3 offset = a.center + a.radius * (float(std::cos(angle)) * u + float(std::sin(angle)) * v);
-        return glm::translate(glm::mat4(1.0f), offset) * instance.model;
+        const glm::dvec3 offset = a.center + a.radius * (std::cos(angle) * u + std::sin(angle) * v);
+        return glm::translate(glm::dmat4(1.0), offset) * instance.model;
     }
-    const glm::mat4 spin = glm::translate(glm::mat4(1.0f), a.center) * glm::rotate(glm::mat4(1.0f), float(angle), axis) *
-                           glm::translate(glm::mat4(1.0f), -a.center);
+    const glm::dmat4 spin = glm::translate(glm::dmat4(1.0), a.center) * glm::rotate(glm::dmat4(1.0), angle, axis) *
+                            glm::translate(glm::dmat4(1.0), -a.center);
     return spin * instance.model;
+}
+
+void placeScene(Scene& scene, glm::dvec3 offset, double scale) {
+    if (!(scale > 0 && std::isfinite(scale)) || !finite(offset))
+        throw std::invalid_argument(scene.source + ": placement: offset and scale must be finite, scale > 0");
+    const float s = float(scale);
+    for (Vertex& v : scene.vertices) v.position *= s;
+    for (Mesh& m : scene.meshes) {
+        m.bounds_min *= s;
+        m.bounds_max *= s;
+    }
+    for (Instance& inst : scene.instances) {
+        // world' = T(offset) S(scale) world S(1 / scale) on scaled vertices: the linear part
+        // stays, translations scale. An orbit's point carries the offset (its model is
+        // relative to it); everything else carries it in its own translation.
+        glm::dvec3 t = glm::dvec3(inst.model[3]) * scale;
+        Animation& a = inst.animation;
+        if (a.kind == Animation::Kind::Orbit) {
+            a.radius *= scale;
+        } else {
+            t += offset;
+        }
+        a.center = a.center * scale + offset;
+        inst.model[3] = glm::dvec4(t, inst.model[3][3]);
+    }
+    for (Light& l : scene.lights) {
+        if (l.type != Light::Type::Point) continue;
+        l.position = l.position * scale + offset;
+        l.range = float(l.range * scale);
+        l.intensity = float(l.intensity * scale * scale);
+    }
+    if (!scene.instances.empty()) {
+        scene.bounds_min = scene.bounds_min * scale + offset;
+        scene.bounds_max = scene.bounds_max * scale + offset;
+    }
+    checkScene(scene);
 }
 
 const std::vector<ProceduralSceneInfo>& proceduralScenes() {
@@ -165,7 +207,7 @@ void finalizeScene(Scene& scene) {
 
     SceneInfo& info = scene.info;
     info.opaque_draws = info.masked_draws = info.blend_draws = info.animated_instances = info.triangles = 0;
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (const Instance& inst : scene.instances) {
         const Mesh& mesh = scene.meshes[size_t(inst.mesh)];
         switch (scene.materials[size_t(mesh.material)].alpha_mode) {
@@ -175,18 +217,20 @@ void finalizeScene(Scene& scene) {
         }
         if (inst.animation.kind != Animation::Kind::None) ++info.animated_instances;
         info.triangles += int(mesh.index_count / 3);
-        const glm::mat4 model = instanceTransform(inst, 0.0);
+        const glm::dmat4 model = instanceTransform(inst, 0.0);
         for (int corner = 0; corner < 8; ++corner) {
-            const glm::vec3 p((corner & 1) ? mesh.bounds_max.x : mesh.bounds_min.x,
-                              (corner & 2) ? mesh.bounds_max.y : mesh.bounds_min.y,
-                              (corner & 4) ? mesh.bounds_max.z : mesh.bounds_min.z);
-            const glm::vec3 w(model * glm::vec4(p, 1.0f));
+            const glm::dvec3 p((corner & 1) ? mesh.bounds_max.x : mesh.bounds_min.x,
+                               (corner & 2) ? mesh.bounds_max.y : mesh.bounds_min.y,
+                               (corner & 4) ? mesh.bounds_max.z : mesh.bounds_min.z);
+            const glm::dvec3 w(model * glm::dvec4(p, 1.0));
             lo = glm::min(lo, w);
             hi = glm::max(hi, w);
         }
     }
-    if (scene.instances.empty()) lo = hi = glm::vec3(0.0f);
-    if (!finite(lo) || !finite(hi)) fail(scene, "bounds", "world bounds overflow (coordinates too large)");
+    if (scene.instances.empty()) lo = hi = glm::dvec3(0.0);
+    // Double bounds may span more than a float holds; the GPU then sees infinities.
+    if (!finite(lo) || !finite(hi) || !finite(glm::vec3(hi - lo)))
+        fail(scene, "bounds", "world bounds overflow (coordinates too large)");
     scene.bounds_min = lo;
     scene.bounds_max = hi;
 }

@@ -59,23 +59,25 @@ struct Mesh {
 };
 
 // Objects that move on their own (so per-object motion vectors matter).
+// World placement is double (centres, model matrices, light positions, bounds): a scene
+// far from the origin keeps its detail until the renderer subtracts the camera position.
 struct Animation {
     enum class Kind { None, Orbit, Spin } kind = Kind::None;
-    glm::vec3 center{0};   // Orbit: circle centre; Spin: pivot
+    glm::dvec3 center{0};  // Orbit: circle centre; Spin: pivot (world)
     glm::vec3 axis{0, 1, 0};
-    float radius = 0;      // Orbit radius
+    double radius = 0;     // Orbit radius
     float radians_per_second = 0;
 };
 
 struct Instance {
     int mesh = 0;
-    glm::mat4 model{1.0f};  // node hierarchy flattened
+    glm::dmat4 model{1.0};  // node hierarchy flattened; Orbit: relative to the circle's point
     Animation animation;
 };
 
 struct Light {
     enum class Type { Directional, Point } type = Type::Directional;
-    glm::vec3 position{0};            // Point
+    glm::dvec3 position{0};           // Point (world)
     glm::vec3 direction{0, -1, 0};    // Directional: direction the light travels
     glm::vec3 color{1.0f};
     float intensity = 1.0f;           // directional: lux-like scale; point: candela-like
@@ -102,8 +104,8 @@ struct Scene {
     std::vector<Mesh> meshes;
     std::vector<Instance> instances;
     std::vector<Light> lights;        // at least one
-    glm::vec3 bounds_min{0};          // world space, static pose (t = 0)
-    glm::vec3 bounds_max{0};
+    glm::dvec3 bounds_min{0};         // world space, static pose (t = 0)
+    glm::dvec3 bounds_max{0};
     glm::vec3 background{0.02f, 0.02f, 0.03f};  // linear clear colour
     SceneInfo info;
 };
@@ -113,7 +115,16 @@ struct Scene {
 // sin a * v)) * model, where u is the world axis least aligned with `axis` (x first on
 // ties) made perpendicular to it and v = axis x u (so +y orbits start at +x and turn
 // right-handed); Spin gives rotate(a about `axis` through center) * model.
-glm::mat4 instanceTransform(const Instance& instance, double t);
+// Computed in double: world placement may be far from the origin.
+glm::dmat4 instanceTransform(const Instance& instance, double t);
+
+// Moves and scales a whole scene: world' = offset + scale * world, with the image (seen
+// by a camera moved the same way, placePath) unchanged: vertex positions, mesh and scene
+// bounds, instance translations, animation centres and radii and light positions scale;
+// point lights' range scales and their intensity by scale^2 (inverse-square falloff).
+// Directions, angular speeds and materials are unchanged. Throws std::invalid_argument
+// unless scale > 0 and everything is finite.
+void placeScene(Scene& scene, glm::dvec3 offset, double scale);
 
 // glTF 2.0 (.gltf or .glb) through tinygltf. Bad input throws std::invalid_argument with
 // one line: "<file>: <JSON pointer or part>: <what is wrong>; expected <what is accepted>".

@@ -12,7 +12,7 @@ layout(std430, set = 0, binding = 1) readonly buffer Lights { GpuLight lights[];
 vec3 lightSample(vec2 ndc, float depth, vec4 albedo, vec4 normal, vec4 emissive) {
     if (depth <= 0.0) return frame.background.rgb;
     vec4 world = frame.inv_view_proj * vec4(ndc, depth, 1.0);
-    vec3 p = world.xyz / world.w;
-    vec3 v = normalize(frame.camera_position.xyz - p);
+    vec3 p = world.xyz / world.w;  // camera-relative, like the forward pass's positions
+    vec3 v = normalize(-p);
     return shadeSurface(p, normalize(normal.xyz), v, albedo.rgb, emissive.a, normal.w, albedo.a, emissive.rgb);
 }

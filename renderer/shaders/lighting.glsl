@@ -1,6 +1,7 @@
 // Lighting shared by forward shading and the deferred lighting resolve: every light
 // record (lights x shading cost) through the PBR BRDF, a constant ambient, emission.
-// The includer declares `frame` (FrameUniforms) and `lights` (GpuLight[]).
+// The includer declares `frame` (FrameUniforms) and `lights` (GpuLight[]). `world` and
+// the light positions are camera-relative (shared.h); v points to the camera.
 #ifndef CBR_LIGHTING_GLSL
 #define CBR_LIGHTING_GLSL
 #include "pbr.glsl"

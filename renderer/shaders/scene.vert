@@ -1,13 +1,15 @@
 #version 460
-// Scene vertex shader: world position, normal, UV, and the unjittered current and
-// previous clip positions for motion vectors. Checkerboard views offset the projection.
+// Scene vertex shader: camera-relative world position (shared.h), normal, UV, and the
+// unjittered current and previous clip positions for motion vectors. Checkerboard views
+// offset the projection.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_multiview : require
 #include "shared.h"
 
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
 
-// Per instance: model and previous model matrix, indexed by the draw's firstInstance.
+// Per instance: model and previous model matrix, both relative to this frame's camera
+// position, indexed by the draw's firstInstance.
 // (Not push constants: lavapipe replays multiview draws with the last pushed values.)
 layout(std430, set = 0, binding = 3) readonly buffer Instances { mat4 instance_matrices[]; };
 

@@ -42,7 +42,7 @@ void main() {
         return;
     }
     Surface surf = evaluateSurface(frame.params.x);
-    vec3 v = normalize(frame.camera_position.xyz - in_world);
+    vec3 v = normalize(-in_world);  // camera-relative: the camera is at the origin
     vec3 color = shadeSurface(in_world, surf.n, v, surf.albedo, surf.metallic, surf.roughness, surf.occlusion,
                               surf.emissive);
     out_color = vec4(color, ALPHA_MODE == 2 ? surf.alpha : 1.0);

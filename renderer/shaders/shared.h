@@ -13,17 +13,18 @@ using uvec4 = glm::uvec4;
 
 // std140 and std430 agree on these (mat4 and vec4 members only).
 struct FrameUniforms {
-    mat4 view_proj;        // world -> clip (reversed Z, Vulkan Y down)
-    mat4 prev_view_proj;   // the previous frame's, for motion
-    mat4 view;             // world -> view
-    vec4 camera_position;  // xyz world
+    // Camera-relative rendering: "world" positions on the GPU are world minus this frame's
+    // camera position (subtracted in double on the host), so the camera is at the origin.
+    mat4 view_proj;        // camera-relative world -> clip (reversed Z, Vulkan Y down)
+    mat4 prev_view_proj;   // the previous frame's, from the same camera-relative positions
+    mat4 view;             // camera-relative world -> view (a rotation)
     vec4 params;           // x texture LOD bias, y exposure, z ambient, w debug pixel-id mode
     uvec4 counts;          // x light records (lights x shading cost), y shading cost
     vec4 background;       // linear clear colour
     // Checkerboard rendering (zero elsewhere):
     vec4 view_offsets;     // clip-space xy offsets of view/sample 0 (xy) and view 1 (zw)
     mat4 reproject;        // current unjittered clip -> previous clip (static geometry)
-    mat4 inv_view_proj;    // unjittered clip -> world (deferred lighting)
+    mat4 inv_view_proj;    // unjittered clip -> camera-relative world (deferred lighting)
     vec4 depth_params;     // view depth = B / (d + A): x A, y B (current), z A, w B (previous)
     uvec4 frame_info;      // x parity (0 even, 1 odd), y 0 / 1 history reset / 2 nothing moved, z width, w height
 };
@@ -36,7 +37,7 @@ struct MaterialUniforms {
 };
 
 struct GpuLight {
-    vec4 position;   // xyz, w: 0 directional, 1 point
+    vec4 position;   // xyz camera-relative, w: 0 directional, 1 point
     vec4 direction;  // xyz direction the light travels, w range (0: infinite)
     vec4 radiance;   // rgb colour * intensity / shading cost
 };
@@ -48,7 +49,7 @@ struct GpuLight {
 #define CBR_TEX_OCCLUSION 16u
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameUniforms) == 5 * 64 + 7 * 16);
+static_assert(sizeof(FrameUniforms) == 5 * 64 + 6 * 16);
 static_assert(sizeof(MaterialUniforms) == 4 * 16);
 static_assert(sizeof(GpuLight) == 3 * 16);
 }  // namespace cbr::shaders

@@ -231,7 +231,7 @@ TEST(Atrium, IsDeterministic) {
     ASSERT_EQ(a.instances.size(), b.instances.size());
     for (size_t i = 0; i < a.instances.size(); ++i) {
         EXPECT_EQ(a.instances[i].mesh, b.instances[i].mesh);
-        EXPECT_EQ(std::memcmp(&a.instances[i].model, &b.instances[i].model, sizeof(glm::mat4)), 0);
+        EXPECT_EQ(std::memcmp(&a.instances[i].model, &b.instances[i].model, sizeof(glm::dmat4)), 0);
     }
     ASSERT_EQ(a.materials.size(), b.materials.size());
     for (size_t i = 0; i < a.materials.size(); ++i) EXPECT_EQ(a.materials[i].name, b.materials[i].name);
@@ -488,8 +488,8 @@ TEST(GltfSynthetic, TriangleLoadsWithDefaultsAndComputedNormal) {
     EXPECT_TRUE(s.info.default_light);
     EXPECT_NEAR(glm::length(s.vertices[0].normal - glm::vec3(0, 0, 1)), 0.0f, 1e-6f);
     EXPECT_EQ(s.vertices[0].uv, glm::vec2(0.0f));
-    EXPECT_NEAR(glm::length(s.bounds_min - glm::vec3(1, 2, 3)), 0.0f, 1e-6f);
-    EXPECT_NEAR(glm::length(s.bounds_max - glm::vec3(2, 3, 3)), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::length(s.bounds_min - glm::dvec3(1, 2, 3)), 0.0, 1e-6);
+    EXPECT_NEAR(glm::length(s.bounds_max - glm::dvec3(2, 3, 3)), 0.0, 1e-6);
 }
 
 TEST(GltfSynthetic, PunctualLightReplacesTheDefault) {
@@ -502,7 +502,7 @@ TEST(GltfSynthetic, PunctualLightReplacesTheDefault) {
     EXPECT_FALSE(s.info.default_light);
     ASSERT_EQ(s.lights.size(), 1u);
     EXPECT_EQ(s.lights[0].type, Light::Type::Point);
-    EXPECT_EQ(s.lights[0].position, glm::vec3(4, 5, 6));
+    EXPECT_EQ(s.lights[0].position, glm::dvec3(4, 5, 6));
     EXPECT_EQ(s.lights[0].color, glm::vec3(1, 0, 0));
     EXPECT_EQ(s.lights[0].intensity, 5.0f);
 }
