@@ -16,6 +16,7 @@
 #include "metrics/metrics.h"
 #include "harness/compare.h"
 #include "harness/matrix.h"
+#include "harness/stress.h"
 #include "harness/options.h"
 #include "harness/run.h"
 #include "renderer/scene/scene.h"
@@ -170,6 +171,21 @@ int main(int argc, char** argv) {
     std::string merge_out;
     merge->add_option("DIR", merge_dirs, "shard output directories")->required();
     merge->add_option("--out", merge_out, "the merged directory (must not exist)")->required();
+    auto* stress = app.add_subcommand("stress", "named extreme cases through every variant and both pipelines; exit 0 "
+                                                "only if every case's expectation holds (stress.csv, stress.html)");
+    cbr::harness::StressOptions so;
+    std::string stress_cases, stress_pipelines = "forward,deferred";
+    stress->add_option("--res", so.resolution, "frame size of every case")->capture_default_str();
+    stress->add_option("--out", so.out, "output directory (default out/stress-<date-time>)");
+    stress->add_option("--device", so.device, "device index or name substring");
+    stress->add_option("--cases", stress_cases, "comma-separated case names (default: all; `--list` names them)");
+    stress->add_option("--pipelines", stress_pipelines, "forward and/or deferred")->capture_default_str();
+    stress->add_flag("--validate", so.validate, "Khronos validation layer on in every run; any message fails the case");
+    stress->add_option("--static-frames", so.static_frames, "length of the static-camera case")->capture_default_str();
+    stress->add_option("--subpixel-frames", so.subpixel_frames, "length of the sub-pixel motion case")
+        ->capture_default_str();
+    bool stress_list = false;
+    stress->add_flag("--list", stress_list, "list the cases and their expectations");
     auto* sweep = app.add_subcommand("sweep", "run the variants over swept settings, interleaved in one process; write "
                                               "sweep.csv and sweep.html (recommended CSO tolerance, quality at equal cost)");
     addRunOptions(sweep, o, variant_list);
@@ -237,6 +253,16 @@ int main(int argc, char** argv) {
         o.argv.assign(argv, argv + argc);
         o.sweep = sweep->parsed();
         if (*merge) return cbr::harness::mergeRuns(merge_dirs, merge_out);
+        if (*stress) {
+            if (stress_list) {
+                for (const auto& c : cbr::harness::stressCases())
+                    std::printf("%-28s %s\n", c.name.c_str(), c.expectation.c_str());
+                return 0;
+            }
+            so.cases = splitList(stress_cases);
+            so.pipelines = splitList(stress_pipelines);
+            return cbr::harness::runStress(so);
+        }
         if (*plan) return cbr::harness::printPlan(o, plan_shards);
         if (*run && (cbr::harness::isMatrix(o) || !shard_flag.empty()))
             return cbr::harness::runMatrix(o, cbr::harness::resolveShard(shard_flag));

@@ -404,7 +404,8 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                   {"lights", rc.scene.lights.size()},
                   {"default_light", si.default_light},
                   {"bounds_min", {rc.scene.bounds_min.x, rc.scene.bounds_min.y, rc.scene.bounds_min.z}},
-                  {"bounds_max", {rc.scene.bounds_max.x, rc.scene.bounds_max.y, rc.scene.bounds_max.z}}};
+                  {"bounds_max", {rc.scene.bounds_max.x, rc.scene.bounds_max.y, rc.scene.bounds_max.z}},
+                  {"warnings", rc.scene.warnings}};
     j["path"] = {{"name", rc.path.name},
                  {"source", rc.options.path},
                  {"hash", pathHash(rc.poses, rc.times)},

@@ -189,6 +189,7 @@ Prepared prepare(const RunOptions& o) {
     }
 
     p.scene = scene::loadScene(o.scene);
+    for (const auto& w : p.scene.warnings) std::fprintf(stderr, "cbrbench: warning: %s: %s\n", o.scene.c_str(), w.c_str());
     paths::BuiltinContext bctx;
     bctx.bounds = {glm::dvec3(p.scene.bounds_min), glm::dvec3(p.scene.bounds_max)};
     bctx.width = int(p.settings.width);

@@ -252,13 +252,26 @@ int loadPrimitive(GltfContext& ctx, size_t mesh_index, size_t prim_index) {
         if (!std::isfinite(n.x + n.y + n.z)) continue;  // huge coordinates overflow; skip their weight
         for (int k = 0; k < 3; ++k) computed[triangles[t + size_t(k)]] += n;
     }
+    size_t zero_normals = 0, degenerate = 0;
+    for (size_t t = 0; t < triangles.size(); t += 3) {
+        const glm::vec3& a = vertices[triangles[t]].position;
+        const glm::vec3 n = glm::cross(vertices[triangles[t + 1]].position - a, vertices[triangles[t + 2]].position - a);
+        degenerate += !(glm::dot(n, n) > 0.0f);
+    }
     for (size_t i = 0; i < vertex_count; ++i) {
         glm::vec3 n = normals.empty() ? glm::vec3(0.0f) : glm::vec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
+        if (!normals.empty() && !(glm::dot(n, n) > 1e-12f)) ++zero_normals;
         if (!(glm::dot(n, n) > 1e-12f)) n = computed[i];
         vertices[i].normal = glm::dot(n, n) > 1e-30f && std::isfinite(glm::dot(n, n)) ? glm::normalize(n) : glm::vec3(0, 1, 0);
     }
 
     Scene& scene = ctx.scene;
+    if (zero_normals)
+        scene.warnings.push_back(p + "/attributes/NORMAL: " + std::to_string(zero_normals) +
+                                 " zero-length normal(s) replaced by area-weighted face normals");
+    if (degenerate)
+        scene.warnings.push_back(p + ": " + std::to_string(degenerate) +
+                                 " zero-area triangle(s) kept (they cover no pixel)");
     if (scene.vertices.size() + vertex_count > size_t(std::numeric_limits<int32_t>::max()) ||
         scene.indices.size() + triangles.size() > size_t(std::numeric_limits<uint32_t>::max()))
         gltfError(ctx, p, "the scene exceeds 2^31 vertices or 2^32 indices", "a smaller scene");

@@ -108,6 +108,9 @@ struct Scene {
     glm::dvec3 bounds_max{0};
     glm::vec3 background{0.02f, 0.02f, 0.03f};  // linear clear colour
     SceneInfo info;
+    // What loading repaired or left out but still rendered (run.json scene.warnings),
+    // e.g. "/meshes/0/primitives/0: 24 zero-length normals replaced by face normals".
+    std::vector<std::string> warnings;
 };
 
 // Model matrix of an instance at time t (seconds): the animation applied to `model`.

@@ -1,6 +1,7 @@
 #version 460
 // DRR upscale: the scaled render region of the HDR target resampled to the output size,
-// bilinear or Catmull-Rom (bicubic, B = 0, C = 0.5), clamped to the rendered region.
+// bilinear or Catmull-Rom (bicubic, B = 0, C = 0.5, clamped to the 2x2 neighbourhood's
+// range against ringing), sampled within the rendered region.
 layout(local_size_x = 8, local_size_y = 8) in;
 
 // 0 bilinear, 1 Catmull-Rom.
@@ -41,7 +42,11 @@ void main() {
             float wy = catmullRom(float(y) - f.y);
             for (int x = -1; x <= 2; ++x) c += wy * catmullRom(float(x) - f.x) * fetch(i0 + ivec2(x, y));
         }
-        c = max(c, vec3(0.0));  // negative lobes must not produce negative radiance
+        // Anti-ringing: the negative lobes overshoot at hard edges (below zero next to a
+        // bright texel, which exposure then turns into a black pixel inside a white frame);
+        // clamp to the range of the four nearest texels, as FSR and TAA resolves do.
+        vec3 a00 = fetch(i0), a10 = fetch(i0 + ivec2(1, 0)), a01 = fetch(i0 + ivec2(0, 1)), a11 = fetch(i0 + ivec2(1, 1));
+        c = clamp(c, min(min(a00, a10), min(a01, a11)), max(max(a00, a10), max(a01, a11)));
     }
     imageStore(target, p, vec4(c, 1.0));
 }

@@ -1,0 +1,714 @@
+// `cbrbench stress`: each case is one or more `cbrbench run`s in child processes (a crash
+// or device loss in one case is that case's failure, not the suite's), checked against
+// the case's expectation from their own files.
+#include "harness/stress.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fcntl.h>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
+
+#include "camera_paths/path.h"
+#include "harness/options.h"
+#include "metrics/image_io.h"
+#include "metrics/metrics.h"
+#include "renderer/scene/scene.h"
+#include "reports/csv.h"
+#include "reports/csv_read.h"
+#include "reports/html.h"
+#include "reports/output_dir.h"
+#include "reports/report_sections.h"
+
+namespace cbr::harness {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const std::vector<std::string> kVariants = {"full", "drr", "cbr-aso", "cbr-cso"};
+const std::vector<std::string> kCbr = {"cbr-aso", "cbr-cso"};
+
+// One `cbrbench run` of a case, and what came of it.
+struct Child {
+    std::vector<std::string> args;  // after `run`, without --out/--pipeline/--res/--device/--validate
+    bool save_frames = true;
+    fs::path dir;
+    int exit_code = -1;
+    int signal = 0;  // killed by this signal (a crash)
+    std::string err;
+    reports::CsvData frames, summary;
+    json run;
+    bool loaded = false;
+};
+
+std::string readText(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// fork + exec of this very binary, stdout and stderr to files beside the run's directory.
+void runChild(const fs::path& self, Child& c, const std::vector<std::string>& common) {
+    std::vector<std::string> argv = {self.string(), "run"};
+    argv.insert(argv.end(), c.args.begin(), c.args.end());
+    argv.insert(argv.end(), common.begin(), common.end());
+    argv.insert(argv.end(), {"--out", c.dir.string()});
+    if (c.save_frames) argv.push_back("--save-frames");
+    const fs::path out_log = c.dir.string() + ".stdout.txt", err_log = c.dir.string() + ".stderr.txt";
+    {
+        std::ofstream cmd(c.dir.string() + ".command.txt");
+        for (const auto& a : argv) cmd << a << ' ';
+        cmd << '\n';
+    }
+    std::fflush(nullptr);
+    pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("stress: fork failed");
+    if (pid == 0) {
+        int o = ::open(out_log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int e = ::open(err_log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (o >= 0) dup2(o, 1);
+        if (e >= 0) dup2(e, 2);
+        std::vector<char*> cargv;
+        for (auto& a : argv) cargv.push_back(a.data());
+        cargv.push_back(nullptr);
+        execv(cargv[0], cargv.data());
+        _exit(127);
+    }
+    int status = 0;
+    waitpid(pid, &status, 0);
+    c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    c.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+    c.err = readText(err_log);
+    if (c.exit_code == 0) {
+        try {
+            c.frames = reports::readCsv(c.dir / "frames.csv", reports::isReportNumericColumn, {"variant", "frame"});
+            c.summary = reports::readCsv(c.dir / "summary.csv", reports::isReportNumericColumn, {"variant"});
+            c.run = json::parse(readText(c.dir / "run.json"));
+            c.loaded = true;
+        } catch (const std::exception& e) {
+            c.err += std::string("stress: reading the run's files: ") + e.what() + "\n";
+        }
+    }
+}
+
+std::optional<double> summaryValue(const Child& c, const std::string& variant, const std::string& col) {
+    for (size_t r = 0; r < c.summary.rows.size(); ++r)
+        if (c.summary.text(r, "variant") == variant) return c.summary.num(r, col);
+    return std::nullopt;
+}
+
+std::optional<double> frameValue(const Child& c, const std::string& variant, int frame, const std::string& col) {
+    for (size_t r = 0; r < c.frames.rows.size(); ++r)
+        if (c.frames.text(r, "variant") == variant && c.frames.num(r, "frame") == frame &&
+            c.frames.num(r, "repeat").value_or(0) == 0)
+            return c.frames.num(r, col);
+    return std::nullopt;
+}
+
+std::vector<double> frameSeries(const Child& c, const std::string& variant, const std::string& col) {
+    std::map<int, double> by_frame;
+    for (size_t r = 0; r < c.frames.rows.size(); ++r)
+        if (c.frames.text(r, "variant") == variant && c.frames.num(r, "repeat").value_or(0) == 0)
+            if (auto v = c.frames.num(r, col)) by_frame[int(*c.frames.num(r, "frame"))] = *v;
+    std::vector<double> out;
+    for (auto& [f, v] : by_frame) out.push_back(v);
+    return out;
+}
+
+// Every number the run wrote is finite (PSNR's documented inf aside) and every variant ran.
+bool finiteAndOk(const Child& c, std::string& why) {
+    if (c.signal) return why = "crashed (signal " + std::to_string(c.signal) + ")", false;
+    if (c.exit_code != 0) return why = "exit " + std::to_string(c.exit_code) + ": " + c.err.substr(0, 200), false;
+    if (!c.loaded) return why = c.err, false;
+    if (c.run.value("non_finite_cells", 0) != 0)
+        return why = std::to_string(c.run.value("non_finite_cells", 0)) + " non-finite cells", false;
+    for (const auto* t : {&c.frames, &c.summary})
+        for (size_t r = 0; r < t->rows.size(); ++r) {
+            if (t->text(r, "status") != "ok") return why = t->text(r, "variant") + " " + t->text(r, "status"), false;
+            for (const auto& h : t->header) {
+                if (!reports::isReportNumericColumn(h)) continue;
+                auto v = t->num(r, h);
+                if (v && std::isinf(*v) && h.rfind("psnr", 0) != 0)
+                    return why = h + " is infinite in " + t->file.filename().string(), false;
+            }
+        }
+    return true;
+}
+
+// Sequence PSNR between two runs' saved display images of one variant (mean MSE over frames).
+std::optional<double> imagePsnr(const Child& a, const Child& b, const std::string& variant, int first_frame = 0) {
+    double mse_sum = 0;
+    int n = 0;
+    for (int f = first_frame;; ++f) {
+        char name[64];
+        std::snprintf(name, sizeof name, "%s_%04d.png", variant.c_str(), f);
+        fs::path pa = a.dir / "frames" / name, pb = b.dir / "frames" / name;
+        if (!fs::exists(pa) || !fs::exists(pb)) break;
+        auto ia = metrics::readPng(pa), ib = metrics::readPng(pb);
+        if (ia.width != ib.width || ia.height != ib.height) return std::nullopt;
+        auto x = metrics::fromRgba8(ia.pixels.data(), ia.width, ia.height, size_t(ia.width) * 4);
+        auto y = metrics::fromRgba8(ib.pixels.data(), ib.width, ib.height, size_t(ib.width) * 4);
+        mse_sum += metrics::mse(x, y);
+        ++n;
+    }
+    if (n == 0) return std::nullopt;
+    return metrics::psnrFromMse(mse_sum / n);
+}
+
+std::string db(std::optional<double> v) {
+    if (!v) return "n/a";
+    if (std::isinf(*v)) return "inf";
+    char b[32];
+    std::snprintf(b, sizeof b, "%.1f", *v);
+    return b;
+}
+std::string num(std::optional<double> v, int digits = 3) {
+    if (!v) return "n/a";
+    char b[32];
+    std::snprintf(b, sizeof b, "%.*f", digits, *v);
+    return b;
+}
+
+struct Verdict {
+    bool finite = true;
+    bool held = false;
+    std::string quality;  // what the case measured of quality
+    std::string detail;   // the numbers the expectation was checked on
+};
+
+// Children of a case, by key, for one pipeline.
+using Children = std::map<std::string, Child*>;
+
+struct Case {
+    std::string name;
+    std::string expectation;
+    std::vector<std::pair<std::string, std::vector<std::string>>> runs;  // key -> run args (shared keys run once)
+    std::function<Verdict(Children&)> check;
+};
+
+// Quality of the run's checkerboard and drr variants against full, as sequence PSNR.
+std::string qualityLine(const Child& c) {
+    std::string s;
+    for (const auto& v : {"drr", "cbr-aso", "cbr-cso"})
+        s += (s.empty() ? "" : ", ") + std::string(v) + " " + db(summaryValue(c, v, "psnr_db_mean")) + " dB";
+    return s;
+}
+
+// The shared finiteness verdict of all children of a case.
+Verdict base(Children& ch) {
+    Verdict v;
+    for (auto& [key, c] : ch) {
+        std::string why;
+        if (!finiteAndOk(*c, why)) {
+            v.finite = false;
+            v.detail += key + ": " + why + "; ";
+        }
+    }
+    return v;
+}
+
+// Same images (per variant) as the baseline run, to `min_db`, and the same class shares.
+Verdict sameAsBase(Children& ch, const std::string& other, double min_db, double share_tol) {
+    Verdict v = base(ch);
+    if (!v.finite) return v;
+    Child& a = *ch.at("base");
+    Child& b = *ch.at(other);
+    v.held = true;
+    for (const auto& var : kVariants) {
+        auto p = imagePsnr(a, b, var);
+        v.detail += var + " " + db(p) + " dB; ";
+        if (!p || *p < min_db) v.held = false;
+    }
+    double worst = 0;
+    for (const auto& var : kCbr)
+        for (const char* cls : {"px_reused_mean", "px_occluded_mean", "px_missing_parity_mean"}) {
+            auto x = summaryValue(a, var, cls), y = summaryValue(b, var, cls);
+            if (x && y) worst = std::max(worst, std::abs(*x - *y));
+        }
+    v.detail += "class shares differ by at most " + num(worst, 4);
+    if (worst > share_tol) v.held = false;
+    v.quality = qualityLine(b);
+    return v;
+}
+
+std::string isoNow() {
+    std::time_t now = std::time(nullptr);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&now));
+    return buf;
+}
+
+// A camera path file: keyframes at frame times of a 30 fps clock.
+fs::path writePath(const fs::path& dir, const std::string& name, double fov_deg,
+                   const std::vector<std::tuple<int, glm::dvec3, glm::dquat, bool>>& keys) {
+    paths::CameraPath p;
+    p.name = name;
+    p.fps = 30;
+    p.interpolation = paths::Interpolation::Linear;
+    for (const auto& [frame, pos, q, cut] : keys) {
+        paths::Keyframe k;
+        k.time = frame / 30.0;
+        k.position = pos;
+        k.orientation = q;
+        k.fov_y_deg = fov_deg;
+        k.cut = cut;
+        p.keys.push_back(k);
+    }
+    fs::path file = dir / (name + ".json");
+    std::ofstream(file) << paths::toJson(p).dump(2) << "\n";
+    return file;
+}
+
+// A quad of two triangles plus a zero-area (collinear) one; `missing_texture` adds a
+// base colour texture whose image file does not exist.
+fs::path writeDegenerateGltf(const fs::path& dir, const std::string& name, bool missing_texture) {
+    // Positions (4 corners + 3 collinear points), normals (one zero-length), uvs.
+    std::vector<float> pos = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0, 0, 0, 0.5f, 0.5f, 0.5f, 0.5f, 1, 1, 0.5f};
+    std::vector<float> nrm = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    std::vector<float> uv = {0, 0, 1, 0, 1, 1, 0, 1, 0, 0, 0, 0, 0, 0};
+    std::vector<uint16_t> idx = {0, 1, 2, 0, 2, 3, 4, 5, 6};
+    std::string bin;
+    auto put = [&](const void* d, size_t n) { bin.append(static_cast<const char*>(d), n); };
+    put(pos.data(), pos.size() * 4);
+    put(nrm.data(), nrm.size() * 4);
+    put(uv.data(), uv.size() * 4);
+    put(idx.data(), idx.size() * 2);
+    while (bin.size() % 4) bin.push_back('\0');
+    static const char* b64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string enc;
+    for (size_t i = 0; i < bin.size(); i += 3) {
+        uint32_t v = uint32_t(uint8_t(bin[i])) << 16;
+        if (i + 1 < bin.size()) v |= uint32_t(uint8_t(bin[i + 1])) << 8;
+        if (i + 2 < bin.size()) v |= uint32_t(uint8_t(bin[i + 2]));
+        enc += b64[(v >> 18) & 63];
+        enc += b64[(v >> 12) & 63];
+        enc += i + 1 < bin.size() ? b64[(v >> 6) & 63] : '=';
+        enc += i + 2 < bin.size() ? b64[v & 63] : '=';
+    }
+    json g;
+    g["asset"] = {{"version", "2.0"}};
+    g["buffers"] = json::array({{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + enc}}});
+    g["bufferViews"] = json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 84}},
+                                    {{"buffer", 0}, {"byteOffset", 84}, {"byteLength", 84}},
+                                    {{"buffer", 0}, {"byteOffset", 168}, {"byteLength", 56}},
+                                    {{"buffer", 0}, {"byteOffset", 224}, {"byteLength", 18}}});
+    g["accessors"] = json::array({{{"bufferView", 0}, {"componentType", 5126}, {"count", 7}, {"type", "VEC3"},
+                                   {"min", {-1, -1, 0}}, {"max", {1, 1, 0.5}}},
+                                  {{"bufferView", 1}, {"componentType", 5126}, {"count", 7}, {"type", "VEC3"}},
+                                  {{"bufferView", 2}, {"componentType", 5126}, {"count", 7}, {"type", "VEC2"}},
+                                  {{"bufferView", 3}, {"componentType", 5123}, {"count", 9}, {"type", "SCALAR"}}});
+    json prim = {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}}, {"indices", 3}, {"material", 0}};
+    g["meshes"] = json::array({{{"primitives", json::array({prim})}}});
+    json mat = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.6, 0.4, 1}}}}};
+    if (missing_texture) {
+        mat["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+        g["textures"] = json::array({{{"source", 0}}});
+        g["images"] = json::array({{{"uri", "no-such-texture.png"}}});
+    }
+    g["materials"] = json::array({mat});
+    g["nodes"] = json::array({{{"mesh", 0}}});
+    g["scenes"] = json::array({{{"nodes", {0}}}});
+    g["scene"] = 0;
+    fs::path file = dir / (name + ".gltf");
+    std::ofstream(file) << g.dump(1) << "\n";
+    return file;
+}
+
+std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, uint32_t w, uint32_t h) {
+    (void)w;
+    // Poses from the atrium flythrough's start: inside the scene, looking down the aisle.
+    scene::Scene atrium = scene::buildProcedural("atrium");
+    paths::BuiltinContext bctx;
+    bctx.bounds = {glm::dvec3(atrium.bounds_min), glm::dvec3(atrium.bounds_max)};
+    bctx.scene_name = "atrium";
+    paths::CameraPose p0 = paths::samplePose(paths::builtinPath("flythrough", bctx), 0.0);
+    auto yaw = [](double rad) { return glm::angleAxis(rad, glm::dvec3(0, 1, 0)); };
+    const glm::dquat q0 = p0.orientation;
+
+    // Sub-pixel motion: a yaw pan moving the screen centre 0.01 px per frame.
+    const double fov = 60.0, f_px = (h / 2.0) / std::tan(glm::radians(fov) / 2);
+    const int n_sub = o.subpixel_frames;
+    const double d_sub = std::atan(0.01 / f_px);
+    fs::path sub = writePath(paths_dir, "subpixel-0.01px", fov,
+                             {{0, p0.position, q0, false}, {n_sub - 1, p0.position, q0 * yaw(d_sub * (n_sub - 1)), false}});
+    // Jitter-cancelling motion: 1 px per frame with a 10-degree field of view (within 0.8%
+    // of 1 px across the frame), so last frame's samples land on this frame's parity.
+    const double fov_narrow = 10.0, f_narrow = (h / 2.0) / std::tan(glm::radians(fov_narrow) / 2);
+    const int n_cancel = 24;
+    fs::path cancel = writePath(paths_dir, "parity-cancel-1px", fov_narrow,
+                                {{0, p0.position, q0, false},
+                                 {n_cancel - 1, p0.position, q0 * yaw(std::atan(1.0 / f_narrow) * (n_cancel - 1)), false}});
+    // 180 degrees between frames 10 and 11, still before and after; and the same with a cut.
+    auto turnPath = [&](const std::string& name, bool cut) {
+        return writePath(paths_dir, name, fov,
+                         {{0, p0.position, q0, false}, {10, p0.position, q0, false},
+                          {11, p0.position, q0 * yaw(glm::pi<double>()), cut},
+                          {21, p0.position, q0 * yaw(glm::pi<double>()), false}});
+    };
+    fs::path turn = turnPath("turn-180", false), cut = turnPath("cut-180", true);
+    fs::path bad_normals = "/usr/share/assimp/models/glTF2/BoxBadNormals-glTF-Binary/BoxBadNormals.glb";
+    fs::path infinites = "/usr/share/assimp/models/glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb";
+    fs::path zero_area = writeDegenerateGltf(paths_dir, "zero-area-triangle", false);
+    fs::path no_texture = writeDegenerateGltf(paths_dir, "missing-texture", true);
+
+    const std::vector<std::string> fly = {"--scene", "atrium", "--path", "flythrough", "--frames", "8"};
+    auto plus = [](std::vector<std::string> a, const std::vector<std::string>& b) {
+        a.insert(a.end(), b.begin(), b.end());
+        return a;
+    };
+    std::vector<Case> cases;
+    cases.push_back({"extreme-planes", "near 1e-4 / far 1e7: images >= 40 dB of default planes', class shares within 0.01",
+                     {{"base", fly}, {"planes", plus(fly, {"--near", "1e-4", "--far", "1e7"})}},
+                     [](Children& c) { return sameAsBase(c, "planes", 40, 0.01); }});
+    cases.push_back({"far-from-origin", "scene and path moved by (1e6, 1e6, 1e6): the same images (>= 60 dB), same class shares",
+                     {{"base", fly}, {"offset", plus(fly, {"--scene-offset", "1e6,1e6,1e6"})}},
+                     [](Children& c) { return sameAsBase(c, "offset", 60, 0.001); }});
+    cases.push_back({"tiny-scene", "millimetre units (scale 0.001, planes scaled): images >= 40 dB of unscaled, shares within 0.01",
+                     {{"base", fly}, {"mm", plus(fly, {"--scene-scale", "0.001"})}},
+                     [](Children& c) { return sameAsBase(c, "mm", 40, 0.01); }});
+    cases.push_back({"huge-scene", "kilometre units (scale 1000): images >= 40 dB of unscaled, shares within 0.01",
+                     {{"base", fly}, {"km", plus(fly, {"--scene-scale", "1000"})}},
+                     [](Children& c) { return sameAsBase(c, "km", 40, 0.01); }});
+    cases.push_back(
+        {"subpixel-motion", "0.01 px per frame for " + std::to_string(n_sub) +
+                                " frames: checkerboard PSNR of the last 50 frames within 0.5 dB of frames 1-50 (no drift)",
+         {{"subpixel", {"--scene", "atrium", "--path", sub.string(), "--frames", std::to_string(n_sub)}}},
+         [](Children& c) {
+             Verdict v = base(c);
+             if (!v.finite) return v;
+             const Child& r = *c.at("subpixel");
+             v.held = true;
+             for (const auto& var : kCbr) {
+                 auto s = frameSeries(r, var, "psnr_db");
+                 if (s.size() < 101) return v.held = false, v.detail = "too few frames", v;
+                 double early = 0, late = 0;
+                 for (size_t i = 1; i <= 50; ++i) early += s[i] / 50;
+                 for (size_t i = s.size() - 50; i < s.size(); ++i) late += s[i] / 50;
+                 v.detail += var + " frames 1-50 " + db(early) + " dB, last 50 " + db(late) + " dB; ";
+                 if (!(late >= early - 0.5)) v.held = false;
+             }
+             v.quality = qualityLine(r);
+             return v;
+         }});
+    cases.push_back({"parity-cancelling-motion",
+                     "1 px per frame, cancelling the jitter: most pixels missing by parity, reconstructed spatially; finite, "
+                     "PSNR >= 12 dB, SSIM >= 0.3 (no garbage)",
+                     {{"cancel", {"--scene", "atrium", "--path", cancel.string(), "--frames", std::to_string(n_cancel)}}},
+                     [](Children& c) {
+                         Verdict v = base(c);
+                         if (!v.finite) return v;
+                         const Child& r = *c.at("cancel");
+                         v.held = true;
+                         for (const auto& var : kCbr) {
+                             auto miss = summaryValue(r, var, "px_missing_parity_mean");
+                             auto reused = summaryValue(r, var, "px_reused_mean");
+                             auto psnr = summaryValue(r, var, "psnr_db_mean");
+                             auto ssim = summaryValue(r, var, "ssim_mean");
+                             v.detail += var + " missing by parity " + num(miss) + ", reused " + num(reused) + ", " +
+                                         db(psnr) + " dB, SSIM " + num(ssim) + "; ";
+                             if (!miss || *miss < 0.3 || !psnr || *psnr < 12 || !ssim || *ssim < 0.3) v.held = false;
+                         }
+                         v.quality = qualityLine(r);
+                         return v;
+                     }});
+    auto frame11 = [](const Child& r, const std::string& var, const char* col) { return frameValue(r, var, 11, col); };
+    cases.push_back(
+        {"180-degree-turn",
+         "a 180-degree turn in one frame: the next frame reuses nothing (< 1%) and matches a history reset at the "
+         "same pose (PSNR within 0.5 dB)",
+         {{"turn", {"--scene", "atrium", "--path", turn.string(), "--frames", "22"}},
+          {"cut", {"--scene", "atrium", "--path", cut.string(), "--frames", "22"}}},
+         [frame11](Children& c) {
+             Verdict v = base(c);
+             if (!v.finite) return v;
+             v.held = true;
+             for (const auto& var : kCbr) {
+                 auto reused = frame11(*c.at("turn"), var, "px_reused");
+                 auto pt = frame11(*c.at("turn"), var, "psnr_db"), pc = frame11(*c.at("cut"), var, "psnr_db");
+                 v.detail += var + " frame 11 reused " + num(reused) + ", " + db(pt) + " dB vs " + db(pc) + " dB after a cut; ";
+                 if (!reused || *reused > 0.01 || !pt || !pc || std::abs(*pt - *pc) > 0.5) v.held = false;
+             }
+             v.quality = qualityLine(*c.at("turn"));
+             return v;
+         }});
+    cases.push_back(
+        {"camera-cut", "a cut: history resets on the cut frame (reset share >= 40%, nothing reused), no smear from the "
+                       "old shot (PSNR within 3 dB of the run's median)",
+         {{"cut", {"--scene", "atrium", "--path", cut.string(), "--frames", "22"}}},
+         [frame11](Children& c) {
+             Verdict v = base(c);
+             if (!v.finite) return v;
+             const Child& r = *c.at("cut");
+             v.held = true;
+             for (const auto& var : kCbr) {
+                 auto reset = frame11(r, var, "px_reset"), reused = frame11(r, var, "px_reused");
+                 auto p = frame11(r, var, "psnr_db");
+                 auto s = frameSeries(r, var, "psnr_db");
+                 std::sort(s.begin(), s.end());
+                 double med = s.empty() ? 0 : s[s.size() / 2];
+                 v.detail += var + " cut frame reset " + num(reset) + ", reused " + num(reused) + ", " + db(p) +
+                             " dB (median " + db(med) + "); ";
+                 if (!reset || *reset < 0.4 || !reused || *reused > 0.001 || !p || *p < med - 3) v.held = false;
+             }
+             v.quality = qualityLine(r);
+             return v;
+         }});
+    cases.push_back(
+        {"static-camera", "static camera for " + std::to_string(o.static_frames) +
+                              " frames, untextured scene: checkerboard identical to full (>= 60 dB) on every frame after the first",
+         {{"static", {"--scene", "blocks", "--path", "static", "--frames", std::to_string(o.static_frames), "--no-save"}}},
+         [](Children& c) {
+             Verdict v = base(c);
+             if (!v.finite) return v;
+             const Child& r = *c.at("static");
+             v.held = true;
+             for (const auto& var : kCbr) {
+                 auto s = frameSeries(r, var, "psnr_db");
+                 double worst = INFINITY;
+                 for (size_t i = 1; i < s.size(); ++i) worst = std::min(worst, s[i]);
+                 v.detail += var + " worst of frames 1-" + std::to_string(s.size() - 1) + ": " + db(worst) + " dB; ";
+                 if (s.size() < 2 || worst < 60) v.held = false;
+             }
+             v.quality = qualityLine(r);
+             return v;
+         }});
+    cases.push_back({"thin-geometry-and-foliage",
+                     "atrium's 1 cm cables, chain-link fence and alpha-tested foliage: finite; checkerboard crawls less "
+                     "than drr (ECI)",
+                     {{"base", fly}},
+                     [](Children& c) {
+                         Verdict v = base(c);
+                         if (!v.finite) return v;
+                         const Child& r = *c.at("base");
+                         auto drr = summaryValue(r, "drr", "eci");
+                         v.held = bool(drr);
+                         for (const auto& var : kCbr) {
+                             auto e = summaryValue(r, var, "eci");
+                             v.detail += var + " ECI " + num(e, 4) + "; ";
+                             if (!e || !drr || *e > *drr) v.held = false;
+                         }
+                         v.detail += "drr ECI " + num(drr, 4);
+                         v.quality = qualityLine(r);
+                         return v;
+                     }});
+    auto constant = [](const char* key) {
+        return [key](Children& c) {
+            Verdict v = base(c);
+            if (!v.finite) return v;
+            const Child& r = *c.at(key);
+            v.held = true;
+            int flagged = 0, frames = 0;
+            for (const auto& var : kVariants) {
+                auto p = summaryValue(r, var, "psnr_db_mean"), s = summaryValue(r, var, "ssim_mean"),
+                     e = summaryValue(r, var, "eci");
+                if (!p || !std::isinf(*p) || !s || *s != 1.0 || !e || *e != 0.0) v.held = false;
+                v.detail += var + " PSNR " + db(p) + ", SSIM " + num(s) + ", ECI " + num(e) + "; ";
+            }
+            for (size_t i = 0; i < r.frames.rows.size(); ++i)
+                if (r.frames.num(i, "frame").value_or(0) > 0 && r.frames.text(i, "variant") != "full") {
+                    ++frames;
+                    flagged += r.frames.text(i, "note").find("no reference edges") != std::string::npos;
+                }
+            v.detail += std::to_string(flagged) + " of " + std::to_string(frames) + " frame pairs flagged 'no edges'";
+            if (flagged != frames) v.held = false;
+            v.quality = "every variant identical to full";
+            return v;
+        };
+    };
+    const std::vector<std::string> blocks = {"--scene", "blocks", "--path", "orbit", "--frames", "6"};
+    cases.push_back({"black-frames", "exposure 1e-12 (all black): PSNR inf, SSIM 1, ECI 0 flagged 'no edges'; no 0/0",
+                     {{"black", plus(blocks, {"--exposure", "1e-12"})}}, constant("black")});
+    cases.push_back({"white-frames", "exposure 1e12 (all white): PSNR inf, SSIM 1, ECI 0 flagged 'no edges'; no 0/0",
+                     {{"white", plus(blocks, {"--exposure", "1e12"})}}, constant("white")});
+    cases.push_back({"hdr-extremes",
+                     "radiance scaled by 1e4 and by 1e-6 (exposure) through the tone map: finite output, every variant ran",
+                     {{"hdr-high", plus(fly, {"--exposure", "1e4"})}, {"hdr-low", plus(fly, {"--exposure", "1e-6"})}},
+                     [](Children& c) {
+                         Verdict v = base(c);
+                         v.held = v.finite;
+                         if (v.finite)
+                             v.detail = v.quality =
+                                 "1e4: " + qualityLine(*c.at("hdr-high")) + "; 1e-6: " + qualityLine(*c.at("hdr-low"));
+                         return v;
+                     }});
+    auto gltfCase = [&](const std::string& name, const fs::path& file, const std::string& expect,
+                        const std::string& warning) {
+        std::vector<std::string> args = {"--scene", file.string(), "--path", "orbit", "--frames", "4"};
+        cases.push_back({name, expect, {{"gltf", args}}, [warning](Children& c) {
+                             Verdict v;
+                             const Child& r = *c.at("gltf");
+                             size_t lines = size_t(std::count(r.err.begin(), r.err.end(), '\n'));
+                             if (r.signal) {
+                                 v.finite = false;
+                                 v.detail = "crashed (signal " + std::to_string(r.signal) + ")";
+                             } else if (r.exit_code == 2) {
+                                 v.held = lines == 1 && !fs::exists(r.dir);
+                                 v.detail = "refused: " + r.err.substr(0, r.err.find('\n'));
+                                 v.quality = "not rendered";
+                             } else if (r.exit_code == 0) {
+                                 std::string why;
+                                 v.finite = finiteAndOk(r, why);
+                                 auto warnings = r.run.value("scene", json::object()).value("warnings", json::array());
+                                 std::string found;
+                                 for (const auto& w : warnings)
+                                     if (w.is_string() && w.get<std::string>().find(warning) != std::string::npos)
+                                         found = w.get<std::string>();
+                                 v.held = v.finite && !found.empty();
+                                 v.detail = "rendered with " + std::to_string(warnings.size()) + " warning(s) in run.json" +
+                                            (found.empty() ? ", none about '" + warning + "'" : ": " + found) + why;
+                                 v.quality = qualityLine(r);
+                             } else {
+                                 v.detail = "exit " + std::to_string(r.exit_code) + ": " + r.err.substr(0, 300);
+                             }
+                             return v;
+                         }});
+    };
+    const std::string either = "rendered with a warning in run.json, or refused with one line and exit 2; never a crash";
+    gltfCase("gltf-zero-length-normals", bad_normals, "assimp-testmodels BoxBadNormals: " + either, "zero-length normal");
+    gltfCase("gltf-non-finite-positions", infinites, "assimp-testmodels BoxWithInfinites: " + either, "non-finite");
+    gltfCase("gltf-zero-area-triangles", zero_area, "a degenerate (collinear) triangle beside a quad: " + either,
+             "zero-area triangle");
+    gltfCase("gltf-missing-texture", no_texture, "a base colour texture whose image file is missing: " + either,
+             "texture");
+    return cases;
+}
+
+}  // namespace
+
+const std::vector<StressCaseInfo>& stressCases() {
+    static const std::vector<StressCaseInfo> info = [] {
+        std::vector<StressCaseInfo> out;
+        StressOptions o;
+        auto tmp = fs::temp_directory_path() / ("cbrbench-stress-list-" + std::to_string(::getpid()));
+        fs::create_directories(tmp);
+        for (const auto& c : buildCases(tmp, o, 96, 64)) out.push_back({c.name, c.expectation});
+        fs::remove_all(tmp);
+        return out;
+    }();
+    return info;
+}
+
+int runStress(const StressOptions& o) {
+    uint32_t w = 0, h = 0;
+    parseResolution(o.resolution, w, h);
+    if (o.static_frames < 2 || o.subpixel_frames < 101)
+        throw std::invalid_argument("stress: --static-frames >= 2 and --subpixel-frames >= 101 expected");
+    for (const auto& p : o.pipelines)
+        if (p != "forward" && p != "deferred")
+            throw std::invalid_argument("--pipelines " + p + ": expected forward and/or deferred");
+    std::set<std::string> names;
+    for (const auto& c : stressCases()) names.insert(c.name);
+    for (const auto& want : o.cases)
+        if (!names.count(want)) {
+            std::string list;
+            for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+            throw std::invalid_argument("--cases " + want + ": unknown case; expected some of " + list);
+        }
+    fs::path final_dir = o.out.empty() ? fs::path("out") / ("stress-" + isoNow()) : fs::path(o.out);
+    reports::OutputDir out(final_dir);
+    fs::path paths_dir = out.path() / "inputs";
+    fs::create_directories(paths_dir);
+    std::vector<Case> cases = buildCases(paths_dir, o, w, h);
+    const fs::path self = fs::read_symlink("/proc/self/exe");
+
+    reports::CsvTable table({"case", "pipeline", "expectation", "finite", "held", "quality", "detail", "runs"});
+    int failed = 0, total = 0;
+    std::string rows_html;
+    for (const auto& pipeline : o.pipelines) {
+        std::map<std::string, Child> children;  // shared sub-runs (the flythrough baseline) run once per pipeline
+        for (const auto& c : cases) {
+            if (!o.cases.empty() && std::find(o.cases.begin(), o.cases.end(), c.name) == o.cases.end()) continue;
+            Children ch;
+            std::string links;
+            for (const auto& [key, args] : c.runs) {
+                std::string id = key == "base" ? "base" : c.name + "-" + key;
+                auto it = children.find(id);
+                if (it == children.end()) {
+                    Child child;
+                    child.args = args;
+                    auto no_save = std::find(child.args.begin(), child.args.end(), "--no-save");
+                    if (no_save != child.args.end()) child.args.erase(no_save), child.save_frames = false;
+                    child.dir = out.path() / pipeline / id;
+                    fs::create_directories(child.dir.parent_path());
+                    std::vector<std::string> common = {"--res", o.resolution, "--repeat", "1", "--warmup", "1",
+                                                       "--pipeline", pipeline};
+                    if (!o.device.empty()) common.insert(common.end(), {"--device", o.device});
+                    if (o.validate) common.push_back("--validate");
+                    std::fprintf(stderr, "stress: %s %s (%s)\n", pipeline.c_str(), c.name.c_str(), id.c_str());
+                    runChild(self, child, common);
+                    it = children.emplace(id, std::move(child)).first;
+                }
+                ch[key] = &it->second;
+                links += (links.empty() ? "" : " ") + pipeline + "/" + id;
+            }
+            Verdict v;
+            try {
+                v = c.check(ch);
+            } catch (const std::exception& e) {
+                v.held = false;
+                v.detail = std::string("checking failed: ") + e.what();
+            }
+            if (o.validate)
+                for (auto& [key, child] : ch)
+                    if (child->loaded && child->run.contains("validation") &&
+                        child->run["validation"].value("messages", 0) != 0) {
+                        v.held = false;
+                        v.detail += "; " + key + ": " + std::to_string(child->run["validation"].value("messages", 0)) +
+                                    " validation messages";
+                    }
+            const bool ok = v.finite && v.held;
+            ++total;
+            failed += !ok;
+            table.addRow({{"case", c.name},
+                          {"pipeline", pipeline},
+                          {"expectation", c.expectation},
+                          {"finite", v.finite ? "yes" : "NO"},
+                          {"held", ok ? "yes" : "NO"},
+                          {"quality", v.quality},
+                          {"detail", v.detail},
+                          {"runs", links}});
+            std::printf("%-28s %-9s %-4s %s\n", c.name.c_str(), pipeline.c_str(), ok ? "held" : "FAIL", v.detail.c_str());
+            std::string run_links;
+            for (const auto& [key, child] : ch) {
+                std::string rel = pipeline + "/" + fs::relative(child->dir, out.path() / pipeline).string();
+                run_links += fs::exists(child->dir / "report.html")
+                                 ? "<a href=\"" + reports::esc(rel) + "/report.html\">" + reports::esc(key) + "</a> "
+                                 : reports::esc(key) + " ";
+            }
+            rows_html += "<tr><td class=\"variant\">" + reports::esc(c.name) + "</td><td>" + pipeline + "</td><td>" +
+                         reports::esc(c.expectation) + "</td><td class=\"" + (ok ? "ok" : "bad") + "\">" +
+                         (ok ? "held" : (v.finite ? "did not hold" : "NOT FINITE / FAILED")) + "</td><td>" +
+                         reports::esc(v.detail) + "</td><td>" + reports::esc(v.quality) + "</td><td>" + run_links +
+                         "</td></tr>";
+        }
+    }
+    table.write(out.path() / "stress.csv");
+    std::string html = reports::pageStart("cbrbench stress");
+    html += "<h1>cbrbench stress</h1><div class=\"sub\">" + std::to_string(total - failed) + " of " +
+            std::to_string(total) + " cases held \u00b7 " + reports::esc(o.resolution) + " \u00b7 " +
+            (o.validate ? "validation layer on" : "validation layer off") + "</div>";
+    html += std::string("<p class=\"answer\"><b>") + (failed ? "Not every case held." : "Every case held.") +
+            "</b> Each case runs every variant (full, drr, cbr-aso, cbr-cso) through `cbrbench run` in a child "
+            "process, so a crash or device loss is that case's failure; finite means every number in its files is "
+            "finite (PSNR's inf for identical images aside) and every variant ran.</p>";
+    html += "<div class=\"scroll\"><table><tr><th>case</th><th>pipeline</th><th>expectation</th><th>result</th>"
+            "<th>measured</th><th>quality vs full</th><th>runs</th></tr>" + rows_html + "</table></div>";
+    html += reports::pageEnd();
+    reports::writeTextAtomically(out.path() / "stress.html", html);
+    out.commit();
+    std::printf("stress: %d of %d cases held; %s\n", total - failed, total, (out.finalPath() / "stress.html").c_str());
+    return failed ? 1 : 0;
+}
+
+}  // namespace cbr::harness
