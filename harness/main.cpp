@@ -15,6 +15,7 @@
 #include "reports/sweep.h"
 #include "metrics/metrics.h"
 #include "harness/compare.h"
+#include "harness/interrupt.h"
 #include "harness/matrix.h"
 #include "harness/stress.h"
 #include "harness/options.h"
@@ -193,6 +194,7 @@ int main(int argc, char** argv) {
                       "NAME=LO:HI:log|lin:N or NAME=V1,V2,...; NAME: cso-tolerance, drr-scale, shading-cost (repeatable)")
         ->required();
 
+    cbr::harness::installInterruptHandler();
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -270,6 +272,10 @@ int main(int argc, char** argv) {
             throw std::invalid_argument("sweep: comma lists in --scene, --path, --pipeline or --res; expected one of "
                                         "each (a sweep is one job: its configurations are compared with each other)");
         return cbr::harness::runBenchmark(o);
+    } catch (const cbr::harness::Interrupted&) {
+        std::fprintf(stderr, "cbrbench: interrupted: stopped before the next frame; this run's partial output was "
+                             "removed and nothing else was touched\n");
+        return 130;
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "cbrbench: %s\n", e.what());
         return kExitBadInput;

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/interrupt.h"
 #include "harness/run.h"
 #include "reports/csv.h"
 #include "reports/csv_read.h"
@@ -288,6 +289,8 @@ int runMatrix(const RunOptions& o, const Shard& shard) {
             int rc = runBenchmark(jo);
             row["status"] = rc == 0 ? "ok" : "failed";
             if (rc != 0) row["note"] = "exit code " + std::to_string(rc);
+        } catch (const Interrupted&) {
+            throw;  // the whole matrix stops; its directory is removed
         } catch (const std::exception& e) {
             // One failed job is a failed row; the others still run.
             row["status"] = "failed";

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "camera_paths/path.h"
+#include "harness/interrupt.h"
 #include "harness/outputs.h"
 #include "harness/placement.h"
 #include "harness/quality.h"
@@ -316,6 +317,7 @@ int runBenchmark(const RunOptions& options) {
             render::FrameRequest req = request(k, false);
             req.index = -1;
             req.history_reset = true;
+            throwIfInterrupted();
             renderer.submit(req);
         }
         renderer.finish();
@@ -333,8 +335,10 @@ int runBenchmark(const RunOptions& options) {
             scorer.setReference(size_t(fr.index), image);
             if (options.save_frames) savePng(out.path(), "reference", fr.index, image, nullptr, w, h, workers);
         };
-        for (size_t i = 0; i < p.poses.size(); ++i)
+        for (size_t i = 0; i < p.poses.size(); ++i) {
+            throwIfInterrupted();
             for (auto& fr : reference.submit(request(i, true))) keep(std::move(fr));
+        }
         for (auto& fr : reference.finish()) keep(std::move(fr));
     }
     const bool full_is_reference = options.reference != "ssaa";
@@ -423,8 +427,10 @@ int runBenchmark(const RunOptions& options) {
             };
             try {
                 warmUp(renderer);
-                for (size_t i = 0; i < p.poses.size(); ++i)
+                for (size_t i = 0; i < p.poses.size(); ++i) {
+                    throwIfInterrupted();
                     for (auto& fr : renderer.submit(request(i, quality))) handle(std::move(fr));
+                }
                 for (auto& fr : renderer.finish()) handle(std::move(fr));
             } catch (const vk::Unsupported& e) {
                 vr.status = "skipped";

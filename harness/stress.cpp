@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "camera_paths/path.h"
+#include "harness/interrupt.h"
 #include "harness/options.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
@@ -647,6 +648,7 @@ int runStress(const StressOptions& o) {
                     if (o.validate) common.push_back("--validate");
                     std::fprintf(stderr, "stress: %s %s (%s)\n", pipeline.c_str(), c.name.c_str(), id.c_str());
                     runChild(self, child, common);
+                    throwIfInterrupted();  // the child had the signal too: stop, keep nothing
                     it = children.emplace(id, std::move(child)).first;
                 }
                 ch[key] = &it->second;
