@@ -360,6 +360,21 @@ int runBenchmark(const RunOptions& options) {
         }
     }
 
+    // A debug slowdown calibrates on its first warm-up frames: give each renderer enough
+    // of them before the first repetition, so every repetition applies the same amount.
+    if (!p.settings.debug_slowdown_pass.empty() && p.settings.debug_slowdown_pct > 0)
+        for (auto& r : renderers)
+            if (r) try {
+                for (int i = 0; i < 12; ++i) {
+                    render::FrameRequest req = request(size_t(i) % p.poses.size(), false);
+                    req.index = -1;
+                    req.history_reset = true;
+                    r->submit(req);
+                }
+                r->finish();
+            } catch (const vk::Error&) {
+                // The repetitions meet the same error and record the variant as failed.
+            }
     for (int rep = 0; rep < options.repeat; ++rep) {
         for (size_t vi = 0; vi < p.configs.size(); ++vi) {
             VariantRun& vr = results.variants[vi];

@@ -18,6 +18,7 @@ namespace cbr::render {
 namespace {
 
 constexpr uint32_t kSpinCalibration = 1u << 15;  // iterations timed during warm-up
+constexpr int kSpinCalibrationFrames = 12;         // warm-up frames that calibrate (6 per spin size)
 
 double medianOf(std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -243,7 +244,9 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
     if (spin_.pipeline) {
         // Warm-up frames time the spin on its own (a pass kept despite writing no image);
         // measured frames run the calibrated amount inside the chosen pass.
-        bool calibrating = request.index < 0;
+        // Calibration is the first warm-up frames only: every repetition then applies the
+        // same amount (re-estimating per repetition made the slowdown itself noisy).
+        bool calibrating = request.index < 0 && calibration_frames_ < kSpinCalibrationFrames;
         uint32_t iterations =
             calibrating ? kSpinCalibration * uint32_t(1 + (calibration_frames_++ & 1)) : spin_iterations_;
         auto spin = [this, iterations](VkCommandBuffer cmd) {
@@ -415,7 +418,7 @@ void Renderer::writeUniforms(Slot& slot, const FrameRequest& request, const vari
 }
 
 void Renderer::calibrateSlowdown(const FrameResult& warmup) {
-    if (!spin_.pipeline || warmup.index >= 0) return;
+    if (!spin_.pipeline || warmup.index >= 0 || calibrated_) return;
     for (const auto& p : warmup.passes) {
         if (p.name == settings_.debug_slowdown_pass) pass_ms_.push_back(p.gpu_ms);
         if (p.name == "debug_spin_1") spin_ms_[0].push_back(p.gpu_ms);
@@ -426,6 +429,7 @@ void Renderer::calibrateSlowdown(const FrameResult& warmup) {
     double slope = (medianOf(spin_ms_[1]) - medianOf(spin_ms_[0])) / double(kSpinCalibration);
     if (pass > 0 && slope > 0)
         spin_iterations_ = uint32_t(std::min(4.0e9, settings_.debug_slowdown_pct / 100.0 * pass / slope));
+    calibrated_ = spin_ms_[0].size() + spin_ms_[1].size() >= size_t(kSpinCalibrationFrames);
 }
 
 std::vector<std::pair<std::string, std::string>> Renderer::describe() const {

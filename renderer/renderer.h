@@ -49,7 +49,8 @@ private:
     // iterations (the slope excludes the dispatch's fixed cost).
     std::vector<double> pass_ms_, spin_ms_[2];
     int calibration_frames_ = 0;
-    uint32_t spin_iterations_ = 0;          // applied in measured frames
+    bool calibrated_ = false;               // enough samples: the amount is fixed from then on
+    uint32_t spin_iterations_ = 0;          // applied in measured frames (and warm-up once calibrated)
     bool slowdown_applied_ = false;
 
     // The untimed analysis pass (motion and depths at output size, for the crawl metric).
