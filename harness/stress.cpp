@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <fcntl.h>
 #include <fstream>
@@ -358,8 +359,11 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
                           {21, p0.position, q0 * yaw(glm::pi<double>()), false}});
     };
     fs::path turn = turnPath("turn-180", false), cut = turnPath("cut-180", true);
-    fs::path bad_normals = "/usr/share/assimp/models/glTF2/BoxBadNormals-glTF-Binary/BoxBadNormals.glb";
-    fs::path infinites = "/usr/share/assimp/models/glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb";
+    // Debian's assimp-testmodels; CBR_ASSIMP_MODELS points elsewhere (a GPU host without it).
+    const char* models_env = std::getenv("CBR_ASSIMP_MODELS");
+    const fs::path models = models_env && *models_env ? fs::path(models_env) : fs::path("/usr/share/assimp/models");
+    fs::path bad_normals = models / "glTF2/BoxBadNormals-glTF-Binary/BoxBadNormals.glb";
+    fs::path infinites = models / "glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb";
     fs::path zero_area = writeDegenerateGltf(paths_dir, "zero-area-triangle", false);
     fs::path no_texture = writeDegenerateGltf(paths_dir, "missing-texture", true);
 
