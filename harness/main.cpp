@@ -181,6 +181,7 @@ int main(int argc, char** argv) {
     stress->add_option("--device", so.device, "device index or name substring");
     stress->add_option("--cases", stress_cases, "comma-separated case names (default: all; `--list` names them)");
     stress->add_option("--pipelines", stress_pipelines, "forward and/or deferred")->capture_default_str();
+    stress->add_option("--cbr-route", so.cbr_route, "checkerboard route of every run (default: auto)");
     stress->add_flag("--validate", so.validate, "Khronos validation layer on in every run; any message fails the case");
     stress->add_option("--static-frames", so.static_frames, "length of the static-camera case")->capture_default_str();
     stress->add_option("--subpixel-frames", so.subpixel_frames, "length of the sub-pixel motion case")

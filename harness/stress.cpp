@@ -650,6 +650,7 @@ int runStress(const StressOptions& o) {
                                                        "--pipeline", pipeline};
                     if (!o.device.empty()) common.insert(common.end(), {"--device", o.device});
                     if (o.validate) common.push_back("--validate");
+                    if (!o.cbr_route.empty()) common.insert(common.end(), {"--cbr-route", o.cbr_route});
                     std::fprintf(stderr, "stress: %s %s (%s)\n", pipeline.c_str(), c.name.c_str(), id.c_str());
                     runChild(self, child, common);
                     throwIfInterrupted();  // the child had the signal too: stop, keep nothing

@@ -14,6 +14,7 @@ struct StressOptions {
     std::vector<std::string> cases;  // empty: all
     std::vector<std::string> pipelines{"forward", "deferred"};
     bool validate = false;
+    std::string cbr_route;           // "" -> the run's auto route
     int static_frames = 1000;        // the static-camera case's length
     int subpixel_frames = 300;       // the sub-pixel motion case's length
 };
