@@ -2,6 +2,7 @@
 #include "harness/sweep.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -15,8 +16,24 @@ constexpr const char* kAccepted =
     "drr-scale (0, 1], shading-cost (integer >= 1)";
 constexpr int kMaxValues = 64;
 
+// Text echoed in a message: control characters escaped, so the message stays one line.
+std::string shown(const std::string& text) {
+    std::string out;
+    for (unsigned char ch : text) {
+        if (ch < 0x20 || ch == 0x7f) {
+            char escaped[8];
+            std::snprintf(escaped, sizeof escaped, "\\x%02x", ch);
+            out += escaped;
+        } else {
+            out += char(ch);
+        }
+    }
+    return out;
+}
+
 bool parseNumber(const std::string& text, double& value) {
-    if (text.empty()) return false;
+    // strtod skips leading blanks and newlines: a number here is the number alone.
+    if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return false;
     char* end = nullptr;
     value = std::strtod(text.c_str(), &end);
     return end && *end == '\0' && std::isfinite(value);
@@ -57,7 +74,7 @@ std::string formatParamValue(double value) {
 
 SweepParam parseSweepParam(const std::string& spec) {
     auto bad = [&](const std::string& why) {
-        return std::invalid_argument("--param " + spec + ": " + why + kAccepted);
+        return std::invalid_argument("--param " + shown(spec) + ": " + shown(why) + kAccepted);
     };
     size_t eq = spec.find('=');
     if (eq == std::string::npos || eq == 0) throw bad("no NAME=");

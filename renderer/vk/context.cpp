@@ -8,8 +8,31 @@
 
 #include "renderer/vk/check.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+#include <dlfcn.h>
+#include <link.h>
+#include <string>
+#include <vector>
+#endif
+
 namespace cbr::vk {
 namespace {
+
+#if defined(__SANITIZE_ADDRESS__)
+// Sanitizer builds only (scripts/sanitize.sh). The loader unloads layers and drivers at
+// vkDestroyInstance, and LeakSanitizer names a leak's library from the mappings at exit:
+// an unloaded one is "unknown" or, worse, blamed on whatever was mapped there later. Kept
+// loaded, the leaks of the uninstrumented validation layer and Mesa match
+// tests/sanitize/lsan.supp by their own library names.
+void pinLoadedLibraries() {
+    std::vector<std::string> names;
+    dl_iterate_phdr([](dl_phdr_info* info, size_t, void* out) {
+        if (info->dlpi_name && info->dlpi_name[0]) static_cast<std::vector<std::string>*>(out)->push_back(info->dlpi_name);
+        return 0;
+    }, &names);
+    for (const std::string& name : names) dlopen(name.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+}
+#endif
 
 constexpr size_t kKeptMessages = 20;
 
@@ -137,6 +160,9 @@ VkInstance createInstance(bool validate, bool* debug_utils) {
         throw Unsupported("no Vulkan 1.3 driver found (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER); "
                           "expected Mesa's lavapipe (mesa-vulkan-drivers) or a GPU driver");
     VK_CHECK(r);
+#if defined(__SANITIZE_ADDRESS__)
+    pinLoadedLibraries();
+#endif
     return instance;
 }
 

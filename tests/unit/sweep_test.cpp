@@ -131,3 +131,14 @@ TEST(SweepEqualCost, OutsideTheDrrRangeMakesNoClaim) {
     EXPECT_NEAR(*eq[0].drr_scale, 1.0, 1e-12);
     EXPECT_NE(eq[0].verdict.find("dearer than every drr scale"), std::string::npos) << eq[0].verdict;
 }
+
+TEST(SweepParam, ControlCharactersInASpecKeepTheMessageOneLine) {
+    // Found by fuzz_settings: the spec was echoed raw.
+    try {
+        parseSweepParam("cso-tolerance=\n1");
+        ADD_FAILURE() << "accepted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("\\x0a"), std::string::npos) << e.what();
+    }
+}
