@@ -274,7 +274,8 @@ fs::path writePath(const fs::path& dir, const std::string& name, double fov_deg,
 
 // A quad of two triangles plus a zero-area (collinear) one; `missing_texture` adds a
 // base colour texture whose image file does not exist.
-fs::path writeDegenerateGltf(const fs::path& dir, const std::string& name, bool missing_texture) {
+fs::path writeDegenerateGltf(const fs::path& dir, const std::string& name, bool missing_texture,
+                            const json& emissive = nullptr) {
     // Positions (4 corners + 3 collinear points), normals (one zero-length), uvs.
     std::vector<float> pos = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0, 0, 0, 0.5f, 0.5f, 0.5f, 0.5f, 1, 1, 0.5f};
     std::vector<float> nrm = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
@@ -317,6 +318,14 @@ fs::path writeDegenerateGltf(const fs::path& dir, const std::string& name, bool 
         mat["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
         g["textures"] = json::array({{{"source", 0}}});
         g["images"] = json::array({{{"uri", "no-such-texture.png"}}});
+    }
+    if (!emissive.is_null()) {
+        // An emitter: emissiveFactor, and KHR_materials_emissive_strength beyond 1.
+        mat["emissiveFactor"] = emissive.value("factor", json::array({1, 1, 1}));
+        if (emissive.contains("strength")) {
+            mat["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", emissive["strength"]}}}};
+            g["extensionsUsed"] = json::array({"KHR_materials_emissive_strength"});
+        }
     }
     g["materials"] = json::array({mat});
     g["nodes"] = json::array({{{"mesh", 0}}});
@@ -366,6 +375,8 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
     fs::path infinites = models / "glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb";
     fs::path zero_area = writeDegenerateGltf(paths_dir, "zero-area-triangle", false);
     fs::path no_texture = writeDegenerateGltf(paths_dir, "missing-texture", true);
+    fs::path bright = writeDegenerateGltf(paths_dir, "emissive-1e4", false, {{"strength", 1e4}});
+    fs::path dim = writeDegenerateGltf(paths_dir, "emissive-1e-6", false, {{"factor", {1e-6, 1e-6, 1e-6}}});
 
     const std::vector<std::string> fly = {"--scene", "atrium", "--path", "flythrough", "--frames", "8"};
     auto plus = [](std::vector<std::string> a, const std::vector<std::string>& b) {
@@ -536,7 +547,27 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
                      {{"black", plus(blocks, {"--exposure", "1e-12"})}}, constant("black")});
     cases.push_back({"white-frames", "exposure 1e12 (all white): PSNR inf, SSIM 1, ECI 0 flagged 'no edges'; no 0/0",
                      {{"white", plus(blocks, {"--exposure", "1e12"})}}, constant("white")});
-    cases.push_back({"hdr-extremes",
+    cases.push_back({"emissive-extremes",
+                     "a glTF emitter of strength 1e4 (KHR_materials_emissive_strength) and one of 1e-6 through the "
+                     "tone map: finite output, every variant ran, the bright one saturates to white",
+                     {{"emit-high", {"--scene", bright.string(), "--path", "orbit", "--frames", "4"}},
+                      {"emit-low", {"--scene", dim.string(), "--path", "orbit", "--frames", "4"}}},
+                     [](Children& c) {
+                         Verdict v = base(c);
+                         v.held = v.finite;
+                         if (!v.finite) return v;
+                         // The 1e4 emitter's pixels: pure white in full's saved frame.
+                         auto img = metrics::readPng(c.at("emit-high")->dir / "frames" / "full_0000.png");
+                         size_t white = 0;
+                         for (size_t i = 0; i + 3 < img.pixels.size(); i += 4)
+                             white += img.pixels[i] == 255 && img.pixels[i + 1] == 255 && img.pixels[i + 2] == 255;
+                         v.detail = std::to_string(white) + " white pixels from the 1e4 emitter; " +
+                                    "1e4: " + qualityLine(*c.at("emit-high")) + "; 1e-6: " + qualityLine(*c.at("emit-low"));
+                         v.quality = v.detail;
+                         if (white == 0) v.held = false;
+                         return v;
+                     }});
+    cases.push_back({"exposure-extremes",
                      "radiance scaled by 1e4 and by 1e-6 (exposure) through the tone map: finite output, every variant ran",
                      {{"hdr-high", plus(fly, {"--exposure", "1e4"})}, {"hdr-low", plus(fly, {"--exposure", "1e-6"})}},
                      [](Children& c) {
