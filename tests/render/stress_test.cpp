@@ -1,5 +1,5 @@
 // `cbrbench stress` on lavapipe with the validation layer: every case holds, in both
-// pipelines (the static and sub-pixel cases shortened to fit the suite's time budget).
+// pipelines (the static and sub-pixel cases shortened to 120 frames to fit the suite's time budget).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,7 +15,7 @@ using cbr::test::runBench;
 TEST(Stress, EveryCaseHoldsInBothPipelines) {
     auto work = cbr::test::scratchDir("stress");
     fs::path out = work / "out";
-    auto r = runBench({"stress", "--validate", "--static-frames", "300", "--subpixel-frames", "150", "--out",
+    auto r = runBench({"stress", "--validate", "--static-frames", "120", "--subpixel-frames", "120", "--out",
                        out.string()},
                       work);
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
