@@ -1,31 +1,13 @@
 // Parsers for single option values, apart from the run loop so the fuzz targets can link them.
 #include "harness/options.h"
 
+#include "camera_paths/text.h"
+
 #include <charconv>
 #include <cstdio>
 #include <stdexcept>
 
 namespace cbr::harness {
-namespace {
-
-// The option text as the message shows it: control characters escaped, so the message
-// stays one line whatever the shell passed.
-std::string shown(const std::string& text) {
-    std::string out;
-    for (unsigned char ch : text) {
-        if (ch < 0x20 || ch == 0x7f) {
-            char escaped[8];
-            std::snprintf(escaped, sizeof escaped, "\\x%02x", ch);
-            out += escaped;
-        } else {
-            out += char(ch);
-        }
-    }
-    return out;
-}
-
-}  // namespace
-
 // Digits only: sscanf's %lu took leading blanks, signs and wrapped "-18446744073709551615"
 // round to 1; from_chars reports overflow instead of leaving it undefined.
 void parseResolution(const std::string& text, uint32_t& width, uint32_t& height) {
@@ -40,7 +22,7 @@ void parseResolution(const std::string& text, uint32_t& width, uint32_t& height)
     if (at && at != end && (*at == 'x' || *at == 'X')) at = dimension(at + 1, h);
     else at = nullptr;
     if (!at || at != end)
-        throw std::invalid_argument("--res " + shown(text) +
+        throw std::invalid_argument("--res " + cbr::paths::printable(text) +
                                     ": expected WIDTHxHEIGHT with both from 1 to 65536, e.g. 960x540");
     width = w;
     height = h;

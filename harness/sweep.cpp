@@ -1,6 +1,8 @@
 // Sweep parameter specs and their expansion into configurations.
 #include "harness/sweep.h"
 
+#include "camera_paths/text.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -15,21 +17,6 @@ constexpr const char* kAccepted =
     "; expected NAME=LO:HI:log:N, NAME=LO:HI:lin:N or NAME=V1,V2,... with NAME one of cso-tolerance (> 0), "
     "drr-scale (0, 1], shading-cost (integer >= 1)";
 constexpr int kMaxValues = 64;
-
-// Text echoed in a message: control characters escaped, so the message stays one line.
-std::string shown(const std::string& text) {
-    std::string out;
-    for (unsigned char ch : text) {
-        if (ch < 0x20 || ch == 0x7f) {
-            char escaped[8];
-            std::snprintf(escaped, sizeof escaped, "\\x%02x", ch);
-            out += escaped;
-        } else {
-            out += char(ch);
-        }
-    }
-    return out;
-}
 
 bool parseNumber(const std::string& text, double& value) {
     // strtod skips leading blanks and newlines: a number here is the number alone.
@@ -74,7 +61,7 @@ std::string formatParamValue(double value) {
 
 SweepParam parseSweepParam(const std::string& spec) {
     auto bad = [&](const std::string& why) {
-        return std::invalid_argument("--param " + shown(spec) + ": " + shown(why) + kAccepted);
+        return std::invalid_argument("--param " + cbr::paths::printable(spec) + ": " + cbr::paths::printable(why) + kAccepted);
     };
     size_t eq = spec.find('=');
     if (eq == std::string::npos || eq == 0) throw bad("no NAME=");
