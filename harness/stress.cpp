@@ -2,6 +2,7 @@
 // or device loss in one case is that case's failure, not the suite's), checked against
 // the case's expectation from their own files.
 #include "harness/stress.h"
+#include "harness/stress_runs.h"
 
 #include <algorithm>
 #include <cmath>
@@ -38,149 +39,11 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using namespace stress;
 
 const std::vector<std::string> kVariants = {"full", "drr", "cbr-aso", "cbr-cso"};
 const std::vector<std::string> kCbr = {"cbr-aso", "cbr-cso"};
 
-// One `cbrbench run` of a case, and what came of it.
-struct Child {
-    std::vector<std::string> args;  // after `run`, without --out/--pipeline/--res/--device/--validate
-    bool save_frames = true;
-    fs::path dir;
-    int exit_code = -1;
-    int signal = 0;  // killed by this signal (a crash)
-    std::string err;
-    reports::CsvData frames, summary;
-    json run;
-    bool loaded = false;
-};
-
-std::string readText(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-// fork + exec of this very binary, stdout and stderr to files beside the run's directory.
-void runChild(const fs::path& self, Child& c, const std::vector<std::string>& common) {
-    std::vector<std::string> argv = {self.string(), "run"};
-    argv.insert(argv.end(), c.args.begin(), c.args.end());
-    argv.insert(argv.end(), common.begin(), common.end());
-    argv.insert(argv.end(), {"--out", c.dir.string()});
-    if (c.save_frames) argv.push_back("--save-frames");
-    const fs::path out_log = c.dir.string() + ".stdout.txt", err_log = c.dir.string() + ".stderr.txt";
-    {
-        std::ofstream cmd(c.dir.string() + ".command.txt");
-        for (const auto& a : argv) cmd << a << ' ';
-        cmd << '\n';
-    }
-    std::fflush(nullptr);
-    pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error("stress: fork failed");
-    if (pid == 0) {
-        int o = ::open(out_log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        int e = ::open(err_log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (o >= 0) dup2(o, 1);
-        if (e >= 0) dup2(e, 2);
-        std::vector<char*> cargv;
-        for (auto& a : argv) cargv.push_back(a.data());
-        cargv.push_back(nullptr);
-        execv(cargv[0], cargv.data());
-        _exit(127);
-    }
-    int status = 0;
-    waitpid(pid, &status, 0);
-    c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    c.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
-    c.err = readText(err_log);
-    if (c.exit_code == 0) {
-        try {
-            c.frames = reports::readCsv(c.dir / "frames.csv", reports::isReportNumericColumn, {"variant", "frame"});
-            c.summary = reports::readCsv(c.dir / "summary.csv", reports::isReportNumericColumn, {"variant"});
-            c.run = json::parse(readText(c.dir / "run.json"));
-            c.loaded = true;
-        } catch (const std::exception& e) {
-            c.err += std::string("stress: reading the run's files: ") + e.what() + "\n";
-        }
-    }
-}
-
-std::optional<double> summaryValue(const Child& c, const std::string& variant, const std::string& col) {
-    for (size_t r = 0; r < c.summary.rows.size(); ++r)
-        if (c.summary.text(r, "variant") == variant) return c.summary.num(r, col);
-    return std::nullopt;
-}
-
-std::optional<double> frameValue(const Child& c, const std::string& variant, int frame, const std::string& col) {
-    for (size_t r = 0; r < c.frames.rows.size(); ++r)
-        if (c.frames.text(r, "variant") == variant && c.frames.num(r, "frame") == frame &&
-            c.frames.num(r, "repeat").value_or(0) == 0)
-            return c.frames.num(r, col);
-    return std::nullopt;
-}
-
-std::vector<double> frameSeries(const Child& c, const std::string& variant, const std::string& col) {
-    std::map<int, double> by_frame;
-    for (size_t r = 0; r < c.frames.rows.size(); ++r)
-        if (c.frames.text(r, "variant") == variant && c.frames.num(r, "repeat").value_or(0) == 0)
-            if (auto v = c.frames.num(r, col)) by_frame[int(*c.frames.num(r, "frame"))] = *v;
-    std::vector<double> out;
-    for (auto& [f, v] : by_frame) out.push_back(v);
-    return out;
-}
-
-// Every number the run wrote is finite (PSNR's documented inf aside) and every variant ran.
-bool finiteAndOk(const Child& c, std::string& why) {
-    if (c.signal) return why = "crashed (signal " + std::to_string(c.signal) + ")", false;
-    if (c.exit_code != 0) return why = "exit " + std::to_string(c.exit_code) + ": " + c.err.substr(0, 200), false;
-    if (!c.loaded) return why = c.err, false;
-    if (c.run.value("non_finite_cells", 0) != 0)
-        return why = std::to_string(c.run.value("non_finite_cells", 0)) + " non-finite cells", false;
-    for (const auto* t : {&c.frames, &c.summary})
-        for (size_t r = 0; r < t->rows.size(); ++r) {
-            if (t->text(r, "status") != "ok") return why = t->text(r, "variant") + " " + t->text(r, "status"), false;
-            for (const auto& h : t->header) {
-                if (!reports::isReportNumericColumn(h)) continue;
-                auto v = t->num(r, h);
-                if (v && std::isinf(*v) && h.rfind("psnr", 0) != 0)
-                    return why = h + " is infinite in " + t->file.filename().string(), false;
-            }
-        }
-    return true;
-}
-
-// Sequence PSNR between two runs' saved display images of one variant (mean MSE over frames).
-std::optional<double> imagePsnr(const Child& a, const Child& b, const std::string& variant, int first_frame = 0) {
-    double mse_sum = 0;
-    int n = 0;
-    for (int f = first_frame;; ++f) {
-        char name[64];
-        std::snprintf(name, sizeof name, "%s_%04d.png", variant.c_str(), f);
-        fs::path pa = a.dir / "frames" / name, pb = b.dir / "frames" / name;
-        if (!fs::exists(pa) || !fs::exists(pb)) break;
-        auto ia = metrics::readPng(pa), ib = metrics::readPng(pb);
-        if (ia.width != ib.width || ia.height != ib.height) return std::nullopt;
-        auto x = metrics::fromRgba8(ia.pixels.data(), ia.width, ia.height, size_t(ia.width) * 4);
-        auto y = metrics::fromRgba8(ib.pixels.data(), ib.width, ib.height, size_t(ib.width) * 4);
-        mse_sum += metrics::mse(x, y);
-        ++n;
-    }
-    if (n == 0) return std::nullopt;
-    return metrics::psnrFromMse(mse_sum / n);
-}
-
-std::string db(std::optional<double> v) {
-    if (!v) return "n/a";
-    if (std::isinf(*v)) return "inf";
-    char b[32];
-    std::snprintf(b, sizeof b, "%.1f", *v);
-    return b;
-}
-std::string num(std::optional<double> v, int digits = 3) {
-    if (!v) return "n/a";
-    char b[32];
-    std::snprintf(b, sizeof b, "%.*f", digits, *v);
-    return b;
-}
 
 struct Verdict {
     bool finite = true;
@@ -251,90 +114,6 @@ std::string isoNow() {
     return buf;
 }
 
-// A camera path file: keyframes at frame times of a 30 fps clock.
-fs::path writePath(const fs::path& dir, const std::string& name, double fov_deg,
-                   const std::vector<std::tuple<int, glm::dvec3, glm::dquat, bool>>& keys) {
-    paths::CameraPath p;
-    p.name = name;
-    p.fps = 30;
-    p.interpolation = paths::Interpolation::Linear;
-    for (const auto& [frame, pos, q, cut] : keys) {
-        paths::Keyframe k;
-        k.time = frame / 30.0;
-        k.position = pos;
-        k.orientation = q;
-        k.fov_y_deg = fov_deg;
-        k.cut = cut;
-        p.keys.push_back(k);
-    }
-    fs::path file = dir / (name + ".json");
-    std::ofstream(file) << paths::toJson(p).dump(2) << "\n";
-    return file;
-}
-
-// A quad of two triangles plus a zero-area (collinear) one; `missing_texture` adds a
-// base colour texture whose image file does not exist.
-fs::path writeDegenerateGltf(const fs::path& dir, const std::string& name, bool missing_texture,
-                            const json& emissive = nullptr) {
-    // Positions (4 corners + 3 collinear points), normals (one zero-length), uvs.
-    std::vector<float> pos = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0, 0, 0, 0.5f, 0.5f, 0.5f, 0.5f, 1, 1, 0.5f};
-    std::vector<float> nrm = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
-    std::vector<float> uv = {0, 0, 1, 0, 1, 1, 0, 1, 0, 0, 0, 0, 0, 0};
-    std::vector<uint16_t> idx = {0, 1, 2, 0, 2, 3, 4, 5, 6};
-    std::string bin;
-    auto put = [&](const void* d, size_t n) { bin.append(static_cast<const char*>(d), n); };
-    put(pos.data(), pos.size() * 4);
-    put(nrm.data(), nrm.size() * 4);
-    put(uv.data(), uv.size() * 4);
-    put(idx.data(), idx.size() * 2);
-    while (bin.size() % 4) bin.push_back('\0');
-    static const char* b64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string enc;
-    for (size_t i = 0; i < bin.size(); i += 3) {
-        uint32_t v = uint32_t(uint8_t(bin[i])) << 16;
-        if (i + 1 < bin.size()) v |= uint32_t(uint8_t(bin[i + 1])) << 8;
-        if (i + 2 < bin.size()) v |= uint32_t(uint8_t(bin[i + 2]));
-        enc += b64[(v >> 18) & 63];
-        enc += b64[(v >> 12) & 63];
-        enc += i + 1 < bin.size() ? b64[(v >> 6) & 63] : '=';
-        enc += i + 2 < bin.size() ? b64[v & 63] : '=';
-    }
-    json g;
-    g["asset"] = {{"version", "2.0"}};
-    g["buffers"] = json::array({{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + enc}}});
-    g["bufferViews"] = json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 84}},
-                                    {{"buffer", 0}, {"byteOffset", 84}, {"byteLength", 84}},
-                                    {{"buffer", 0}, {"byteOffset", 168}, {"byteLength", 56}},
-                                    {{"buffer", 0}, {"byteOffset", 224}, {"byteLength", 18}}});
-    g["accessors"] = json::array({{{"bufferView", 0}, {"componentType", 5126}, {"count", 7}, {"type", "VEC3"},
-                                   {"min", {-1, -1, 0}}, {"max", {1, 1, 0.5}}},
-                                  {{"bufferView", 1}, {"componentType", 5126}, {"count", 7}, {"type", "VEC3"}},
-                                  {{"bufferView", 2}, {"componentType", 5126}, {"count", 7}, {"type", "VEC2"}},
-                                  {{"bufferView", 3}, {"componentType", 5123}, {"count", 9}, {"type", "SCALAR"}}});
-    json prim = {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}}, {"indices", 3}, {"material", 0}};
-    g["meshes"] = json::array({{{"primitives", json::array({prim})}}});
-    json mat = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.6, 0.4, 1}}}}};
-    if (missing_texture) {
-        mat["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
-        g["textures"] = json::array({{{"source", 0}}});
-        g["images"] = json::array({{{"uri", "no-such-texture.png"}}});
-    }
-    if (!emissive.is_null()) {
-        // An emitter: emissiveFactor, and KHR_materials_emissive_strength beyond 1.
-        mat["emissiveFactor"] = emissive.value("factor", json::array({1, 1, 1}));
-        if (emissive.contains("strength")) {
-            mat["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", emissive["strength"]}}}};
-            g["extensionsUsed"] = json::array({"KHR_materials_emissive_strength"});
-        }
-    }
-    g["materials"] = json::array({mat});
-    g["nodes"] = json::array({{{"mesh", 0}}});
-    g["scenes"] = json::array({{{"nodes", {0}}}});
-    g["scene"] = 0;
-    fs::path file = dir / (name + ".gltf");
-    std::ofstream(file) << g.dump(1) << "\n";
-    return file;
-}
 
 std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, uint32_t w, uint32_t h) {
     (void)w;
