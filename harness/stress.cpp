@@ -163,7 +163,7 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
         return a;
     };
     std::vector<Case> cases;
-    cases.push_back({"extreme-planes", "near 1e-4 / far 1e7: images >= 40 dB of default planes', class shares within 0.01",
+    cases.push_back({"extreme-planes", "near 1e-4 / far 1e7: images >= 40 dB of default planes, class shares within 0.01",
                      {{"base", fly}, {"planes", plus(fly, {"--near", "1e-4", "--far", "1e7"})}},
                      [](Children& c) { return sameAsBase(c, "planes", 40, 0.01); }});
     cases.push_back({"far-from-origin", "scene and path moved by (1e6, 1e6, 1e6): the same images (>= 60 dB), same class shares",
@@ -484,6 +484,12 @@ int runStress(const StressOptions& o) {
                         v.detail += "; " + key + ": " + std::to_string(child->run["validation"].value("messages", 0)) +
                                     " validation messages";
                     }
+            // Messages name inputs under the partial directory; say where they will be.
+            for (std::string* text : {&v.detail, &v.quality}) {
+                const std::string from = out.path().string(), to = out.finalPath().string();
+                for (size_t at = text->find(from); at != std::string::npos; at = text->find(from, at + to.size()))
+                    text->replace(at, from.size(), to);
+            }
             const bool ok = v.finite && v.held;
             ++total;
             failed += !ok;
