@@ -403,6 +403,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                   {"animated_instances", si.animated_instances},
                   {"lights", rc.scene.lights.size()},
                   {"default_light", si.default_light},
+                  {"recentred_meshes", si.recentred_meshes},
                   {"bounds_min", {rc.scene.bounds_min.x, rc.scene.bounds_min.y, rc.scene.bounds_min.z}},
                   {"bounds_max", {rc.scene.bounds_max.x, rc.scene.bounds_max.y, rc.scene.bounds_max.z}},
                   {"warnings", rc.scene.warnings}};

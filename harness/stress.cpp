@@ -84,10 +84,11 @@ Verdict base(Children& ch) {
 }
 
 // Same images (per variant) as the baseline run, to `min_db`, and the same class shares.
-Verdict sameAsBase(Children& ch, const std::string& other, double min_db, double share_tol) {
+Verdict sameAsBase(Children& ch, const std::string& other, double min_db, double share_tol,
+                   const std::string& base_key = "base") {
     Verdict v = base(ch);
     if (!v.finite) return v;
-    Child& a = *ch.at("base");
+    Child& a = *ch.at(base_key);
     Child& b = *ch.at(other);
     v.held = true;
     for (const auto& var : kVariants) {
@@ -157,6 +158,18 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
     fs::path bright = writeDegenerateGltf(paths_dir, "emissive-1e4", false, {{"strength", 1e4}});
     fs::path dim = writeDegenerateGltf(paths_dir, "emissive-1e-6", false, {{"factor", {1e-6, 1e-6, 1e-6}}});
 
+    // Vertices baked 1e6 from the origin (survey or georeferenced data) against the same
+    // file near the origin, seen from the same camera path moved with them: a slow pan and
+    // dolly past 1/16-wide poles, so a camera-dependent rounding of positions shows as
+    // crawl. Both sets of coordinates are exact floats (writeBlocksGltf).
+    const glm::dquat look = glm::angleAxis(-0.2, glm::dvec3(1, 0, 0));
+    const glm::dvec3 cam0(-1.3, 1.6, 4.1), cam1(1.1, 1.9, 3.3), far(1e6);
+    fs::path blocks_near = writeBlocksGltf(paths_dir, "blocks-near-origin", glm::dvec3(0));
+    fs::path blocks_far = writeBlocksGltf(paths_dir, "blocks-baked-at-1e6", far);
+    fs::path pan_near = writePath(paths_dir, "blocks-pan", fov, {{0, cam0, look, false}, {39, cam1, look, false}});
+    fs::path pan_far = writePath(paths_dir, "blocks-pan-at-1e6", fov,
+                                 {{0, cam0 + far, look, false}, {39, cam1 + far, look, false}});
+
     const std::vector<std::string> fly = {"--scene", "atrium", "--path", "flythrough", "--frames", "8"};
     auto plus = [](std::vector<std::string> a, const std::vector<std::string>& b) {
         a.insert(a.end(), b.begin(), b.end());
@@ -169,6 +182,12 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
     cases.push_back({"far-from-origin", "scene and path moved by (1e6, 1e6, 1e6): the same images (>= 60 dB), same class shares",
                      {{"base", fly}, {"offset", plus(fly, {"--scene-offset", "1e6,1e6,1e6"})}},
                      [](Children& c) { return sameAsBase(c, "offset", 60, 0.001); }});
+    cases.push_back({"far-baked-vertices",
+                     "a glTF whose vertex positions are baked at (1e6, 1e6, 1e6), camera path moved with it: the same "
+                     "images as the file near the origin (>= 60 dB), same class shares",
+                     {{"near", {"--scene", blocks_near.string(), "--path", pan_near.string(), "--frames", "40"}},
+                      {"baked", {"--scene", blocks_far.string(), "--path", pan_far.string(), "--frames", "40"}}},
+                     [](Children& c) { return sameAsBase(c, "baked", 60, 0.001, "near"); }});
     cases.push_back({"tiny-scene", "millimetre units (scale 0.001, planes scaled): images >= 40 dB of unscaled, shares within 0.01",
                      {{"base", fly}, {"mm", plus(fly, {"--scene-scale", "0.001"})}},
                      [](Children& c) { return sameAsBase(c, "mm", 40, 0.01); }});

@@ -166,6 +166,22 @@ fs::path writePath(const fs::path& dir, const std::string& name, double fov_deg,
     return file;
 }
 
+// RFC 4648 base64 with padding, for the generated glTF files' data: URIs.
+std::string base64(const std::string& bin) {
+    static const char* b64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string enc;
+    for (size_t i = 0; i < bin.size(); i += 3) {
+        uint32_t v = uint32_t(uint8_t(bin[i])) << 16;
+        if (i + 1 < bin.size()) v |= uint32_t(uint8_t(bin[i + 1])) << 8;
+        if (i + 2 < bin.size()) v |= uint32_t(uint8_t(bin[i + 2]));
+        enc += b64[(v >> 18) & 63];
+        enc += b64[(v >> 12) & 63];
+        enc += i + 1 < bin.size() ? b64[(v >> 6) & 63] : '=';
+        enc += i + 2 < bin.size() ? b64[v & 63] : '=';
+    }
+    return enc;
+}
+
 // A quad of two triangles plus a zero-area (collinear) one; `missing_texture` adds a
 // base colour texture whose image file does not exist.
 fs::path writeDegenerateGltf(const fs::path& dir, const std::string& name, bool missing_texture,
@@ -182,17 +198,7 @@ fs::path writeDegenerateGltf(const fs::path& dir, const std::string& name, bool 
     put(uv.data(), uv.size() * 4);
     put(idx.data(), idx.size() * 2);
     while (bin.size() % 4) bin.push_back('\0');
-    static const char* b64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string enc;
-    for (size_t i = 0; i < bin.size(); i += 3) {
-        uint32_t v = uint32_t(uint8_t(bin[i])) << 16;
-        if (i + 1 < bin.size()) v |= uint32_t(uint8_t(bin[i + 1])) << 8;
-        if (i + 2 < bin.size()) v |= uint32_t(uint8_t(bin[i + 2]));
-        enc += b64[(v >> 18) & 63];
-        enc += b64[(v >> 12) & 63];
-        enc += i + 1 < bin.size() ? b64[(v >> 6) & 63] : '=';
-        enc += i + 2 < bin.size() ? b64[v & 63] : '=';
-    }
+    const std::string enc = base64(bin);
     json g;
     g["asset"] = {{"version", "2.0"}};
     g["buffers"] = json::array({{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + enc}}});
@@ -229,4 +235,71 @@ fs::path writeDegenerateGltf(const fs::path& dir, const std::string& name, bool 
     std::ofstream(file) << g.dump(1) << "\n";
     return file;
 }
+
+fs::path writeBlocksGltf(const fs::path& dir, const std::string& name, glm::dvec3 bake) {
+    // Boxes (min, max) on a 1/16 grid: with |bake| < 2^20 every baked coordinate is a float.
+    const std::vector<std::pair<glm::dvec3, glm::dvec3>> boxes = {
+        {{-8, -0.25, -12}, {8, 0, 4}},  // ground
+        {{-5, 0, -4}, {-4.25, 1.5, -3.25}},     {{-3, 0, -6}, {-2.25, 2.25, -5.25}},
+        {{-1, 0, -8}, {-0.25, 0.75, -7.25}},    {{1, 0, -4}, {1.75, 1.25, -3.25}},
+        {{3, 0, -6}, {3.75, 2.5, -5.25}},       {{5, 0, -8}, {5.75, 1.75, -7.25}},
+        {{-0.0625, 0, -2}, {0, 3, -1.9375}},    {{2, 0, -2.5}, {2.0625, 2.5, -2.4375}},  // poles, 1/16 wide
+        {{-6, 2.5, -10}, {6, 2.5625, -9.9375}},  // a thin beam
+    };
+    std::vector<float> pos, nrm, uv;
+    std::vector<uint32_t> idx;
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const auto& [mn, mx] : boxes)
+        for (int axis = 0; axis < 3; ++axis)
+            for (int side = 0; side < 2; ++side) {
+                const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+                glm::dvec3 n(0);
+                n[axis] = side ? 1 : -1;
+                const uint32_t first = uint32_t(pos.size() / 3);
+                for (int corner = 0; corner < 4; ++corner) {
+                    glm::dvec3 p;
+                    p[axis] = side ? mx[axis] : mn[axis];
+                    p[u] = (corner == 1 || corner == 2) ? mx[u] : mn[u];
+                    p[v] = corner >= 2 ? mx[v] : mn[v];
+                    const glm::vec3 f(p + bake);
+                    lo = glm::min(lo, f);
+                    hi = glm::max(hi, f);
+                    pos.insert(pos.end(), {f.x, f.y, f.z});
+                    nrm.insert(nrm.end(), {float(n.x), float(n.y), float(n.z)});
+                    uv.insert(uv.end(), {float(corner == 1 || corner == 2), float(corner >= 2)});
+                }
+                // Counter-clockwise seen from outside: (u, v) is right-handed with the axis.
+                if (side) idx.insert(idx.end(), {first, first + 1, first + 2, first, first + 2, first + 3});
+                else idx.insert(idx.end(), {first, first + 2, first + 1, first, first + 3, first + 2});
+            }
+    std::string bin;
+    auto put = [&](const void* d, size_t n) { bin.append(static_cast<const char*>(d), n); };
+    put(pos.data(), pos.size() * 4);
+    put(nrm.data(), nrm.size() * 4);
+    put(uv.data(), uv.size() * 4);
+    put(idx.data(), idx.size() * 4);
+    const size_t vn = pos.size() / 3;
+    json g;
+    g["asset"] = {{"version", "2.0"}};
+    g["buffers"] = json::array({{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}});
+    g["bufferViews"] = json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", vn * 12}},
+                                    {{"buffer", 0}, {"byteOffset", vn * 12}, {"byteLength", vn * 12}},
+                                    {{"buffer", 0}, {"byteOffset", vn * 24}, {"byteLength", vn * 8}},
+                                    {{"buffer", 0}, {"byteOffset", vn * 32}, {"byteLength", idx.size() * 4}}});
+    g["accessors"] = json::array({{{"bufferView", 0}, {"componentType", 5126}, {"count", vn}, {"type", "VEC3"},
+                                   {"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}},
+                                  {{"bufferView", 1}, {"componentType", 5126}, {"count", vn}, {"type", "VEC3"}},
+                                  {{"bufferView", 2}, {"componentType", 5126}, {"count", vn}, {"type", "VEC2"}},
+                                  {{"bufferView", 3}, {"componentType", 5125}, {"count", idx.size()}, {"type", "SCALAR"}}});
+    g["meshes"] = json::array({{{"primitives", json::array({{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}},
+                                                             {"indices", 3}, {"material", 0}}})}}});
+    g["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorFactor", {0.7, 0.7, 0.65, 1}}, {"metallicFactor", 0}}}}});
+    g["nodes"] = json::array({{{"mesh", 0}}});
+    g["scenes"] = json::array({{{"nodes", {0}}}});
+    g["scene"] = 0;
+    fs::path file = dir / (name + ".gltf");
+    std::ofstream(file) << g.dump(1) << "\n";
+    return file;
+}
+
 }  // namespace cbr::harness::stress

@@ -55,5 +55,9 @@ fs::path writePath(const fs::path& dir, const std::string& name, double fov_deg,
 // emitter ({"factor": [r,g,b]}, {"strength": s} for KHR_materials_emissive_strength).
 fs::path writeDegenerateGltf(const fs::path& dir, const std::string& name, bool missing_texture,
                              const json& emissive = nullptr);
+// Boxes, 1/16-wide poles and a thin beam on a ground slab (one mesh, coordinates on a 1/16
+// grid), with every vertex position baked at `bake` + its own: the same geometry as
+// `bake` = 0 placed by a node at `bake`, exactly, for |bake| < 2^20.
+fs::path writeBlocksGltf(const fs::path& dir, const std::string& name, glm::dvec3 bake);
 
 }  // namespace cbr::harness::stress

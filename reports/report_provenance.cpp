@@ -105,6 +105,7 @@ std::string provenanceSection(const RunData& d) {
                                 {"animated instances", at(d, "/scene/animated_instances")},
                                 {"lights", at(d, "/scene/lights")},
                                 {"default light added", at(d, "/scene/default_light")},
+                                {"meshes moved to their own origin", at(d, "/scene/recentred_meshes")},
                             });
     out += kvTable("Camera path", {
                                       {"name", at(d, "/path/name")},

@@ -105,6 +105,46 @@ void checkScene(const Scene& scene) {
     }
 }
 
+// Moves each mesh whose bounding box lies away from the origin (centre farther than its
+// half-extent) to its own origin: positions become position - c, and every instance of it
+// gets model * translate(c) in double. A float position keeps ~7 digits of its distance
+// from the object origin, so a vertex baked at 1e6 has 1/16-unit steps; the camera-relative
+// subtraction then happens in the shader in float and the rounding follows the camera,
+// frame by frame (crawl). After the move the large part is in the double matrix.
+// c is rounded to a power-of-two grid at least as coarse as the positions' own spacing,
+// so position - c is exact for a mesh well away from the origin (its positions' spacing
+// is then no finer than the grid): the geometry is the file's, bit for bit. Returns the
+// number of meshes moved. Vertex ranges of meshes are disjoint (both builders append per mesh).
+int recentreMeshes(Scene& scene) {
+    int moved = 0;
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        Mesh& mesh = scene.meshes[m];
+        if (mesh.index_count == 0) continue;
+        const glm::dvec3 lo(mesh.bounds_min), hi(mesh.bounds_max);
+        const glm::dvec3 centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+        const double reach = std::max({half.x, half.y, half.z});
+        const double dist = std::max({std::abs(centre.x), std::abs(centre.y), std::abs(centre.z)});
+        if (!(dist > reach) || !(reach > 0)) continue;
+        // Grid: the largest power of two not above the half-extent (and not below the
+        // positions' own spacing at `dist`, 2^-23 of it).
+        const double spacing = std::ldexp(1.0, std::ilogb(dist) - 23);
+        const double grid = std::max(std::ldexp(1.0, std::ilogb(reach)), spacing);
+        const glm::dvec3 c = glm::round(centre / grid) * grid;
+        uint32_t last = 0;
+        for (uint32_t k = 0; k < mesh.index_count; ++k) last = std::max(last, scene.indices[mesh.first_index + k]);
+        const size_t first_vertex = size_t(mesh.vertex_offset), end_vertex = first_vertex + last + 1;
+        for (size_t i = first_vertex; i < end_vertex; ++i)
+            scene.vertices[i].position = glm::vec3(glm::dvec3(scene.vertices[i].position) - c);
+        mesh.bounds_min = glm::vec3(lo - c);
+        mesh.bounds_max = glm::vec3(hi - c);
+        const glm::dmat4 to_c = glm::translate(glm::dmat4(1.0), c);
+        for (Instance& inst : scene.instances)
+            if (size_t(inst.mesh) == m) inst.model = inst.model * to_c;
+        ++moved;
+    }
+    return moved;
+}
+
 }  // namespace
 
 glm::dmat4 instanceTransform(const Instance& instance, double t) {
@@ -207,6 +247,7 @@ void finalizeScene(Scene& scene) {
 
     SceneInfo& info = scene.info;
     info.opaque_draws = info.masked_draws = info.blend_draws = info.animated_instances = info.triangles = 0;
+    info.recentred_meshes += recentreMeshes(scene);
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (const Instance& inst : scene.instances) {
         const Mesh& mesh = scene.meshes[size_t(inst.mesh)];

@@ -92,6 +92,7 @@ struct SceneInfo {
     int animated_instances = 0;
     int triangles = 0;
     bool default_light = false;  // no lights in the file: one directional light added
+    int recentred_meshes = 0;    // meshes far from their own origin moved to it (finalizeScene)
 };
 
 struct Scene {
@@ -144,7 +145,11 @@ Scene buildProcedural(const std::string& name);
 // A path ending in .gltf/.glb loads a file; anything else names a procedural scene.
 Scene loadScene(const std::string& spec);
 
-// Fills info and bounds from the rest; adds the default light when there is none.
+// Fills info and bounds from the rest; adds the default light when there is none; moves
+// each mesh whose bounds lie away from the origin to an origin at its centre (positions
+// minus c, its instances' models times translate(c), in double), so vertices baked far
+// out (1e6) render like the same mesh placed there by a node; exact when the mesh lies
+// well away from the origin (c on a power-of-two grid no finer than the positions').
 void finalizeScene(Scene& scene);
 
 }  // namespace cbr::scene

@@ -2,9 +2,11 @@
 // options that apply them, and instanceMatrices far from the origin.
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "camera_paths/path.h"
@@ -32,6 +34,79 @@ glm::dvec3 worldOf(const scene::Scene& s, size_t instance, double t) {
     const scene::Mesh& mesh = s.meshes[size_t(inst.mesh)];
     const glm::vec3 v = s.vertices[size_t(mesh.vertex_offset) + s.indices[mesh.first_index]].position;
     return glm::dvec3(scene::instanceTransform(inst, t) * glm::dvec4(glm::dvec3(v), 1.0));
+}
+
+// A mesh baked at 1e6 (every coordinate an exact float on a 1/16 grid) and one around
+// the origin, each used by two instances.
+scene::Scene bakedScene() {
+    scene::Scene s;
+    s.source = "test";
+    const glm::dvec3 far(1e6, -1e6, 5e5);
+    for (glm::dvec3 at : {far, glm::dvec3(0.0)})
+        for (int k = 0; k < 4; ++k) {
+            const glm::dvec3 p = at + glm::dvec3((k & 1) * 3.0625, (k >> 1) * 1.5, -0.0625 * k);
+            s.vertices.push_back({glm::vec3(p), glm::vec3(0, 0, 1), glm::vec2(0)});
+        }
+    s.indices = {0, 1, 2, 1, 3, 2};
+    for (int m = 0; m < 2; ++m) {
+        scene::Mesh mesh;
+        mesh.first_index = 0;
+        mesh.index_count = 6;
+        mesh.vertex_offset = 4 * m;
+        mesh.bounds_min = glm::vec3(std::numeric_limits<float>::max());
+        mesh.bounds_max = glm::vec3(-std::numeric_limits<float>::max());
+        for (int k = 0; k < 4; ++k) {
+            mesh.bounds_min = glm::min(mesh.bounds_min, s.vertices[size_t(4 * m + k)].position);
+            mesh.bounds_max = glm::max(mesh.bounds_max, s.vertices[size_t(4 * m + k)].position);
+        }
+        s.meshes.push_back(mesh);
+        for (double x : {0.0, 10.0}) {
+            scene::Instance inst;
+            inst.mesh = m;
+            inst.model = glm::translate(glm::dmat4(1.0), glm::dvec3(x, 0, 0)) *
+                         glm::rotate(glm::dmat4(1.0), 0.3, glm::dvec3(0, 1, 0));
+            s.instances.push_back(inst);
+        }
+    }
+    return s;
+}
+
+TEST(Recentre, MeshBakedFarOutMovesToItsOwnOriginExactly) {
+    const scene::Scene original = bakedScene();
+    scene::Scene s = original;
+    scene::finalizeScene(s);
+    EXPECT_EQ(s.info.recentred_meshes, 1);
+    // The far mesh's positions are now small; the one around the origin is untouched.
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_LT(glm::length(s.vertices[size_t(k)].position), 8.0f) << k;
+        EXPECT_EQ(s.vertices[size_t(4 + k)].position, original.vertices[size_t(4 + k)].position) << k;
+    }
+    EXPECT_EQ(s.instances[2].model, original.instances[2].model);
+    // Every vertex lands where it did, through its instance, to double rounding: the
+    // geometry is the same (vertex - c was exact), only the split between float and double moved.
+    for (size_t i = 0; i < s.instances.size(); ++i) {
+        const size_t first = size_t(s.meshes[size_t(s.instances[i].mesh)].vertex_offset);
+        for (size_t k = 0; k < 4; ++k) {
+            const glm::dvec3 before(original.instances[i].model * glm::dvec4(glm::dvec3(original.vertices[first + k].position), 1));
+            const glm::dvec3 after(s.instances[i].model * glm::dvec4(glm::dvec3(s.vertices[first + k].position), 1));
+            EXPECT_LT(glm::distance(before, after), 1e-9) << i << " " << k;
+        }
+    }
+    // Mesh bounds follow the positions; the scene's world bounds are those of the file.
+    EXPECT_LT(glm::length(s.meshes[0].bounds_max), 8.0f);
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const auto& inst : original.instances) {
+        const auto& m = original.meshes[size_t(inst.mesh)];
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::dvec3 p((corner & 1) ? m.bounds_max.x : m.bounds_min.x, (corner & 2) ? m.bounds_max.y : m.bounds_min.y,
+                               (corner & 4) ? m.bounds_max.z : m.bounds_min.z);
+            const glm::dvec3 w(inst.model * glm::dvec4(p, 1.0));
+            lo = glm::min(lo, w);
+            hi = glm::max(hi, w);
+        }
+    }
+    EXPECT_LT(glm::distance(s.bounds_min, lo), 1e-9);
+    EXPECT_LT(glm::distance(s.bounds_max, hi), 1e-9);
 }
 
 TEST(PlaceScene, EveryInstanceLightAndBoundMovesAndScales) {
