@@ -182,6 +182,42 @@ std::string base64(const std::string& bin) {
     return enc;
 }
 
+// A glTF document with one mesh of one primitive (material 0) and one node, its arrays
+// (positions, normals, uvs: float; indices: uint32) in an embedded base64 buffer.
+json meshGltf(const std::vector<float>& pos, const std::vector<float>& nrm, const std::vector<float>& uv,
+              const std::vector<uint32_t>& idx) {
+    std::string bin;
+    auto put = [&](const void* d, size_t n) { bin.append(static_cast<const char*>(d), n); };
+    put(pos.data(), pos.size() * 4);
+    put(nrm.data(), nrm.size() * 4);
+    put(uv.data(), uv.size() * 4);
+    put(idx.data(), idx.size() * 4);
+    const size_t vn = pos.size() / 3;
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (size_t i = 0; i < vn; ++i) {
+        lo = glm::min(lo, glm::vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
+        hi = glm::max(hi, glm::vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
+    }
+    json g;
+    g["asset"] = {{"version", "2.0"}};
+    g["buffers"] = json::array({{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}});
+    g["bufferViews"] = json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", vn * 12}},
+                                    {{"buffer", 0}, {"byteOffset", vn * 12}, {"byteLength", vn * 12}},
+                                    {{"buffer", 0}, {"byteOffset", vn * 24}, {"byteLength", vn * 8}},
+                                    {{"buffer", 0}, {"byteOffset", vn * 32}, {"byteLength", idx.size() * 4}}});
+    g["accessors"] = json::array({{{"bufferView", 0}, {"componentType", 5126}, {"count", vn}, {"type", "VEC3"},
+                                   {"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}},
+                                  {{"bufferView", 1}, {"componentType", 5126}, {"count", vn}, {"type", "VEC3"}},
+                                  {{"bufferView", 2}, {"componentType", 5126}, {"count", vn}, {"type", "VEC2"}},
+                                  {{"bufferView", 3}, {"componentType", 5125}, {"count", idx.size()}, {"type", "SCALAR"}}});
+    json prim = {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}}, {"indices", 3}, {"material", 0}};
+    g["meshes"] = json::array({{{"primitives", json::array({prim})}}});
+    g["nodes"] = json::array({{{"mesh", 0}}});
+    g["scenes"] = json::array({{{"nodes", {0}}}});
+    g["scene"] = 0;
+    return g;
+}
+
 // A quad of two triangles plus a zero-area (collinear) one; `missing_texture` adds a
 // base colour texture whose image file does not exist.
 fs::path writeDegenerateGltf(const fs::path& dir, const std::string& name, bool missing_texture,
@@ -190,29 +226,7 @@ fs::path writeDegenerateGltf(const fs::path& dir, const std::string& name, bool 
     std::vector<float> pos = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0, 0, 0, 0.5f, 0.5f, 0.5f, 0.5f, 1, 1, 0.5f};
     std::vector<float> nrm = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
     std::vector<float> uv = {0, 0, 1, 0, 1, 1, 0, 1, 0, 0, 0, 0, 0, 0};
-    std::vector<uint16_t> idx = {0, 1, 2, 0, 2, 3, 4, 5, 6};
-    std::string bin;
-    auto put = [&](const void* d, size_t n) { bin.append(static_cast<const char*>(d), n); };
-    put(pos.data(), pos.size() * 4);
-    put(nrm.data(), nrm.size() * 4);
-    put(uv.data(), uv.size() * 4);
-    put(idx.data(), idx.size() * 2);
-    while (bin.size() % 4) bin.push_back('\0');
-    const std::string enc = base64(bin);
-    json g;
-    g["asset"] = {{"version", "2.0"}};
-    g["buffers"] = json::array({{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + enc}}});
-    g["bufferViews"] = json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 84}},
-                                    {{"buffer", 0}, {"byteOffset", 84}, {"byteLength", 84}},
-                                    {{"buffer", 0}, {"byteOffset", 168}, {"byteLength", 56}},
-                                    {{"buffer", 0}, {"byteOffset", 224}, {"byteLength", 18}}});
-    g["accessors"] = json::array({{{"bufferView", 0}, {"componentType", 5126}, {"count", 7}, {"type", "VEC3"},
-                                   {"min", {-1, -1, 0}}, {"max", {1, 1, 0.5}}},
-                                  {{"bufferView", 1}, {"componentType", 5126}, {"count", 7}, {"type", "VEC3"}},
-                                  {{"bufferView", 2}, {"componentType", 5126}, {"count", 7}, {"type", "VEC2"}},
-                                  {{"bufferView", 3}, {"componentType", 5123}, {"count", 9}, {"type", "SCALAR"}}});
-    json prim = {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}}, {"indices", 3}, {"material", 0}};
-    g["meshes"] = json::array({{{"primitives", json::array({prim})}}});
+    json g = meshGltf(pos, nrm, uv, {0, 1, 2, 0, 2, 3, 4, 5, 6});
     json mat = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.6, 0.4, 1}}}}};
     if (missing_texture) {
         mat["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
@@ -228,9 +242,6 @@ fs::path writeDegenerateGltf(const fs::path& dir, const std::string& name, bool 
         }
     }
     g["materials"] = json::array({mat});
-    g["nodes"] = json::array({{{"mesh", 0}}});
-    g["scenes"] = json::array({{{"nodes", {0}}}});
-    g["scene"] = 0;
     fs::path file = dir / (name + ".gltf");
     std::ofstream(file) << g.dump(1) << "\n";
     return file;
@@ -248,7 +259,6 @@ fs::path writeBlocksGltf(const fs::path& dir, const std::string& name, glm::dvec
     };
     std::vector<float> pos, nrm, uv;
     std::vector<uint32_t> idx;
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
     for (const auto& [mn, mx] : boxes)
         for (int axis = 0; axis < 3; ++axis)
             for (int side = 0; side < 2; ++side) {
@@ -262,8 +272,6 @@ fs::path writeBlocksGltf(const fs::path& dir, const std::string& name, glm::dvec
                     p[u] = (corner == 1 || corner == 2) ? mx[u] : mn[u];
                     p[v] = corner >= 2 ? mx[v] : mn[v];
                     const glm::vec3 f(p + bake);
-                    lo = glm::min(lo, f);
-                    hi = glm::max(hi, f);
                     pos.insert(pos.end(), {f.x, f.y, f.z});
                     nrm.insert(nrm.end(), {float(n.x), float(n.y), float(n.z)});
                     uv.insert(uv.end(), {float(corner == 1 || corner == 2), float(corner >= 2)});
@@ -272,31 +280,8 @@ fs::path writeBlocksGltf(const fs::path& dir, const std::string& name, glm::dvec
                 if (side) idx.insert(idx.end(), {first, first + 1, first + 2, first, first + 2, first + 3});
                 else idx.insert(idx.end(), {first, first + 2, first + 1, first, first + 3, first + 2});
             }
-    std::string bin;
-    auto put = [&](const void* d, size_t n) { bin.append(static_cast<const char*>(d), n); };
-    put(pos.data(), pos.size() * 4);
-    put(nrm.data(), nrm.size() * 4);
-    put(uv.data(), uv.size() * 4);
-    put(idx.data(), idx.size() * 4);
-    const size_t vn = pos.size() / 3;
-    json g;
-    g["asset"] = {{"version", "2.0"}};
-    g["buffers"] = json::array({{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}});
-    g["bufferViews"] = json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", vn * 12}},
-                                    {{"buffer", 0}, {"byteOffset", vn * 12}, {"byteLength", vn * 12}},
-                                    {{"buffer", 0}, {"byteOffset", vn * 24}, {"byteLength", vn * 8}},
-                                    {{"buffer", 0}, {"byteOffset", vn * 32}, {"byteLength", idx.size() * 4}}});
-    g["accessors"] = json::array({{{"bufferView", 0}, {"componentType", 5126}, {"count", vn}, {"type", "VEC3"},
-                                   {"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}},
-                                  {{"bufferView", 1}, {"componentType", 5126}, {"count", vn}, {"type", "VEC3"}},
-                                  {{"bufferView", 2}, {"componentType", 5126}, {"count", vn}, {"type", "VEC2"}},
-                                  {{"bufferView", 3}, {"componentType", 5125}, {"count", idx.size()}, {"type", "SCALAR"}}});
-    g["meshes"] = json::array({{{"primitives", json::array({{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}},
-                                                             {"indices", 3}, {"material", 0}}})}}});
+    json g = meshGltf(pos, nrm, uv, idx);
     g["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorFactor", {0.7, 0.7, 0.65, 1}}, {"metallicFactor", 0}}}}});
-    g["nodes"] = json::array({{{"mesh", 0}}});
-    g["scenes"] = json::array({{{"nodes", {0}}}});
-    g["scene"] = 0;
     fs::path file = dir / (name + ".gltf");
     std::ofstream(file) << g.dump(1) << "\n";
     return file;
