@@ -61,19 +61,6 @@ int scoreImages(const std::string& ref_file, const std::string& img_file, const 
     return 0;
 }
 
-std::vector<std::string> splitList(const std::string& s) {
-    std::vector<std::string> out;
-    size_t start = 0;
-    while (start <= s.size()) {
-        size_t comma = s.find(',', start);
-        std::string item = s.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-        if (!item.empty()) out.push_back(item);
-        if (comma == std::string::npos) break;
-        start = comma + 1;
-    }
-    return out;
-}
-
 // The options of `run` and `sweep` (a sweep is a run over configurations).
 void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& variant_list) {
     cmd->add_option("--scene", o.scene, "procedural scene name or a .gltf/.glb file")->capture_default_str();
@@ -252,7 +239,7 @@ int main(int argc, char** argv) {
                         w, h, cost_frames, c.threads, c.psnr_ms, c.ssim_ms, c.eci_ms, c.psnr_ms + c.ssim_ms + c.eci_ms);
             return 0;
         }
-        o.variants = splitList(variant_list);
+        o.variants = cbr::harness::splitList(variant_list);
         o.argv.assign(argv, argv + argc);
         o.sweep = sweep->parsed();
         if (*merge) return cbr::harness::mergeRuns(merge_dirs, merge_out);
@@ -262,8 +249,8 @@ int main(int argc, char** argv) {
                     std::printf("%-28s %s\n", c.name.c_str(), c.expectation.c_str());
                 return 0;
             }
-            so.cases = splitList(stress_cases);
-            so.pipelines = splitList(stress_pipelines);
+            so.cases = cbr::harness::splitList(stress_cases);
+            so.pipelines = cbr::harness::splitList(stress_pipelines);
             return cbr::harness::runStress(so);
         }
         if (*plan) return cbr::harness::printPlan(o, plan_shards);

@@ -24,24 +24,6 @@ namespace {
 
 using nlohmann::json;
 
-std::vector<std::string> splitList(const std::string& s) {
-    std::vector<std::string> out;
-    size_t start = 0;
-    for (;;) {
-        size_t at = s.find(',', start);
-        std::string item = s.substr(start, at == std::string::npos ? std::string::npos : at - start);
-        if (!item.empty()) out.push_back(item);
-        if (at == std::string::npos) break;
-        start = at + 1;
-    }
-    return out;
-}
-
-std::string stemOf(const std::string& spec) {
-    std::filesystem::path p(spec);
-    return p.has_extension() ? p.stem().string() : spec;
-}
-
 // Job ids use [A-Za-z0-9._-] only: they are directory names and CSV cells.
 std::string safe(const std::string& s) {
     std::string out;
@@ -168,7 +150,7 @@ std::vector<Job> planJobs(const RunOptions& o) {
                     j.options.path = path;
                     j.options.pipeline = pipeline;
                     j.options.resolution = res;
-                    j.id = safe(stemOf(scene) + "-" + stemOf(path) + "-" + pipeline + "-" + res);
+                    j.id = safe(specStem(scene) + "-" + specStem(path) + "-" + pipeline + "-" + res);
                     // Two files with one stem (a/x.gltf, b/x.gltf): the full specs tell them apart.
                     if (ids.count(j.id)) j.id += "-" + hex8(fnv1a(scene + "|" + path));
                     ids.insert(j.id);

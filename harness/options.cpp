@@ -4,6 +4,8 @@
 #include "camera_paths/text.h"
 
 #include <charconv>
+#include <ctime>
+#include <filesystem>
 #include <cstdio>
 #include <stdexcept>
 
@@ -26,6 +28,31 @@ void parseResolution(const std::string& text, uint32_t& width, uint32_t& height)
                                     ": expected WIDTHxHEIGHT with both from 1 to 65536, e.g. 960x540");
     width = w;
     height = h;
+}
+
+std::vector<std::string> splitList(const std::string& s) {
+    std::vector<std::string> out;
+    size_t start = 0;
+    for (;;) {
+        size_t comma = s.find(',', start);
+        std::string item = s.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        if (!item.empty()) out.push_back(item);
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return out;
+}
+
+std::string specStem(const std::string& spec) {
+    std::filesystem::path p(spec);
+    return p.has_extension() ? p.stem().string() : spec;
+}
+
+std::string timestampForName() {
+    std::time_t now = std::time(nullptr);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&now));
+    return buf;
 }
 
 }  // namespace cbr::harness

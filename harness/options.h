@@ -47,4 +47,13 @@ struct RunOptions {
 // Parsed "WxH"; throws std::invalid_argument for anything else or a 0 dimension.
 void parseResolution(const std::string& text, uint32_t& width, uint32_t& height);
 
+// "a,b,,c" -> {"a", "b", "c"}: a comma list from the command line, empty items dropped.
+std::vector<std::string> splitList(const std::string& s);
+
+// A scene or path spec as a name part: a file's stem ("models/Box.glb" -> "Box"), else itself.
+std::string specStem(const std::string& spec);
+
+// Local time as "YYYYmmdd-HHMMSS", for default output directory names.
+std::string timestampForName();
+
 }  // namespace cbr::harness

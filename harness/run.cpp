@@ -32,18 +32,6 @@
 namespace cbr::harness {
 namespace {
 
-std::string timestampForName() {
-    std::time_t now = std::time(nullptr);
-    char buf[32];
-    std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&now));
-    return buf;
-}
-
-std::string stem(const std::string& spec) {
-    std::filesystem::path p(spec);
-    return p.has_extension() ? p.stem().string() : spec;
-}
-
 render::Camera toCamera(const paths::CameraPose& pose) {
     render::Camera c;
     c.position = pose.position;
@@ -201,10 +189,10 @@ Prepared prepare(const RunOptions& o) {
     applyPlacement(o, p.scene, p.path);
     p.times = paths::frameTimes(p.path, o.frames);
     p.poses = paths::sampleFrames(p.path, o.frames);
-    p.out = o.out.empty() ? std::filesystem::path("out") / (stem(o.scene) + "-" + stem(o.path) + "-" + timestampForName())
+    p.out = o.out.empty() ? std::filesystem::path("out") / (specStem(o.scene) + "-" + specStem(o.path) + "-" + timestampForName())
                           : std::filesystem::path(o.out);
     if (o.sweep && o.out.empty())
-        p.out = std::filesystem::path("out") / ("sweep-" + stem(o.scene) + "-" + stem(o.path) + "-" + timestampForName());
+        p.out = std::filesystem::path("out") / ("sweep-" + specStem(o.scene) + "-" + specStem(o.path) + "-" + timestampForName());
     if (std::filesystem::exists(p.out))
         throw std::invalid_argument("--out " + p.out.string() + ": already exists; expected a new directory");
     return p;

@@ -108,13 +108,6 @@ Verdict sameAsBase(Children& ch, const std::string& other, double min_db, double
     return v;
 }
 
-std::string isoNow() {
-    std::time_t now = std::time(nullptr);
-    char buf[32];
-    std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&now));
-    return buf;
-}
-
 
 std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, uint32_t w, uint32_t h) {
     (void)w;
@@ -449,7 +442,7 @@ int runStress(const StressOptions& o) {
             for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
             throw std::invalid_argument("--cases " + want + ": unknown case; expected some of " + list);
         }
-    fs::path final_dir = o.out.empty() ? fs::path("out") / ("stress-" + isoNow()) : fs::path(o.out);
+    fs::path final_dir = o.out.empty() ? fs::path("out") / ("stress-" + timestampForName()) : fs::path(o.out);
     reports::OutputDir out(final_dir);
     fs::path paths_dir = out.path() / "inputs";
     fs::create_directories(paths_dir);
