@@ -40,7 +40,8 @@ constexpr const char* kTimeRule =
 // The settings in run.json that change timings or images: part of a cell's key.
 // (debug_slowdown is left out on purpose: it is how a detector test makes a known regression.)
 const std::vector<std::string> kKeySettings = {"shading_cost", "drr_scale",     "drr_filter",   "cso_tolerance",
-                                               "cso_mode",     "cbr_route",     "cbr_lod_bias", "reference"};
+                                               "cso_mode",     "cbr_route",     "cbr_lod_bias", "reference",
+                                               "resolve_impl"};
 
 struct Side {
     RunData data;

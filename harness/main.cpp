@@ -99,6 +99,10 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
         ->capture_default_str();
     cmd->add_option("--ssaa", o.ssaa, "samples per axis of the ssaa reference (box filter)")->capture_default_str();
     cmd->add_option("--cso-mode", o.cso_mode, "cbr-cso tolerance mode: relative or absolute")->capture_default_str();
+    cmd->add_option("--resolve-impl", o.resolve_impl,
+                    "fused (resolve/upscale write the display image), separate (then a tonemap pass), or reference "
+                    "(the pre-issue-14 passes, for image and time comparisons)")
+        ->capture_default_str();
     cmd->add_option("--scene-offset", o.scene_offset, "X,Y,Z: move the scene and the camera path by this (e.g. 1e6,1e6,1e6)");
     cmd->add_option("--scene-scale", o.scene_scale, "scale the scene and the camera path about the origin (0.001: mm)")
         ->capture_default_str();

@@ -168,7 +168,7 @@ std::string planHash(const RunOptions& o) {
               {"drr_target_ms", o.drr_target_ms}, {"shading_cost", o.shading_cost},
               {"exposure", o.exposure},        {"cbr_route", o.cbr_route},
               {"cbr_lod_bias", o.cbr_lod_bias}, {"cso_tolerance", o.cso_tolerance},
-              {"cso_mode", o.cso_mode},        {"debug_shading", o.debug_shading},
+              {"cso_mode", o.cso_mode}, {"resolve_impl", o.resolve_impl},        {"debug_shading", o.debug_shading},
               {"debug_slowdown", o.debug_slowdown}, {"reference", o.reference},
               {"ssaa", o.ssaa},                {"scene_offset", o.scene_offset},
               {"scene_scale", o.scene_scale},  {"near", o.near ? json(*o.near) : json()},

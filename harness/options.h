@@ -30,6 +30,7 @@ struct RunOptions {
     double cbr_lod_bias = -0.5;
     double cso_tolerance = 0.05;
     std::string cso_mode = "relative";
+    std::string resolve_impl = "fused";  // fused | separate | reference (renderer/settings.h)
     std::string debug_shading = "none";  // none | pixel-id
     std::string pipeline = "forward";    // forward | deferred
     std::string debug_slowdown;          // PASS=PCT: a known slowdown for testing regression detection

@@ -380,6 +380,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                      {"cbr_lod_bias", s.cbr_lod_bias},
                      {"cso_tolerance", s.cso_tolerance},
                      {"cso_mode", s.cso_absolute ? "absolute" : "relative"},
+                     {"resolve_impl", render::resolveImplName(s.resolve_impl)},
                      {"debug_shading", s.debug_pixel_id ? "pixel-id" : "none"},
                      {"drr_scale", s.drr_scale},
                      {"drr_filter", s.drr_filter == render::DrrFilter::Bilinear ? "bilinear" : "catmull-rom"},

@@ -139,6 +139,14 @@ Prepared prepare(const RunOptions& o) {
     p.settings.cbr_lod_bias = float(o.cbr_lod_bias);
     p.settings.cso_tolerance = o.cso_tolerance;
     p.settings.cso_absolute = o.cso_mode == "absolute";
+    if (o.resolve_impl == "fused")
+        p.settings.resolve_impl = render::ResolveImpl::Fused;
+    else if (o.resolve_impl == "separate")
+        p.settings.resolve_impl = render::ResolveImpl::Separate;
+    else if (o.resolve_impl == "reference")
+        p.settings.resolve_impl = render::ResolveImpl::Reference;
+    else
+        throw std::invalid_argument("--resolve-impl " + o.resolve_impl + ": expected fused, separate or reference");
     if (o.drr_filter == "bilinear")
         p.settings.drr_filter = render::DrrFilter::Bilinear;
     else if (o.drr_filter == "catmull-rom")

@@ -27,6 +27,15 @@ double medianOf(std::vector<double> v) {
 
 }  // namespace
 
+const char* resolveImplName(ResolveImpl impl) {
+    switch (impl) {
+        case ResolveImpl::Fused: return "fused";
+        case ResolveImpl::Separate: return "separate";
+        case ResolveImpl::Reference: return "reference";
+    }
+    return "fused";
+}
+
 glm::dmat4 projection(double fov_y_rad, double aspect, double near, double far) {
     // Reversed Z, finite far: depth = near at 1, far at 0; float depth keeps precision
     // at a distance (issue: near 1e-4, far 1e7).

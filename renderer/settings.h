@@ -11,6 +11,17 @@ namespace cbr::render {
 
 enum class DrrFilter { Bilinear, CatmullRom };
 
+// How the full-resolution passes after the scene run (`--resolve-impl`): the checkerboard
+// reconstruction and the drr upscale, with or without the tone map folded in.
+enum class ResolveImpl {
+    Fused,      // the tiled resolve or upscale writes the display image: `cbr_resolve_tonemap`, `upscale_tonemap`
+    Separate,   // the tiled passes write linear colour, then `tonemap` (to measure the fusion)
+    Reference,  // the pre-issue-14 passes (cbr_resolve_reference.glsl, upscale_reference.comp, `tonemap`,
+                // the class map every frame, motion written for every sample): the images the tiled
+                // passes must reproduce, and the "before" of their measurements
+};
+const char* resolveImplName(ResolveImpl impl);  // fused | separate | reference
+
 // Dynamic resolution controller (`--drr-target-ms`): steps the per-axis scale towards
 // the target frame time, holding inside a dead band, within bounds.
 struct DrrControl {
@@ -36,6 +47,7 @@ struct Settings {
     float cbr_lod_bias = -0.5f;      // the paper's; -1 matches full-res derivatives
     double cso_tolerance = 0.05;
     bool cso_absolute = false;       // false: relative to the mean neighbour depth
+    ResolveImpl resolve_impl = ResolveImpl::Fused;
     bool debug_pixel_id = false;     // colours encode the full-res pixel each sample lands on
     bool analysis = false;           // quality frames also read back motion and depths (edge crawl)
     int supersample = 1;             // the supersampled reference: k x k samples per output pixel

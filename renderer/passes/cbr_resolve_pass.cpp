@@ -1,4 +1,4 @@
-// The `cbr_resolve` pass.
+// The `cbr_resolve` pass (fused: `cbr_resolve_tonemap`) and the untimed `cbr_class_map`.
 #include "renderer/passes/cbr_resolve_pass.h"
 
 #include "renderer/shaders/cbr_pattern.h"
@@ -6,99 +6,227 @@
 #include "renderer/vk/context.h"
 #include "shaders/cbr_resolve_array.comp.h"
 #include "shaders/cbr_resolve_ms.comp.h"
+#include "shaders/cbr_resolve_reference_array.comp.h"
+#include "shaders/cbr_resolve_reference_ms.comp.h"
+#include "shaders/cbr_resolve_reference_srt_array.comp.h"
+#include "shaders/cbr_resolve_reference_srt_ms.comp.h"
 #include "shaders/cbr_resolve_srt_array.comp.h"
 #include "shaders/cbr_resolve_srt_ms.comp.h"
 
 namespace cbr::passes {
+namespace {
+
+constexpr uint32_t kReferenceGroup = 8;  // local size of cbr_resolve_reference.glsl
+constexpr uint32_t kTiledGroup = 16;     // GROUP in cbr_resolve.glsl
+
+// The shader's OUTPUT constant.
+enum Output : int32_t { kOutputHdr = 0, kOutputDisplay = 1, kOutputClasses = 2 };
+
+struct Code {
+    const uint32_t* spirv;
+    size_t size;
+};
+
+#define CBR_CODE(name) Code{kSpirv_##name, sizeof(kSpirv_##name)}
+Code shaderFor(const CbrResolveDesc& desc) {
+    bool ref = desc.impl == ResolveImpl::Reference;
+    if (desc.deferred) {
+        if (desc.msaa) return ref ? CBR_CODE(cbr_resolve_reference_srt_ms_comp) : CBR_CODE(cbr_resolve_srt_ms_comp);
+        return ref ? CBR_CODE(cbr_resolve_reference_srt_array_comp) : CBR_CODE(cbr_resolve_srt_array_comp);
+    }
+    if (desc.msaa) return ref ? CBR_CODE(cbr_resolve_reference_ms_comp) : CBR_CODE(cbr_resolve_ms_comp);
+    return ref ? CBR_CODE(cbr_resolve_reference_array_comp) : CBR_CODE(cbr_resolve_array_comp);
+}
+#undef CBR_CODE
+
+uint32_t texelBytes(VkFormat format) {
+    switch (format) {
+        case VK_FORMAT_R8_UINT: return 1;
+        case VK_FORMAT_R8G8B8A8_UNORM:
+        case VK_FORMAT_D32_SFLOAT:
+        case VK_FORMAT_R16G16_SFLOAT: return 4;
+        case VK_FORMAT_R16G16B16A16_SFLOAT:
+        case VK_FORMAT_R32G32_SFLOAT: return 8;
+        default: throw vk::Error("cbr_resolve bandwidth: no texel size for format " + std::to_string(int(format)));
+    }
+}
+
+double imageBytes(const vk::Image& img) {
+    if (!img.image) return 0;
+    return double(img.extent.width) * img.extent.height * img.layers * uint32_t(img.samples) * texelBytes(img.format);
+}
+
+void bindStandIn(vk::Context& ctx, VkDescriptorSet set, uint32_t binding, const vk::Image* real, const vk::Image& stand_in) {
+    vk::writeImage(ctx, set, binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, (real ? *real : stand_in).view,
+                   VK_IMAGE_LAYOUT_GENERAL);
+}
+
+}  // namespace
 
 CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDescriptorSetLayout frame_layout,
-                            CheckerboardSet (&sets)[2], vk::Image& out_color, vk::Image& out_class, bool msaa) {
+                            CheckerboardSet (&sets)[2], const CbrResolveOutputs& out) {
     CbrResolve r;
+    r.impl = desc.impl;
+    r.check_occlusion = desc.check_occlusion;
+    r.out = out;
     r.push.cso_tolerance = desc.cso_tolerance;
+    r.push.exposure = desc.exposure;
+    r.push.pass_through = desc.pass_through ? 1u : 0u;
     for (int i = 0; i < 8; ++i) {
         const int* e = &shaders::kCbrPattern[(desc.route * 8 + i) * 3];
         r.push.pattern[i] = (e[0] + 1) | (e[1] + 1) << 4 | (e[2] + 1) << 8;
     }
+    const VkFormat stand_in_formats[3] = {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8_UINT, VK_FORMAT_R8G8B8A8_UNORM};
+    for (int i = 0; i < 3; ++i)
+        r.stand_ins[i] = vk::createImage(ctx, {"cbr_resolve_stand_in" + std::to_string(i), stand_in_formats[i], {1, 1},
+                                               VK_IMAGE_USAGE_STORAGE_BIT});
     constexpr auto kComp = VK_SHADER_STAGE_COMPUTE_BIT;
     constexpr auto kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    std::vector<vk::Binding> binding_list = {
-        {0, kSampled, kComp}, {1, kSampled, kComp}, {2, kSampled, kComp}, {3, kSampled, kComp},
-        {4, kSampled, kComp}, {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kComp},
-        {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kComp}};
+    constexpr auto kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    std::vector<vk::Binding> binding_list = {{0, kSampled, kComp}, {1, kSampled, kComp}, {2, kSampled, kComp},
+                                             {3, kSampled, kComp}, {4, kSampled, kComp}, {5, kStorage, kComp},
+                                             {6, kStorage, kComp},  {7, kStorage, kComp}};
     if (desc.deferred) binding_list.insert(binding_list.end(), {{8, kSampled, kComp}, {9, kSampled, kComp}});
     bool has_cfb = desc.deferred && sets[0].cfb.image;
-    std::vector<vk::SpecConstant> spec = {{/* CHECK_OCCLUSION= */ 1, desc.check_occlusion ? 1 : 0},
-                                          {/* CSO_ABSOLUTE= */ 2, desc.cso_absolute ? 1 : 0},
-                                          {/* HAS_MOTION= */ 3, desc.has_motion ? 1 : 0}};
-    if (desc.deferred) spec.push_back({/* HAS_CFB= */ 4, has_cfb ? 1 : 0});
-    struct Code {
-        const uint32_t* spirv;
-        size_t size;
+    bool tiled = desc.impl != ResolveImpl::Reference;
+    auto spec = [&](Output output) {
+        std::vector<vk::SpecConstant> s = {{/* CHECK_OCCLUSION= */ 1, desc.check_occlusion ? 1 : 0},
+                                           {/* CSO_ABSOLUTE= */ 2, desc.cso_absolute ? 1 : 0},
+                                           {/* HAS_MOTION= */ 3, desc.has_motion ? 1 : 0}};
+        if (desc.deferred) s.push_back({/* HAS_CFB= */ 4, has_cfb ? 1 : 0});
+        if (tiled) s.push_back({/* OUTPUT= */ 5, output});
+        return s;
     };
-    Code code = desc.deferred ? (msaa ? Code{kSpirv_cbr_resolve_srt_ms_comp, sizeof(kSpirv_cbr_resolve_srt_ms_comp)}
-                                      : Code{kSpirv_cbr_resolve_srt_array_comp, sizeof(kSpirv_cbr_resolve_srt_array_comp)})
-                              : (msaa ? Code{kSpirv_cbr_resolve_ms_comp, sizeof(kSpirv_cbr_resolve_ms_comp)}
-                                      : Code{kSpirv_cbr_resolve_array_comp, sizeof(kSpirv_cbr_resolve_array_comp)});
-    r.kernel = vk::createComputeKernel(ctx, code.spirv, code.size, binding_list, sizeof(CbrResolvePush), spec,
-                                       frame_layout);
-    r.pool = vk::createPool(ctx, binding_list, 2);
+    Code code = shaderFor(desc);
+    Output timed_output = desc.impl == ResolveImpl::Fused ? kOutputDisplay : kOutputHdr;
+    r.kernel = vk::createComputeKernel(ctx, code.spirv, code.size, binding_list, sizeof(CbrResolvePush),
+                                       spec(timed_output), frame_layout);
+    if (tiled)
+        r.class_kernel = vk::createComputeKernel(ctx, code.spirv, code.size, binding_list, sizeof(CbrResolvePush),
+                                                 spec(kOutputClasses), frame_layout);
+    r.pool = vk::createPool(ctx, binding_list, 4);
     r.sampler = vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 0.0f);
     constexpr auto kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     for (int cur = 0; cur < 2; ++cur) {
         CheckerboardSet& n = sets[cur];
         CheckerboardSet& prev = sets[1 - cur];
-        VkDescriptorSet set = vk::allocateSet(ctx, r.pool, r.kernel.set_layout);
         // Without moving objects (or transparency) no motion target (or CFB) exists; the
         // binding still needs an image of the right kind, which the shader never reads.
         const vk::Image& motion = n.motion.image ? n.motion : n.depth;
         const vk::Image& colour = desc.deferred ? n.srt : n.color;
         const vk::Image& prev_colour = desc.deferred ? prev.srt : prev.color;
-        vk::writeImage(ctx, set, 0, kSampled, colour.view, kRead, r.sampler);
-        vk::writeImage(ctx, set, 1, kSampled, n.depth.view, kRead, r.sampler);
-        vk::writeImage(ctx, set, 2, kSampled, motion.view, kRead, r.sampler);
-        vk::writeImage(ctx, set, 3, kSampled, prev_colour.view, kRead, r.sampler);
-        if (desc.deferred) {
-            vk::writeImage(ctx, set, 8, kSampled, (has_cfb ? n.cfb : n.depth).view, kRead, r.sampler);
-            vk::writeImage(ctx, set, 9, kSampled, (has_cfb ? prev.cfb : prev.depth).view, kRead, r.sampler);
-        }
-        vk::writeImage(ctx, set, 4, kSampled, prev.depth.view, kRead, r.sampler);
-        vk::writeImage(ctx, set, 5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out_color.view, VK_IMAGE_LAYOUT_GENERAL);
-        vk::writeImage(ctx, set, 6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out_class.view, VK_IMAGE_LAYOUT_GENERAL);
+        auto inputs = [&](VkDescriptorSet set) {
+            vk::writeImage(ctx, set, 0, kSampled, colour.view, kRead, r.sampler);
+            vk::writeImage(ctx, set, 1, kSampled, n.depth.view, kRead, r.sampler);
+            vk::writeImage(ctx, set, 2, kSampled, motion.view, kRead, r.sampler);
+            vk::writeImage(ctx, set, 3, kSampled, prev_colour.view, kRead, r.sampler);
+            vk::writeImage(ctx, set, 4, kSampled, prev.depth.view, kRead, r.sampler);
+            if (desc.deferred) {
+                vk::writeImage(ctx, set, 8, kSampled, (has_cfb ? n.cfb : n.depth).view, kRead, r.sampler);
+                vk::writeImage(ctx, set, 9, kSampled, (has_cfb ? prev.cfb : prev.depth).view, kRead, r.sampler);
+            }
+        };
+        VkDescriptorSet set = vk::allocateSet(ctx, r.pool, r.kernel.set_layout);
+        inputs(set);
+        bool fused = desc.impl == ResolveImpl::Fused;
+        bindStandIn(ctx, set, 5, fused ? nullptr : out.hdr, r.stand_ins[0]);
+        bindStandIn(ctx, set, 6, tiled ? nullptr : out.classes, r.stand_ins[1]);
+        bindStandIn(ctx, set, 7, fused ? out.display : nullptr, r.stand_ins[2]);
         r.sets[cur] = set;
+        if (!tiled) continue;
+        VkDescriptorSet class_set = vk::allocateSet(ctx, r.pool, r.class_kernel.set_layout);
+        inputs(class_set);
+        bindStandIn(ctx, class_set, 5, nullptr, r.stand_ins[0]);
+        bindStandIn(ctx, class_set, 6, out.classes, r.stand_ins[1]);
+        bindStandIn(ctx, class_set, 7, nullptr, r.stand_ins[2]);
+        r.class_sets[cur] = class_set;
     }
     return r;
 }
 
 void destroyCbrResolve(vk::Context& ctx, CbrResolve& r) {
     vk::destroyComputeKernel(ctx, r.kernel);
+    vk::destroyComputeKernel(ctx, r.class_kernel);
     if (r.pool) vkDestroyDescriptorPool(ctx.device, r.pool, nullptr);
     if (r.sampler) vkDestroySampler(ctx.device, r.sampler, nullptr);
+    for (auto& img : r.stand_ins) vk::destroyImage(ctx, img);
     r = {};
 }
 
-void addCbrResolvePass(graph::Graph& graph, const CbrResolve& r, VkDescriptorSet frame_set, CheckerboardSet (&sets)[2],
-                       int current, vk::Image& out_color, vk::Image& out_class) {
+namespace {
+
+void addDispatch(graph::Graph& graph, std::string name, bool timed, const vk::ComputeKernel& kernel,
+                 VkDescriptorSet frame_set, VkDescriptorSet set, CheckerboardSet (&sets)[2], int current,
+                 std::vector<std::pair<vk::Image*, graph::Use>> writes, const CbrResolvePush& push, uint32_t group,
+                 VkExtent2D extent) {
     graph::Pass pass;
-    pass.name = "cbr_resolve";
+    pass.name = std::move(name);
     pass.graphics = false;
+    pass.timed = timed;
     CheckerboardSet& n = sets[current];
     CheckerboardSet& prev = sets[1 - current];
-    pass.uses = {{&n.depth, graph::Use::Sampled},
-                 {&prev.depth, graph::Use::Sampled},
-                 {&out_color, graph::Use::StorageWrite},
-                 {&out_class, graph::Use::StorageWrite}};
+    pass.uses = {{&n.depth, graph::Use::Sampled}, {&prev.depth, graph::Use::Sampled}};
     for (vk::Image* img : {&n.color, &prev.color, &n.srt, &prev.srt, &n.cfb, &prev.cfb, &n.motion})
         if (img->image) pass.uses.push_back({img, graph::Use::Sampled});
-    VkExtent2D extent = out_color.extent;
-    VkDescriptorSet set = r.sets[current];
-    pass.record = [&r, frame_set, set, extent](VkCommandBuffer cmd) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.kernel.pipeline);
+    pass.uses.insert(pass.uses.end(), writes.begin(), writes.end());
+    pass.record = [&kernel, frame_set, set, extent, &push, group](VkCommandBuffer cmd) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline);
         VkDescriptorSet sets_to_bind[2] = {frame_set, set};
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.kernel.layout, 0, 2, sets_to_bind, 0, nullptr);
-        vkCmdPushConstants(cmd, r.kernel.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(CbrResolvePush), &r.push);
-        vkCmdDispatch(cmd, (extent.width + 7) / 8, (extent.height + 7) / 8, 1);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.layout, 0, 2, sets_to_bind, 0, nullptr);
+        vkCmdPushConstants(cmd, kernel.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(CbrResolvePush), &push);
+        vkCmdDispatch(cmd, (extent.width + group - 1) / group, (extent.height + group - 1) / group, 1);
     };
     graph.addPass(std::move(pass));
+}
+
+}  // namespace
+
+void addCbrResolvePass(graph::Graph& graph, CbrResolve& r, VkDescriptorSet frame_set, CheckerboardSet (&sets)[2],
+                       int current) {
+    using graph::Use;
+    std::vector<std::pair<vk::Image*, Use>> writes;
+    switch (r.impl) {
+        case ResolveImpl::Fused:
+            writes = {{r.out.display, Use::StorageWrite}, {&r.stand_ins[0], Use::StorageWrite},
+                      {&r.stand_ins[1], Use::StorageWrite}};
+            break;
+        case ResolveImpl::Separate:
+            writes = {{r.out.hdr, Use::StorageWrite}, {&r.stand_ins[1], Use::StorageWrite},
+                      {&r.stand_ins[2], Use::StorageWrite}};
+            break;
+        case ResolveImpl::Reference:
+            writes = {{r.out.hdr, Use::StorageWrite}, {r.out.classes, Use::StorageWrite},
+                      {&r.stand_ins[2], Use::StorageWrite}};
+            break;
+    }
+    bool fused = r.impl == ResolveImpl::Fused;
+    vk::Image* target = fused ? r.out.display : r.out.hdr;
+    addDispatch(graph, fused ? "cbr_resolve_tonemap" : "cbr_resolve", true, r.kernel, frame_set, r.sets[current], sets,
+                current, std::move(writes), r.push, r.impl == ResolveImpl::Reference ? kReferenceGroup : kTiledGroup,
+                target->extent);
+}
+
+void addCbrClassMapPass(graph::Graph& graph, CbrResolve& r, VkDescriptorSet frame_set, CheckerboardSet (&sets)[2],
+                        int current) {
+    if (r.impl == ResolveImpl::Reference) return;  // its timed pass writes the class map
+    using graph::Use;
+    addDispatch(graph, "cbr_class_map", false, r.class_kernel, frame_set, r.class_sets[current], sets, current,
+                {{r.out.classes, Use::StorageWrite}, {&r.stand_ins[0], Use::StorageWrite},
+                 {&r.stand_ins[2], Use::StorageWrite}},
+                r.push, kTiledGroup, r.out.classes->extent);
+}
+
+double cbrResolveBytes(const CbrResolve& r, const CheckerboardSet& set, uint32_t width, uint32_t height) {
+    // Frame N: every sample's colour (the SRT and CFB in deferred), depth and motion; frame
+    // N-1: one colour (and for CSO one depth) per pixel frame N did not shade, i.e. each of
+    // its samples once. Writes: the display image (fused) or the linear colour.
+    double current = imageBytes(set.color) + imageBytes(set.srt) + imageBytes(set.cfb) + imageBytes(set.depth) +
+                     imageBytes(set.motion);
+    double previous = imageBytes(set.color) + imageBytes(set.srt) + imageBytes(set.cfb) +
+                      (r.check_occlusion ? imageBytes(set.depth) : 0.0);
+    double written = double(width) * height * (r.impl == ResolveImpl::Fused ? 4 : 8);
+    if (r.impl == ResolveImpl::Reference) written += double(width) * height;  // the class map, every frame
+    return current + previous + written;
 }
 
 }  // namespace cbr::passes

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "renderer/graph/graph.h"
+#include "renderer/settings.h"
 #include "renderer/vk/pipelines.h"
 
 namespace cbr::passes {
@@ -21,6 +22,8 @@ struct CheckerboardSet {
     vk::Image cfb;
 };
 
+using render::ResolveImpl;
+
 struct CbrResolveDesc {
     int route = 2;                  // CBR_ROUTE_* (shaders/cbr_pattern.h)
     bool check_occlusion = false;   // CSO (true) or ASO
@@ -28,29 +31,58 @@ struct CbrResolveDesc {
     float cso_tolerance = 0.05f;
     bool has_motion = true;
     bool deferred = false;          // colours from srt (+ cfb) instead of color
+    bool msaa = true;               // 2x MSAA samples, else two array layers
+    ResolveImpl impl = ResolveImpl::Fused;
+    float exposure = 1.0f;          // fused tone map
+    bool pass_through = false;      // fused tone map, debug pixel-id mode
 };
 
-// Push constants of the reconstruction: the route's pattern rows and the CSO tolerance.
+// Push constants of the reconstruction: the route's pattern rows, the CSO tolerance and
+// the fused tone map's parameters.
 struct CbrResolvePush {
     int32_t pattern[8];  // [parity * 4 + quadrant]: (sample + 1) | (dx + 1) << 4 | (dy + 1) << 8
     float cso_tolerance;
+    float exposure;
+    uint32_t pass_through;
+};
+
+// What the reconstruction writes: `display` when fused, else `hdr`; `classes` (R8_UINT
+// pixel classes) in the untimed class-map pass, or every frame by the reference shader.
+struct CbrResolveOutputs {
+    vk::Image* hdr = nullptr;
+    vk::Image* display = nullptr;
+    vk::Image* classes = nullptr;
 };
 
 struct CbrResolve {
-    vk::ComputeKernel kernel;
+    ResolveImpl impl = ResolveImpl::Fused;
+    bool check_occlusion = false;
+    vk::ComputeKernel kernel;        // the timed pass
+    vk::ComputeKernel class_kernel;  // the class map alone (tiled implementations)
     VkDescriptorPool pool = VK_NULL_HANDLE;
-    VkDescriptorSet sets[2] = {};   // [current set index]: reads set i as N, set 1 - i as N-1
+    VkDescriptorSet sets[2] = {};        // [current set index]: reads set i as N, set 1 - i as N-1
+    VkDescriptorSet class_sets[2] = {};
     VkSampler sampler = VK_NULL_HANDLE;
     CbrResolvePush push{};
+    CbrResolveOutputs out;
+    // 1x1 stand-ins bound to the outputs a kernel does not write: hdr, classes, display.
+    vk::Image stand_ins[3];
 };
 
 CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDescriptorSetLayout frame_layout,
-                            CheckerboardSet (&sets)[2], vk::Image& out_color, vk::Image& out_class, bool msaa);
+                            CheckerboardSet (&sets)[2], const CbrResolveOutputs& out);
 void destroyCbrResolve(vk::Context& ctx, CbrResolve& r);
 
-// Writes out_color (full-res HDR) and out_class (R8_UINT pixel classes); counts classes
+// The timed reconstruction, `cbr_resolve_tonemap` (fused) or `cbr_resolve`; counts classes
 // into the frame set's stats buffer (kShaded..kReset, 6 uints).
-void addCbrResolvePass(graph::Graph& graph, const CbrResolve& r, VkDescriptorSet frame_set, CheckerboardSet (&sets)[2],
-                       int current, vk::Image& out_color, vk::Image& out_class);
+void addCbrResolvePass(graph::Graph& graph, CbrResolve& r, VkDescriptorSet frame_set, CheckerboardSet (&sets)[2],
+                       int current);
+// The untimed `cbr_class_map` pass (tiled implementations; quality frames only): the same
+// classification again, writing only the class map. Declare it after every timed pass.
+void addCbrClassMapPass(graph::Graph& graph, CbrResolve& r, VkDescriptorSet frame_set, CheckerboardSet (&sets)[2],
+                        int current);
+// Bytes the timed pass must move per frame at `width` x `height` (its reads at the formats
+// of `sets`, its writes), for its effective bandwidth.
+double cbrResolveBytes(const CbrResolve& r, const CheckerboardSet& set, uint32_t width, uint32_t height);
 
 }  // namespace cbr::passes

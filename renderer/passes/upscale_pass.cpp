@@ -4,26 +4,55 @@
 #include "renderer/vk/context.h"
 #include "shaders/downsample.comp.h"
 #include "shaders/upscale.comp.h"
+#include "shaders/upscale_reference.comp.h"
+#include "shaders/upscale_tonemap.comp.h"
 
 namespace cbr::passes {
+namespace {
 
-Upscale createUpscale(vk::Context& ctx, vk::Image& source, vk::Image& target, UpscaleFilter filter) {
-    return vk::createImageKernel(ctx, kSpirv_upscale_comp, sizeof(kSpirv_upscale_comp), source, target,
-                                 4 * sizeof(int32_t), {{/* FILTER= */ 0, int32_t(filter)}});
+struct UpscalePush {
+    int32_t render_size[2];
+    int32_t output_size[2];
+    float exposure;          // upscale_tonemap only
+    uint32_t pass_through;   // upscale_tonemap only
+};
+
+}  // namespace
+
+Upscale createUpscale(vk::Context& ctx, vk::Image& source, vk::Image& target, UpscaleFilter filter,
+                      render::ResolveImpl impl, float exposure, bool pass_through) {
+    using render::ResolveImpl;
+    const uint32_t* spirv = impl == ResolveImpl::Fused       ? kSpirv_upscale_tonemap_comp
+                            : impl == ResolveImpl::Separate  ? kSpirv_upscale_comp
+                                                             : kSpirv_upscale_reference_comp;
+    size_t size = impl == ResolveImpl::Fused      ? sizeof(kSpirv_upscale_tonemap_comp)
+                  : impl == ResolveImpl::Separate ? sizeof(kSpirv_upscale_comp)
+                                                  : sizeof(kSpirv_upscale_reference_comp);
+    Upscale u;
+    u.kernel = vk::createImageKernel(ctx, spirv, size, source, target, sizeof(UpscalePush),
+                                     {{/* FILTER= */ 0, int32_t(filter)}});
+    u.impl = impl;
+    u.exposure = exposure;
+    u.pass_through = pass_through;
+    return u;
 }
 
-void destroyUpscale(vk::Context& ctx, Upscale& u) { vk::destroyImageKernel(ctx, u); }
+void destroyUpscale(vk::Context& ctx, Upscale& u) { vk::destroyImageKernel(ctx, u.kernel); }
 
 void addUpscalePass(graph::Graph& graph, const Upscale& u, vk::Image& source, VkExtent2D render_size,
                     vk::Image& target) {
     graph::Pass pass;
-    pass.name = "upscale";
+    pass.name = u.impl == render::ResolveImpl::Fused ? "upscale_tonemap" : "upscale";
     pass.graphics = false;
     pass.uses = {{&source, graph::Use::Sampled}, {&target, graph::Use::StorageWrite}};
-    int32_t push[4] = {int32_t(render_size.width), int32_t(render_size.height), int32_t(target.extent.width),
-                       int32_t(target.extent.height)};
-    pass.record = [&u, push](VkCommandBuffer cmd) {
-        vk::dispatchImageKernel(cmd, u, push, sizeof(push), uint32_t(push[2]), uint32_t(push[3]));
+    UpscalePush push{{int32_t(render_size.width), int32_t(render_size.height)},
+                     {int32_t(target.extent.width), int32_t(target.extent.height)},
+                     u.exposure,
+                     u.pass_through ? 1u : 0u};
+    uint32_t group = u.impl == render::ResolveImpl::Reference ? 8 : 16;  // GROUP in upscale.glsl
+    pass.record = [&u, push, group](VkCommandBuffer cmd) {
+        vk::dispatchImageKernel(cmd, u.kernel, &push, sizeof(push), uint32_t(push.output_size[0]),
+                                uint32_t(push.output_size[1]), group);
     };
     graph.addPass(std::move(pass));
 }

@@ -3,15 +3,23 @@
 #pragma once
 
 #include "renderer/graph/graph.h"
+#include "renderer/settings.h"
 #include "renderer/vk/pipelines.h"
 
 namespace cbr::passes {
 
 enum class UpscaleFilter { Bilinear = 0, CatmullRom = 1 };
 
-using Upscale = vk::ImageKernel;
+struct Upscale {
+    vk::ImageKernel kernel;
+    render::ResolveImpl impl = render::ResolveImpl::Fused;
+    float exposure = 1.0f;      // fused
+    bool pass_through = false;  // fused, debug pixel-id mode
+};
 
-Upscale createUpscale(vk::Context& ctx, vk::Image& source, vk::Image& target, UpscaleFilter filter);
+// Fused: `target` is the display image (`upscale_tonemap`); else linear colour (`upscale`).
+Upscale createUpscale(vk::Context& ctx, vk::Image& source, vk::Image& target, UpscaleFilter filter,
+                      render::ResolveImpl impl, float exposure, bool pass_through);
 void destroyUpscale(vk::Context& ctx, Upscale& u);
 void addUpscalePass(graph::Graph& graph, const Upscale& u, vk::Image& source, VkExtent2D render_size,
                     vk::Image& target);

@@ -1,12 +1,5 @@
 #version 460
-// Checkerboard reconstruction reading multiview layers (route `multiview`).
+// Checkerboard reconstruction (multiview layers): the tiled, branch-free resolve.
 #extension GL_GOOGLE_include_directive : require
-layout(set = 1, binding = 0) uniform sampler2DArray cur_color;
-layout(set = 1, binding = 1) uniform sampler2DArray cur_depth;
-layout(set = 1, binding = 2) uniform sampler2DArray cur_motion;
-layout(set = 1, binding = 3) uniform sampler2DArray prev_color;
-layout(set = 1, binding = 4) uniform sampler2DArray prev_depth;
-#define FETCH(tex, pixel, s) texelFetch(tex, ivec3(pixel, s), 0)
-#define FETCH_CUR_COLOR(pixel, s) FETCH(cur_color, pixel, s).rgb
-#define FETCH_PREV_COLOR(pixel, s) FETCH(prev_color, pixel, s).rgb
+#include "cbr_io_array.glsl"
 #include "cbr_resolve.glsl"

@@ -2,6 +2,7 @@
 // with the route's sample pattern, the reconstruction, the tone map.
 #include "renderer/variants/checkerboard.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "renderer/passes/cbr_resolve_pass.h"
@@ -60,7 +61,9 @@ public:
             if (blend) set.cfb = target("cbr_cfb", i, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
         }
         VkExtent2D full{s.width, s.height};
-        hdr_ = vk::createImage(ctx, {"hdr", kHdrFormat, full, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+        fused_ = s.resolve_impl == render::ResolveImpl::Fused;
+        if (!fused_)
+            hdr_ = vk::createImage(ctx, {"hdr", kHdrFormat, full, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
         class_ = vk::createImage(ctx, {"cbr_class", VK_FORMAT_R8_UINT, full,
                                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
         display_ = vk::createImage(ctx, {"display", VK_FORMAT_R8G8B8A8_UNORM, full,
@@ -88,8 +91,12 @@ public:
         rdesc.cso_tolerance = float(s.cso_tolerance);
         rdesc.has_motion = has_motion_;
         rdesc.deferred = deferred_;
-        resolve_ = passes::createCbrResolve(ctx, rdesc, scene.frame_layout, sets_, hdr_, class_, msaa_);
-        tonemap_ = passes::createTonemap(ctx, hdr_, display_);
+        rdesc.msaa = msaa_;
+        rdesc.impl = s.resolve_impl;
+        rdesc.exposure = s.exposure;
+        rdesc.pass_through = s.debug_pixel_id;
+        resolve_ = passes::createCbrResolve(ctx, rdesc, scene.frame_layout, sets_, {&hdr_, &display_, &class_});
+        if (!fused_) tonemap_ = passes::createTonemap(ctx, hdr_, display_);
         if (desc.sample_locations)
             set_sample_locations_ = reinterpret_cast<PFN_vkCmdSetSampleLocationsEXT>(
                 vkGetDeviceProcAddr(ctx.device, "vkCmdSetSampleLocationsEXT"));
@@ -162,8 +169,10 @@ public:
             else
                 graph.leaveOut("transparent", "scene has no BLEND materials");
         }
-        passes::addCbrResolvePass(graph, resolve_, frame.frame_set, sets_, current, hdr_, class_);
-        passes::addTonemapPass(graph, tonemap_, hdr_, display_, settings_.exposure, settings_.debug_pixel_id);
+        passes::addCbrResolvePass(graph, resolve_, frame.frame_set, sets_, current);
+        if (!fused_) passes::addTonemapPass(graph, tonemap_, hdr_, display_, settings_.exposure, settings_.debug_pixel_id);
+        // The class map is read back with quality frames only, and written after the timed passes.
+        if (req.readback) passes::addCbrClassMapPass(graph, resolve_, frame.frame_set, sets_, current);
     }
 
     vk::Image& display() override { return display_; }
@@ -190,6 +199,22 @@ public:
                                 ? "top-right quadrants of the last quarter-res column (full-res column 2*ceil(W/2)-1) "
                                   "are never shaded; filled from neighbours"
                                 : "none"}};
+        bool reference = settings_.resolve_impl == render::ResolveImpl::Reference;
+        d.push_back({"resolve", reference ? "reference: the pre-issue-14 per-pixel branching shader, 8x8 groups"
+                                          : "tiled: 16x16 groups load frame N's samples (plus a halo) into shared "
+                                            "memory once; every pixel evaluates every candidate, selected arithmetically"});
+        d.push_back({"tonemap", fused_ ? "fused into the resolve (cbr_resolve_tonemap); frame N-1 stays in linear "
+                                         "colour in the quarter-res sample sets"
+                                       : "a separate tonemap pass"});
+        d.push_back({"class_stats", reference ? "subgroup ballots per class and invocation in the timed resolve"
+                                              : "counted per workgroup in the timed resolve: one subgroup sum of "
+                                                "packed counts, one shared histogram, at most 6 global adds per group"});
+        d.push_back({"class_map", reference ? "written by the timed resolve every frame"
+                                            : "written only on quality frames, by the untimed cbr_class_map pass "
+                                              "after the last timestamp"});
+        d.push_back({"resolve_bytes_per_frame",
+                     std::to_string(std::llround(passes::cbrResolveBytes(resolve_, sets_[0], settings_.width,
+                                                                         settings_.height)))});
         if (cso_) {
             d.push_back({"cso_tolerance", std::to_string(settings_.cso_tolerance)});
             d.push_back({"cso_mode", settings_.cso_absolute ? "absolute" : "relative"});
@@ -207,7 +232,8 @@ private:
     bool has_motion_ = false;
     VkExtent2D quarter_{};
     passes::CheckerboardSet sets_[2];
-    vk::Image hdr_, class_, display_;
+    vk::Image hdr_, class_, display_;  // hdr_: only when the tone map is a pass of its own
+    bool fused_ = true;
     passes::ScenePipelines pipelines_;
     passes::CbrResolve resolve_;
     bool deferred_;

@@ -52,15 +52,19 @@ public:
             downsample_ = passes::createDownsample(ctx, color_, upscaled_);
             tonemap_source = &upscaled_;
         }
+        // The upscale folds the tone map in unless asked not to (--resolve-impl).
+        fused_upscale_ = scaled_ && s.resolve_impl == render::ResolveImpl::Fused;
         if (scaled_) {
-            upscaled_ = vk::createImage(ctx, {"upscaled", kHdrFormat, full,
-                                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
             auto filter = s.drr_filter == render::DrrFilter::Bilinear ? passes::UpscaleFilter::Bilinear
                                                                       : passes::UpscaleFilter::CatmullRom;
-            upscale_ = passes::createUpscale(ctx, color_, upscaled_, filter);
+            if (!fused_upscale_)
+                upscaled_ = vk::createImage(ctx, {"upscaled", kHdrFormat, full,
+                                                  VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+            upscale_ = passes::createUpscale(ctx, color_, fused_upscale_ ? display_ : upscaled_, filter,
+                                             s.resolve_impl, s.exposure, s.debug_pixel_id);
             tonemap_source = &upscaled_;
         }
-        tonemap_ = passes::createTonemap(ctx, *tonemap_source, display_);
+        if (!fused_upscale_) tonemap_ = passes::createTonemap(ctx, *tonemap_source, display_);
     }
 
     ~ForwardVariant() override {
@@ -108,10 +112,11 @@ public:
             passes::addTransparentPass(graph, targets, frame);
         else
             graph.leaveOut("transparent", "scene has no BLEND materials");
-        if (scaled_) passes::addUpscalePass(graph, upscale_, color_, render, upscaled_);
+        if (scaled_) passes::addUpscalePass(graph, upscale_, color_, render, fused_upscale_ ? display_ : upscaled_);
         if (supersample_ > 1) passes::addDownsamplePass(graph, downsample_, color_, supersample_, upscaled_);
-        passes::addTonemapPass(graph, tonemap_, scaled_ || supersample_ > 1 ? upscaled_ : color_, display_,
-                               settings_.exposure, settings_.debug_pixel_id);
+        if (!fused_upscale_)
+            passes::addTonemapPass(graph, tonemap_, scaled_ || supersample_ > 1 ? upscaled_ : color_, display_,
+                                   settings_.exposure, settings_.debug_pixel_id);
     }
 
     vk::Image& display() override { return display_; }
@@ -121,6 +126,7 @@ private:
     const gpu::GpuScene& scene_;
     render::Settings settings_;
     bool scaled_;
+    bool fused_upscale_ = false;
     int supersample_;
     vk::Image color_, depth_, display_, upscaled_;  // upscaled_: also the downsampled reference
     passes::ScenePipelines pipelines_;

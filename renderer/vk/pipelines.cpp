@@ -153,11 +153,11 @@ void destroyImageKernel(Context& ctx, ImageKernel& k) {
 }
 
 void dispatchImageKernel(VkCommandBuffer cmd, const ImageKernel& k, const void* push, uint32_t push_bytes,
-                         uint32_t width, uint32_t height) {
+                         uint32_t width, uint32_t height, uint32_t group) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, k.kernel.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, k.kernel.layout, 0, 1, &k.set, 0, nullptr);
     vkCmdPushConstants(cmd, k.kernel.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push);
-    vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
+    vkCmdDispatch(cmd, (width + group - 1) / group, (height + group - 1) / group, 1);
 }
 
 }  // namespace cbr::vk

@@ -64,8 +64,9 @@ struct ImageKernel {
 ImageKernel createImageKernel(Context& ctx, const uint32_t* spirv, size_t size_bytes, Image& source, Image& target,
                               uint32_t push_bytes, std::vector<SpecConstant> spec = {});
 void destroyImageKernel(Context& ctx, ImageKernel& k);
-// Binds the kernel, pushes `push_bytes` of `push` and dispatches 8x8 groups over width x height.
+// Binds the kernel, pushes `push_bytes` of `push` and dispatches group x group workgroups
+// over width x height.
 void dispatchImageKernel(VkCommandBuffer cmd, const ImageKernel& k, const void* push, uint32_t push_bytes,
-                         uint32_t width, uint32_t height);
+                         uint32_t width, uint32_t height, uint32_t group = 8);
 
 }  // namespace cbr::vk

@@ -168,6 +168,11 @@ Inputs makeInputs(const Scene& s, int w, int h, int parity) {
 }
 
 // ---- the GPU side: one harness per image size and motion setting.
+// The tiled resolve (linear colour out, so copies can be checked bit for bit; the fused
+// tone map is display.glsl's, compared by the render tests) and the reference it replaced.
+constexpr passes::ResolveImpl kImpls[2] = {passes::ResolveImpl::Separate, passes::ResolveImpl::Reference};
+const char* const kImplNames[2] = {"tiled", "reference"};
+
 struct GpuResult {
     std::vector<uint16_t> hdr;  // rgba halves per pixel
     std::vector<uint8_t> cls;
@@ -209,15 +214,19 @@ public:
         VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO, nullptr, 0, VK_QUERY_TYPE_TIMESTAMP,
                                 graph::kMaxPasses + 1};
         VK_CHECK(vkCreateQueryPool(ctx.device, &q, nullptr, &timestamps_));
-        for (int m = 0; m < 3; ++m) {
-            passes::CbrResolveDesc desc{kRoute, kModes[m].cso, kModes[m].absolute, kModes[m].tolerance, has_motion};
-            resolves_[m] = passes::createCbrResolve(ctx, desc, frame_layout_, sets_, hdr_, class_, /* msaa= */ false);
-        }
+        for (int impl = 0; impl < 2; ++impl)
+            for (int m = 0; m < 3; ++m) {
+                passes::CbrResolveDesc desc{kRoute, kModes[m].cso, kModes[m].absolute, kModes[m].tolerance, has_motion};
+                desc.msaa = false;
+                desc.impl = kImpls[impl];
+                resolves_[impl][m] = passes::createCbrResolve(ctx, desc, frame_layout_, sets_, {&hdr_, nullptr, &class_});
+            }
     }
 
     ~Harness() {
         vkDeviceWaitIdle(ctx_.device);
-        for (auto& r : resolves_) passes::destroyCbrResolve(ctx_, r);
+        for (auto& per_impl : resolves_)
+            for (auto& r : per_impl) passes::destroyCbrResolve(ctx_, r);
         vkDestroyQueryPool(ctx_.device, timestamps_, nullptr);
         vkDestroyDescriptorPool(ctx_.device, frame_pool_, nullptr);
         vkDestroyDescriptorSetLayout(ctx_.device, frame_layout_, nullptr);
@@ -227,7 +236,7 @@ public:
             vk::destroyImage(ctx_, *img);
     }
 
-    GpuResult run(const Inputs& in, int mode) {
+    GpuResult run(const Inputs& in, int mode, int impl) {
         std::memcpy(ubo_.mapped, &in.uniforms, sizeof(in.uniforms));
         std::memset(stats_.mapped, 0, 8 * sizeof(uint32_t));
         int current = in.parity;  // as the renderer: frame N's set is the one of its parity
@@ -244,7 +253,8 @@ public:
                 if (set.motion.image) staging.push_back(upload(cmd, set.motion, f.motion.data(), f.motion.size() * 8));
             }
             graph::Graph graph;
-            passes::addCbrResolvePass(graph, resolves_[mode], frame_set_, sets_, current, hdr_, class_);
+            passes::addCbrResolvePass(graph, resolves_[impl][mode], frame_set_, sets_, current);
+            passes::addCbrClassMapPass(graph, resolves_[impl][mode], frame_set_, sets_, current);
             graph.setOutputs({&hdr_, &class_});
             graph.record(cmd, {timestamps_, VK_NULL_HANDLE});
             for (auto [image, buffer] : {std::pair{&hdr_, &hdr_readback_}, std::pair{&class_, &class_readback_}}) {
@@ -317,7 +327,7 @@ private:
     VkDescriptorPool frame_pool_ = VK_NULL_HANDLE;
     VkDescriptorSet frame_set_ = VK_NULL_HANDLE;
     VkQueryPool timestamps_ = VK_NULL_HANDLE;
-    passes::CbrResolve resolves_[3];
+    passes::CbrResolve resolves_[2][3];  // [kImpls][kModes]
 };
 
 // The store rounds to half, to nearest or toward zero (Vulkan allows either): at most one
@@ -350,21 +360,24 @@ std::string compare(const GpuResult& got, const Model& want, int w, int h) {
 struct Param {
     int case_index, width, height, mode;
     bool motion_target;
+    int impl;
 };
 
 std::string paramName(const ::testing::TestParamInfo<Param>& info) {
     const Param& p = info.param;
     return std::string(kCases[p.case_index].name) + "_" + std::to_string(p.width) + "x" + std::to_string(p.height) +
-           "_" + kModes[p.mode].name + (p.motion_target ? "_motion" : "_reprojection");
+           "_" + kModes[p.mode].name + (p.motion_target ? "_motion" : "_reprojection") + "_" + kImplNames[p.impl];
 }
 
 std::vector<Param> allParams() {
     std::vector<Param> out;
     for (int c = 0; c < int(std::size(kCases)); ++c)
-        for (glm::ivec2 size : {glm::ivec2(16, 12), glm::ivec2(15, 11)})
+        // 37x21: three 16x16 groups across, two down, so tiles meet inside the image.
+        for (glm::ivec2 size : {glm::ivec2(16, 12), glm::ivec2(15, 11), glm::ivec2(37, 21)})
             for (int m = 0; m < 3; ++m)
                 for (bool motion : {true, false})
-                    if (!(motion && kCases[c].reprojection_only)) out.push_back({c, size.x, size.y, m, motion});
+                    for (int impl = 0; impl < 2; ++impl)
+                        if (!(motion && kCases[c].reprojection_only)) out.push_back({c, size.x, size.y, m, motion, impl});
     return out;
 }
 
@@ -415,7 +428,7 @@ TEST_P(CbrResolve, GpuMatchesCpuModel) {
         EXPECT_EQ(present & must, must) << "the case no longer produces the classes it is meant to test";
         EXPECT_TRUE(!c.only || present == must);
 
-        GpuResult got = gpu.run(in, p.mode);
+        GpuResult got = gpu.run(in, p.mode, p.impl);
         EXPECT_EQ(compare(got, want, p.width, p.height), "");
         for (int k = 0; k < kClassCount; ++k) EXPECT_EQ(got.counts[k], want.counts[k]) << kClassNames[k];
         EXPECT_EQ(got.counts[6] + got.counts[7], 0u);

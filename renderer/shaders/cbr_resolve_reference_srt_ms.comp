@@ -1,0 +1,5 @@
+#version 460
+// The pre-issue-14 checkerboard reconstruction (deferred, 2x MSAA routes), kept as the reference the tiled one must match.
+#extension GL_GOOGLE_include_directive : require
+#include "cbr_io_srt_ms.glsl"
+#include "cbr_resolve_reference.glsl"
