@@ -17,7 +17,7 @@ namespace cbr::passes {
 namespace {
 
 constexpr uint32_t kReferenceGroup = 8;  // local size of cbr_resolve_reference.glsl
-constexpr uint32_t kTiledGroup = 16;     // GROUP in cbr_resolve.glsl
+constexpr uint32_t kTiledGroup = 32;     // pixels per group axis: GROUP x GROUP invocations of 2x2 pixels (cbr_resolve.glsl)
 
 // The shader's OUTPUT constant.
 enum Output : int32_t { kOutputHdr = 0, kOutputDisplay = 1, kOutputClasses = 2 };
@@ -89,21 +89,31 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
     if (desc.deferred) binding_list.insert(binding_list.end(), {{8, kSampled, kComp}, {9, kSampled, kComp}});
     bool has_cfb = desc.deferred && sets[0].cfb.image;
     bool tiled = desc.impl != ResolveImpl::Reference;
-    auto spec = [&](Output output) {
+    auto spec = [&](Output output, int parity) {
         std::vector<vk::SpecConstant> s = {{/* CHECK_OCCLUSION= */ 1, desc.check_occlusion ? 1 : 0},
                                            {/* CSO_ABSOLUTE= */ 2, desc.cso_absolute ? 1 : 0},
                                            {/* HAS_MOTION= */ 3, desc.has_motion ? 1 : 0}};
         if (desc.deferred) s.push_back({/* HAS_CFB= */ 4, has_cfb ? 1 : 0});
-        if (tiled) s.push_back({/* OUTPUT= */ 5, output});
+        if (!tiled) return s;
+        s.push_back({/* OUTPUT= */ 5, output});
+        s.push_back({/* PARITY= */ 6, parity});
+        for (uint32_t i = 0; i < 8; ++i) s.push_back({/* PATTERN_i= */ 10 + i, r.push.pattern[i]});
         return s;
     };
     Code code = shaderFor(desc);
     Output timed_output = desc.impl == ResolveImpl::Fused ? kOutputDisplay : kOutputHdr;
-    r.kernel = vk::createComputeKernel(ctx, code.spirv, code.size, binding_list, sizeof(CbrResolvePush),
-                                       spec(timed_output), frame_layout);
-    if (tiled)
-        r.class_kernel = vk::createComputeKernel(ctx, code.spirv, code.size, binding_list, sizeof(CbrResolvePush),
-                                                 spec(kOutputClasses), frame_layout);
+    for (int parity = 0; parity < 2; ++parity) {
+        if (!tiled && parity == 1) {
+            r.kernel[1] = r.kernel[0];  // one reference pipeline reads the parity from the frame
+            break;
+        }
+        r.kernel[parity] = vk::createComputeKernel(ctx, code.spirv, code.size, binding_list, sizeof(CbrResolvePush),
+                                                   spec(timed_output, parity), frame_layout);
+        if (tiled)
+            r.class_kernel[parity] = vk::createComputeKernel(ctx, code.spirv, code.size, binding_list,
+                                                             sizeof(CbrResolvePush), spec(kOutputClasses, parity),
+                                                             frame_layout);
+    }
     r.pool = vk::createPool(ctx, binding_list, 4);
     r.sampler = vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 0.0f);
     constexpr auto kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
@@ -126,7 +136,7 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
                 vk::writeImage(ctx, set, 9, kSampled, (has_cfb ? prev.cfb : prev.depth).view, kRead, r.sampler);
             }
         };
-        VkDescriptorSet set = vk::allocateSet(ctx, r.pool, r.kernel.set_layout);
+        VkDescriptorSet set = vk::allocateSet(ctx, r.pool, r.kernel[0].set_layout);
         inputs(set);
         bool fused = desc.impl == ResolveImpl::Fused;
         bindStandIn(ctx, set, 5, fused ? nullptr : out.hdr, r.stand_ins[0]);
@@ -134,7 +144,7 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
         bindStandIn(ctx, set, 7, fused ? out.display : nullptr, r.stand_ins[2]);
         r.sets[cur] = set;
         if (!tiled) continue;
-        VkDescriptorSet class_set = vk::allocateSet(ctx, r.pool, r.class_kernel.set_layout);
+        VkDescriptorSet class_set = vk::allocateSet(ctx, r.pool, r.class_kernel[0].set_layout);
         inputs(class_set);
         bindStandIn(ctx, class_set, 5, nullptr, r.stand_ins[0]);
         bindStandIn(ctx, class_set, 6, out.classes, r.stand_ins[1]);
@@ -145,8 +155,11 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
 }
 
 void destroyCbrResolve(vk::Context& ctx, CbrResolve& r) {
-    vk::destroyComputeKernel(ctx, r.kernel);
-    vk::destroyComputeKernel(ctx, r.class_kernel);
+    if (r.kernel[1].pipeline == r.kernel[0].pipeline) r.kernel[1] = {};
+    for (int parity = 0; parity < 2; ++parity) {
+        vk::destroyComputeKernel(ctx, r.kernel[parity]);
+        vk::destroyComputeKernel(ctx, r.class_kernel[parity]);
+    }
     if (r.pool) vkDestroyDescriptorPool(ctx.device, r.pool, nullptr);
     if (r.sampler) vkDestroySampler(ctx.device, r.sampler, nullptr);
     for (auto& img : r.stand_ins) vk::destroyImage(ctx, img);
@@ -201,7 +214,8 @@ void addCbrResolvePass(graph::Graph& graph, CbrResolve& r, VkDescriptorSet frame
     }
     bool fused = r.impl == ResolveImpl::Fused;
     vk::Image* target = fused ? r.out.display : r.out.hdr;
-    addDispatch(graph, fused ? "cbr_resolve_tonemap" : "cbr_resolve", true, r.kernel, frame_set, r.sets[current], sets,
+    // The renderer writes frame N into the set of its parity: `current` is the parity.
+    addDispatch(graph, fused ? "cbr_resolve_tonemap" : "cbr_resolve", true, r.kernel[current], frame_set, r.sets[current], sets,
                 current, std::move(writes), r.push, r.impl == ResolveImpl::Reference ? kReferenceGroup : kTiledGroup,
                 target->extent);
 }
@@ -210,7 +224,7 @@ void addCbrClassMapPass(graph::Graph& graph, CbrResolve& r, VkDescriptorSet fram
                         int current) {
     if (r.impl == ResolveImpl::Reference) return;  // its timed pass writes the class map
     using graph::Use;
-    addDispatch(graph, "cbr_class_map", false, r.class_kernel, frame_set, r.class_sets[current], sets, current,
+    addDispatch(graph, "cbr_class_map", false, r.class_kernel[current], frame_set, r.class_sets[current], sets, current,
                 {{r.out.classes, Use::StorageWrite}, {&r.stand_ins[0], Use::StorageWrite},
                  {&r.stand_ins[2], Use::StorageWrite}},
                 r.push, kTiledGroup, r.out.classes->extent);

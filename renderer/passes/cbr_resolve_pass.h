@@ -57,8 +57,9 @@ struct CbrResolveOutputs {
 struct CbrResolve {
     ResolveImpl impl = ResolveImpl::Fused;
     bool check_occlusion = false;
-    vk::ComputeKernel kernel;        // the timed pass
-    vk::ComputeKernel class_kernel;  // the class map alone (tiled implementations)
+    // [parity]: the tiled shader is specialised per frame parity (the reference's two are one).
+    vk::ComputeKernel kernel[2];        // the timed pass
+    vk::ComputeKernel class_kernel[2];  // the class map alone (tiled implementations)
     VkDescriptorPool pool = VK_NULL_HANDLE;
     VkDescriptorSet sets[2] = {};        // [current set index]: reads set i as N, set 1 - i as N-1
     VkDescriptorSet class_sets[2] = {};

@@ -372,8 +372,8 @@ std::string paramName(const ::testing::TestParamInfo<Param>& info) {
 std::vector<Param> allParams() {
     std::vector<Param> out;
     for (int c = 0; c < int(std::size(kCases)); ++c)
-        // 37x21: three 16x16 groups across, two down, so tiles meet inside the image.
-        for (glm::ivec2 size : {glm::ivec2(16, 12), glm::ivec2(15, 11), glm::ivec2(37, 21)})
+        // 70x40: three groups (32x32 pixels each) across, two down, so tiles meet inside the image.
+        for (glm::ivec2 size : {glm::ivec2(16, 12), glm::ivec2(15, 11), glm::ivec2(70, 40)})
             for (int m = 0; m < 3; ++m)
                 for (bool motion : {true, false})
                     for (int impl = 0; impl < 2; ++impl)
