@@ -286,6 +286,26 @@ std::vector<VariantSummary> summarize(const RunResults& r) {
     return out;
 }
 
+// run.json's resolve_bandwidth of a checkerboard variant: the bytes its resolve must move
+// (renderer/passes/cbrResolveBytes) over the pass's median time, against the copy probe.
+void resolveBandwidth(nlohmann::json& v, const VariantSummary& sm, const vk::CopyBandwidth& copy) {
+    auto bytes_it = v.find("resolve_bytes_per_frame");
+    if (bytes_it == v.end()) return;
+    double bytes = std::stod(bytes_it->get<std::string>());
+    for (const auto& [name, ms] : sm.pass_ms_median) {
+        if (name != "cbr_resolve" && name != "cbr_resolve_tonemap") continue;
+        double gb_per_s = ms > 0 ? bytes / (ms * 1e-3) * 1e-9 : 0.0;
+        v["resolve_bandwidth"] = {{"pass", name},
+                                  {"mb_per_frame", bytes * 1e-6},
+                                  {"pass_ms_median", ms},
+                                  {"gb_per_s", gb_per_s},
+                                  {"device_copy_gb_per_s", copy.gb_per_s},
+                                  {"fraction_of_copy", copy.gb_per_s > 0 ? gb_per_s / copy.gb_per_s : 0.0},
+                                  {"rule", "frame N's samples (colour, depth, motion; SRT and CFB in deferred) and "
+                                           "frame N-1's once each, plus the written image, at their formats"}};
+    }
+}
+
 void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
     const RunResults& r = rc.results;
     size_t nan_cells = writeFramesCsv(dir / "frames.csv", r, rc.settings.width, rc.settings.height);
@@ -360,7 +380,14 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                    {"is_lavapipe", d.is_lavapipe},
                    {"timestamp_period_ns", rc.ctx.caps.timestamp_period_ns},
                    {"timestamp_valid_bits", rc.ctx.caps.timestamp_valid_bits},
-                   {"pipeline_statistics", rc.ctx.caps.pipeline_statistics}};
+                   {"pipeline_statistics", rc.ctx.caps.pipeline_statistics},
+                   {"copy_bandwidth_gb_per_s", r.copy_bandwidth.gb_per_s},
+                   {"copy_bandwidth_rule",
+                    r.copy_bandwidth.copies == 0
+                        ? std::string("not measured (lavapipe's timestamps do not bracket transfers)")
+                        : "median of " + std::to_string(r.copy_bandwidth.copies) + " vkCmdCopyBuffer of " +
+                              std::to_string(int(r.copy_bandwidth.buffer_mib)) +
+                              " MiB between device-local buffers, bytes read + written"}};
     if (d.is_lavapipe)
         j["device"]["timing_note"] =
             "lavapipe timestamps measure CPU rasterisation: ratios between variants are meaningful, absolute times "
@@ -450,6 +477,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
             v["settings"] = set;
         }
         for (const auto& [key, value] : vr.description) v[key] = value;
+        resolveBandwidth(v, summaries[i], r.copy_bandwidth);
         if (vr.alignment) {
             const auto& a = *vr.alignment;
             auto finite = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };

@@ -1,6 +1,7 @@
 // What a run measured: one row per variant x repetition x frame, plus per-variant facts.
 #pragma once
 
+#include "renderer/vk/bandwidth.h"
 #include <deque>
 #include <map>
 #include <optional>
@@ -70,6 +71,7 @@ struct RunResults {
     double seconds = 0;         // wall time of the run
     std::vector<double> reference_ms;        // the ssaa reference's frame times (not a variant)
     std::vector<std::string> worst_files;    // worst/<variant>_<kind>_<what>.png
+    vk::CopyBandwidth copy_bandwidth;        // measured after the variants, for the resolve's bandwidth
 };
 
 }  // namespace cbr::harness

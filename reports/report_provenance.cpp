@@ -140,6 +140,26 @@ std::string provenanceSection(const RunData& d) {
                   f("quarter_resolution") + "</td><td>" + f("occlusion_rule") + "</td><td>" + f("motion") + "</td><td>" +
                   f("lost_border") + "</td><td class=\"num\">" + f("lod_bias") + "</td></tr>";
     }
+    // The reconstruction's effective bandwidth against the device's measured copy (issue 14).
+    std::string resolve;
+    for (const auto& v : d.variants) {
+        const auto* vj = variantJson(d, v);
+        if (!isCheckerboard(d, v) || !vj || !jsonAt(*vj, "/resolve_bandwidth")) continue;
+        auto f = [&](const char* key) { return esc(jsonText(jsonAt(*vj, std::string("/resolve_bandwidth/") + key))); };
+        auto g = [&](const char* key) { return esc(jsonText(jsonAt(*vj, std::string("/") + key))); };
+        resolve += "<tr><td>" + esc(v) + "</td><td>" + f("pass") + "</td><td class=\"num\">" + f("mb_per_frame") +
+                   "</td><td class=\"num\">" + f("pass_ms_median") + "</td><td class=\"num\">" + f("gb_per_s") +
+                   "</td><td class=\"num\">" + f("fraction_of_copy") + "</td><td>" + g("class_stats") + "</td><td>" +
+                   g("class_map") + "</td></tr>";
+    }
+    if (!resolve.empty())
+        out += "<h3>Checkerboard resolve: bandwidth and class statistics</h3><p>Bytes the pass must move (its inputs "
+               "and outputs at their formats) over its median time, against the device's copy bandwidth measured "
+               "in this run (" + esc(jsonText(jsonAt(d.run, "/device/copy_bandwidth_gb_per_s"))) +
+               " GB/s, read + write).</p><div class=\"scroll\"><table><tr><th>variant</th><th>pass</th>"
+               "<th class=\"num\">MB / frame</th><th class=\"num\">median ms</th><th class=\"num\">GB/s</th>"
+               "<th class=\"num\">of copy</th><th>class statistics</th><th>class map</th></tr>" +
+               resolve + "</table></div>";
     if (!routes.empty())
         out += "<h3>Checkerboard routes</h3><div class=\"scroll\"><table><tr><th>variant</th><th>route</th>"
                "<th>reason</th><th>quarter res (px)</th><th>occlusion rule</th><th>motion</th><th>lost border</th>"

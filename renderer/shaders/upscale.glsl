@@ -1,8 +1,10 @@
-// DRR upscale, tiled: the scaled render region of the HDR target resampled to the output
+// DRR upscale: the scaled render region of the HDR target resampled to the output
 // size, bilinear or Catmull-Rom (bicubic, B = 0, C = 0.5, clamped to the 2x2
-// neighbourhood's range against ringing), sampled within the rendered region. A 16x16
-// group loads the source texels under it once into shared memory; every pixel then
-// reads its taps from there (the reference, upscale_reference.comp, fetched 20 per pixel).
+// neighbourhood's range against ringing), sampled within the rendered region. The 16
+// taps are fetched once (the reference, upscale_reference.comp, fetched the nearest four
+// again for the clamp) and the Catmull-Rom weights are branch-free. A shared-memory tile
+// of the source was measured too: slower on lavapipe (its shared-memory gathers cost more
+// than its texel fetches), so not kept.
 // Included by upscale.comp (linear colour out) and upscale_tonemap.comp (FUSED: the
 // display image out, the tone map folded in).
 #extension GL_GOOGLE_include_directive : require
@@ -23,18 +25,12 @@ layout(push_constant) uniform Params {
     uint pass_through;  // FUSED, debug pixel-id mode
 } params;
 
-// Scales are at most 1 (drr renders at most the output size): a group's taps span at
-// most GROUP + 3 source texels per axis, plus one for the rounding of the first.
-#define TILE (GROUP + 4)
-shared vec3 tile[TILE * TILE];
-
 vec2 sourcePosition(ivec2 p) {  // output pixel centre in source pixel units (centres at +0.5)
     return (vec2(p) + 0.5) * vec2(params.render_size) / vec2(params.output_size) - 0.5;
 }
 
-vec3 tap(ivec2 i, ivec2 origin) {
-    ivec2 t = i - origin;
-    return tile[t.y * TILE + t.x];
+vec3 tap(ivec2 i) {
+    return texelFetch(source, clamp(i, ivec2(0), params.render_size - 1), 0).rgb;
 }
 
 float catmullRom(float x) {
@@ -46,26 +42,20 @@ float catmullRom(float x) {
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 origin = ivec2(floor(sourcePosition(ivec2(gl_WorkGroupID.xy) * GROUP))) - 1;
-    for (uint i = gl_LocalInvocationIndex; i < uint(TILE * TILE); i += uint(GROUP * GROUP)) {
-        ivec2 t = origin + ivec2(int(i) % TILE, int(i) / TILE);
-        tile[i] = texelFetch(source, clamp(t, ivec2(0), params.render_size - 1), 0).rgb;
-    }
-    barrier();
     if (p.x >= params.output_size.x || p.y >= params.output_size.y) return;
 
     vec2 src = sourcePosition(p);
     ivec2 i0 = ivec2(floor(src));
     vec2 f = src - vec2(i0);
-    vec3 a00 = tap(i0, origin), a10 = tap(i0 + ivec2(1, 0), origin);
-    vec3 a01 = tap(i0 + ivec2(0, 1), origin), a11 = tap(i0 + ivec2(1, 1), origin);
+    vec3 a00 = tap(i0), a10 = tap(i0 + ivec2(1, 0));
+    vec3 a01 = tap(i0 + ivec2(0, 1)), a11 = tap(i0 + ivec2(1, 1));
     vec3 c = vec3(0.0);
     if (FILTER == 0) {
         c = mix(mix(a00, a10, f.x), mix(a01, a11, f.x), f.y);
     } else {
         for (int y = -1; y <= 2; ++y) {
             float wy = catmullRom(float(y) - f.y);
-            for (int x = -1; x <= 2; ++x) c += wy * catmullRom(float(x) - f.x) * tap(i0 + ivec2(x, y), origin);
+            for (int x = -1; x <= 2; ++x) c += wy * catmullRom(float(x) - f.x) * tap(i0 + ivec2(x, y));
         }
         // Anti-ringing: the negative lobes overshoot at hard edges (below zero next to a
         // bright texel, which exposure then turns into a black pixel inside a white frame);
