@@ -102,7 +102,8 @@ GpuScene uploadScene(vk::Context& ctx, const scene::Scene& s) {
 
     for (size_t i = 0; i < s.instances.size(); ++i) {
         const auto& mesh = s.meshes.at(size_t(s.instances[i].mesh));
-        DrawItem d{int(i), s.instances[i].mesh, mesh.material};
+        DrawItem d{int(i), s.instances[i].mesh, mesh.material,
+                   s.instances[i].animation.kind != scene::Animation::Kind::None};
         switch (s.materials.at(size_t(mesh.material)).alpha_mode) {
             case scene::AlphaMode::Opaque: g.opaque.push_back(d); break;
             case scene::AlphaMode::Mask: g.masked.push_back(d); break;

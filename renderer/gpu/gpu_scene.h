@@ -19,6 +19,7 @@ struct DrawItem {
     int instance;
     int mesh;
     int material;
+    bool moving = false;  // the instance is animated: it writes motion vectors where a target has them
 };
 
 struct GpuScene {

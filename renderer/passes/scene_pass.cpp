@@ -22,24 +22,27 @@ namespace {
 
 enum class AlphaMode : int { Opaque = 0, Mask = 1, Blend = 2 };
 
+// writes_motion: the fragment shader has the motion output (else a motion attachment, if
+// the desc has one, is masked off).
 VkPipeline createScenePipeline(vk::Context& ctx, VkPipelineLayout layout, const ScenePipelineDesc& desc,
-                               AlphaMode mode, bool double_sided) {
+                               AlphaMode mode, bool double_sided, bool writes_motion) {
     VkShaderModule vert = vk::createShaderModule(ctx, kSpirv_scene_vert, sizeof(kSpirv_scene_vert));
     // Per-sample interpolation (MSAA checkerboard) x motion output: four SPIR-V modules,
     // because an output with no attachment and a `sample` input are not specialisable.
+    writes_motion = writes_motion && desc.motion && mode != AlphaMode::Blend;
     auto module = [&](const uint32_t* code, size_t size) { return vk::createShaderModule(ctx, code, size); };
     VkShaderModule frag =
         desc.analysis ? module(kSpirv_analysis_frag, sizeof(kSpirv_analysis_frag))
         : desc.gbuffer
             ? (desc.sample_shading
-                   ? (desc.motion ? module(kSpirv_gbuffer_sample_motion_frag, sizeof(kSpirv_gbuffer_sample_motion_frag))
+                   ? (writes_motion ? module(kSpirv_gbuffer_sample_motion_frag, sizeof(kSpirv_gbuffer_sample_motion_frag))
                                   : module(kSpirv_gbuffer_sample_frag, sizeof(kSpirv_gbuffer_sample_frag)))
-                   : (desc.motion ? module(kSpirv_gbuffer_motion_frag, sizeof(kSpirv_gbuffer_motion_frag))
+                   : (writes_motion ? module(kSpirv_gbuffer_motion_frag, sizeof(kSpirv_gbuffer_motion_frag))
                                   : module(kSpirv_gbuffer_frag, sizeof(kSpirv_gbuffer_frag))))
         : desc.sample_shading
-            ? (desc.motion ? module(kSpirv_scene_sample_motion_frag, sizeof(kSpirv_scene_sample_motion_frag))
+            ? (writes_motion ? module(kSpirv_scene_sample_motion_frag, sizeof(kSpirv_scene_sample_motion_frag))
                            : module(kSpirv_scene_sample_frag, sizeof(kSpirv_scene_sample_frag)))
-            : (desc.motion ? module(kSpirv_scene_motion_frag, sizeof(kSpirv_scene_motion_frag))
+            : (writes_motion ? module(kSpirv_scene_motion_frag, sizeof(kSpirv_scene_motion_frag))
                            : module(kSpirv_scene_frag, sizeof(kSpirv_scene_frag)));
     int32_t alpha_mode = int32_t(mode);
     VkSpecializationMapEntry entry{/* ALPHA_MODE= */ 0, 0, sizeof(int32_t)};
@@ -104,8 +107,7 @@ VkPipeline createScenePipeline(vk::Context& ctx, VkPipelineLayout layout, const 
         blend.alphaBlendOp = VK_BLEND_OP_ADD;
     }
     VkPipelineColorBlendAttachmentState motion_blend{};
-    motion_blend.colorWriteMask =
-        mode == AlphaMode::Blend ? 0 : VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT;
+    motion_blend.colorWriteMask = writes_motion ? VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT : 0;
     // Attachments: colour (or the G-buffer's three), then motion.
     std::vector<VkFormat> formats;
     std::vector<VkPipelineColorBlendAttachmentState> blends;
@@ -171,12 +173,15 @@ void setViewport(VkCommandBuffer cmd, const SceneFrame& f) {
     }
 }
 
+enum class Draws { All, Static, Moving };
+
 void drawItems(VkCommandBuffer cmd, const SceneFrame& f, const std::vector<gpu::DrawItem>& items,
-               const VkPipeline (&pipelines)[2]) {
+               const VkPipeline (&pipelines)[2], Draws which = Draws::All) {
     const gpu::GpuScene& s = *f.scene;
     int bound_material = -1;
     VkPipeline bound_pipeline = VK_NULL_HANDLE;
     for (const auto& d : items) {
+        if (which != Draws::All && d.moving != (which == Draws::Moving)) continue;
         if (d.material != bound_material) {
             VkPipeline pipeline = pipelines[s.cpu->materials[size_t(d.material)].double_sided ? 1 : 0];
             if (pipeline != bound_pipeline) {
@@ -212,7 +217,9 @@ void beginScene(VkCommandBuffer cmd, const SceneFrame& f, const SceneTargets& t,
     attach(t.color, clear_colour_only ? glm::vec4(0.0f) : glm::vec4(glm::vec3(f.clear_color), 0.0f));
     for (const vk::Image* extra : t.extra)
         if (extra) attach(extra, glm::vec4(0.0f));
-    if (t.motion) attach(t.motion, glm::vec4(0.0f));  // sky: no motion
+    // Sky: no motion; or, when only moving instances write it, "derive from depth".
+    bool moving_only = f.pipelines && f.pipelines->moving_only_motion;
+    if (t.motion) attach(t.motion, moving_only ? glm::vec4(kMotionFromDepth, 0.0f, 0.0f, 0.0f) : glm::vec4(0.0f));
     VkRenderingAttachmentInfo depth_att{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth_att.imageView = view(t.depth);
     depth_att.imageLayout = clear ? VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
@@ -263,23 +270,35 @@ ScenePipelines createScenePipelines(vk::Context& ctx, const gpu::GpuScene& scene
     VK_CHECK(vkCreatePipelineLayout(ctx.device, &info, nullptr, &p.layout));
     // A feature costs only when the scene has it: no MASK or BLEND material (or no
     // double-sided one), no pipeline.
-    auto wanted = [&](const std::vector<gpu::DrawItem>& items, bool double_sided) {
+    p.moving_only_motion = desc.motion && !desc.motion_every_draw;
+    auto wanted = [&](const std::vector<gpu::DrawItem>& items, bool double_sided, Draws which) {
         return std::any_of(items.begin(), items.end(), [&](const gpu::DrawItem& d) {
-            return scene.cpu->materials[size_t(d.material)].double_sided == double_sided;
+            return scene.cpu->materials[size_t(d.material)].double_sided == double_sided &&
+                   (which == Draws::All || d.moving == (which == Draws::Moving));
         });
     };
+    // Without a split every draw uses the first set, writing motion when the target has it.
+    Draws first = p.moving_only_motion ? Draws::Static : Draws::All;
+    bool first_writes = desc.motion && !p.moving_only_motion;
     for (int two = 0; two < 2; ++two) {
-        if (wanted(scene.opaque, two)) p.opaque[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Opaque, two);
-        if (wanted(scene.masked, two)) p.masked[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Mask, two);
-        if (wanted(scene.blend, two) && !desc.analysis && !desc.gbuffer)
-            p.blend[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Blend, two);
+        if (wanted(scene.opaque, two, first))
+            p.opaque[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Opaque, two, first_writes);
+        if (wanted(scene.masked, two, first))
+            p.masked[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Mask, two, first_writes);
+        if (wanted(scene.blend, two, Draws::All) && !desc.analysis && !desc.gbuffer)
+            p.blend[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Blend, two, false);
+        if (!p.moving_only_motion) continue;
+        if (wanted(scene.opaque, two, Draws::Moving))
+            p.opaque_moving[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Opaque, two, true);
+        if (wanted(scene.masked, two, Draws::Moving))
+            p.masked_moving[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Mask, two, true);
     }
     return p;
 }
 
 void destroyScenePipelines(vk::Context& ctx, ScenePipelines& p) {
     for (int two = 0; two < 2; ++two)
-        for (VkPipeline pipeline : {p.opaque[two], p.masked[two], p.blend[two]})
+        for (VkPipeline pipeline : {p.opaque[two], p.masked[two], p.blend[two], p.opaque_moving[two], p.masked_moving[two]})
             if (pipeline) vkDestroyPipeline(ctx.device, pipeline, nullptr);
     if (p.layout) vkDestroyPipelineLayout(ctx.device, p.layout, nullptr);
     p = {};
@@ -301,8 +320,19 @@ void addClearedGeometryPass(graph::Graph& graph, const char* name, bool timed, c
     pass.record = [frame, targets](VkCommandBuffer cmd) {
         forEachLayer(targets, [&](int layer) {
             beginScene(cmd, *frame, targets, true, layer);
-            if (!frame->scene->opaque.empty()) drawItems(cmd, *frame, frame->scene->opaque, frame->pipelines->opaque);
-            if (!frame->scene->masked.empty()) drawItems(cmd, *frame, frame->scene->masked, frame->pipelines->masked);
+            const gpu::GpuScene& s = *frame->scene;
+            const ScenePipelines& p = *frame->pipelines;
+            if (!p.moving_only_motion) {
+                drawItems(cmd, *frame, s.opaque, p.opaque);
+                drawItems(cmd, *frame, s.masked, p.masked);
+            } else {
+                // Every static draw first, so a static surface in front of a moving one
+                // has already failed the moving one's depth test and keeps the sentinel.
+                drawItems(cmd, *frame, s.opaque, p.opaque, Draws::Static);
+                drawItems(cmd, *frame, s.masked, p.masked, Draws::Static);
+                drawItems(cmd, *frame, s.opaque, p.opaque_moving, Draws::Moving);
+                drawItems(cmd, *frame, s.masked, p.masked_moving, Draws::Moving);
+            }
             vkCmdEndRendering(cmd);
         });
     };

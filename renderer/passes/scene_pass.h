@@ -17,6 +17,9 @@ class Context;
 namespace cbr::passes {
 
 constexpr VkFormat kMotionFormat = VK_FORMAT_R32G32_SFLOAT;  // full precision, never floored
+// What a motion target holds where no moving object was drawn (x; the resolve derives the
+// camera's motion from depth there). Matches kMotionFromDepth in cbr_resolve.glsl.
+constexpr float kMotionFromDepth = -1.0e30f;
 
 struct ScenePipelineDesc {
     VkFormat color_format = VK_FORMAT_R16G16B16A16_SFLOAT;
@@ -25,6 +28,10 @@ struct ScenePipelineDesc {
     bool sample_shading = false;   // one invocation per sample, inputs at the sample (checkerboard MSAA)
     uint32_t view_mask = 0;        // multiview: 0b11 renders both checkerboard views
     bool motion = false;           // second attachment: motion vectors (kMotionFormat)
+    // With `motion`: every opaque draw writes it (the pre-issue-14 scene pass, kept for the
+    // reference resolve), or only moving instances, drawn last over a target cleared to
+    // kMotionFromDepth.
+    bool motion_every_draw = false;
     bool sample_locations = false; // VK_EXT_sample_locations set per frame (dynamic state)
     bool analysis = false;         // analysis.frag into kAnalysisFormat: opaque and masked only
     bool gbuffer = false;          // gbuffer*.frag into the kGBufferFormats: opaque and masked only
@@ -55,6 +62,10 @@ struct ScenePipelines {
     VkPipeline opaque[2] = {};
     VkPipeline masked[2] = {};  // only when the scene has MASK materials
     VkPipeline blend[2] = {};   // only when the scene has BLEND materials
+    // Motion written by moving instances only: these draw them, after every static draw.
+    bool moving_only_motion = false;
+    VkPipeline opaque_moving[2] = {};
+    VkPipeline masked_moving[2] = {};
 };
 
 ScenePipelines createScenePipelines(vk::Context& ctx, const gpu::GpuScene& scene, const ScenePipelineDesc& desc);

@@ -21,6 +21,7 @@ layout(local_size_x = GROUP, local_size_y = GROUP) in;
 layout(constant_id = 1) const int CHECK_OCCLUSION = 0;  // 0: ASO, 1: CSO
 layout(constant_id = 2) const int CSO_ABSOLUTE = 0;     // 0: relative tolerance, 1: scene units
 layout(constant_id = 3) const int HAS_MOTION = 1;       // 0: camera motion from depth only
+const float kMotionFromDepth = -1.0e30;  // motion target: no moving object here (scene_pass.h)
 // What the dispatch writes: 0 the linear colour (a tone-map pass follows), 1 the display
 // image (tone map fused), 2 only the class map (an untimed pass on quality frames).
 layout(constant_id = 5) const int OUTPUT = 1;
@@ -119,6 +120,7 @@ struct Fill {
     vec4 sum;          // rgb weighted colour, a weight
     float nearest;     // cardinal: the nearest neighbour's device depth (reversed Z: larger is nearer)
     int nearest_slot;  // its tile slot, -1 if none
+    ivec2 nearest_pixel;  // its full-res pixel
     float depth_sum;   // view depths of the cardinal neighbours, for CSO
     int depth_count;
 };
@@ -131,6 +133,7 @@ void addNeighbour(inout Fill f, ivec2 n, ivec2 quadrant, ivec2 origin, ivec2 siz
     bool closer = shaded && depth > f.nearest;
     f.nearest = closer ? depth : f.nearest;
     f.nearest_slot = closer ? slot : f.nearest_slot;
+    f.nearest_pixel = closer ? n : f.nearest_pixel;
     f.depth_sum += shaded ? viewDepth(depth, frame.depth_params.xy) : 0.0;
     f.depth_count += shaded ? 1 : 0;
 }
@@ -140,7 +143,7 @@ vec3 fillColour(Fill f) { return f.sum.a > 0.0 ? f.sum.rgb / f.sum.a : vec3(0.0)
 // A pixel of a quadrant frame N did not shade: reused from frame N-1, or filled.
 vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls) {
     ivec2 qx = ivec2(quadrant.x ^ 1, quadrant.y), qy = ivec2(quadrant.x, quadrant.y ^ 1);
-    Fill f = Fill(vec4(0.0), -1.0, -1, 0.0, 0);
+    Fill f = Fill(vec4(0.0), -1.0, -1, ivec2(0), 0.0, 0);
     addNeighbour(f, p + ivec2(-1, 0), qx, origin, size);
     addNeighbour(f, p + ivec2(1, 0), qx, origin, size);
     addNeighbour(f, p + ivec2(0, -1), qy, origin, size);
@@ -148,13 +151,17 @@ vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls
 
     // Motion of the nearest cardinal neighbour: from the motion target, or for a static
     // scene the camera's motion from depth with the previous view-projection (the paper's).
-    vec2 motion;
+    // With moving objects only they write motion; kMotionFromDepth elsewhere asks for the
+    // camera's motion (zero on the sky, as a cleared motion target said before), taken at
+    // the neighbour's pixel as a motion target would have held it.
+    vec2 at = vec2(HAS_MOTION != 0 ? f.nearest_pixel : p) + 0.5;
+    vec2 ndc = at / vec2(size) * 2.0 - 1.0;
+    vec4 prev = frame.reproject * vec4(ndc, f.nearest, 1.0);
+    vec2 motion = prev.w > 0.0 ? (prev.xy / prev.w * 0.5 + 0.5) * vec2(size) - at : vec2(1e9);
     if (HAS_MOTION != 0) {
-        motion = tile_motion[max(f.nearest_slot, 0)];
-    } else {
-        vec2 ndc = (vec2(p) + 0.5) / vec2(size) * 2.0 - 1.0;
-        vec4 prev = frame.reproject * vec4(ndc, f.nearest, 1.0);
-        motion = prev.w > 0.0 ? (prev.xy / prev.w * 0.5 + 0.5) * vec2(size) - (vec2(p) + 0.5) : vec2(1e9);
+        vec2 stored = tile_motion[max(f.nearest_slot, 0)];
+        motion = f.nearest == 0.0 ? vec2(0.0) : motion;
+        motion = stored.x == kMotionFromDepth ? motion : stored;
     }
     motion = f.nearest_slot >= 0 ? motion : vec2(1e9);
     motion = frame.frame_info.y == 2u ? vec2(0.0) : motion;  // nothing moved: frame N-1 holds it in place
@@ -196,7 +203,7 @@ vec3 shadedPixel(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, bool edge_gr
     vec3 colour = tile_sample[slot].rgb;
     if (edge_group) {
         ivec2 d = quadrant ^ 1;
-        Fill f = Fill(vec4(0.0), -1.0, -1, 0.0, 0);
+        Fill f = Fill(vec4(0.0), -1.0, -1, ivec2(0), 0.0, 0);
         addNeighbour(f, p + ivec2(-1, -1), d, origin, size);
         addNeighbour(f, p + ivec2(1, -1), d, origin, size);
         addNeighbour(f, p + ivec2(-1, 1), d, origin, size);

@@ -74,6 +74,9 @@ public:
         desc.view_mask = msaa_ || route_.sequential_layers ? 0 : 0b11;
         // Deferred: these forward pipelines draw only the CFB, which has no motion target.
         desc.motion = has_motion_ && !deferred_;
+        // Motion from moving instances only (camera motion from depth in the resolve); the
+        // reference resolve keeps the pre-issue-14 scene pass, motion from every draw.
+        desc.motion_every_draw = s.resolve_impl == render::ResolveImpl::Reference;
         desc.sample_locations = route_.route == CBR_ROUTE_MSAA_LOCATIONS;
         pipelines_ = passes::createScenePipelines(ctx, scene, desc);
         if (deferred_) {
@@ -189,8 +192,11 @@ public:
             {"quarter_resolution", std::to_string(quarter_.width) + "x" + std::to_string(quarter_.height)},
             {"lod_bias", std::to_string(settings_.cbr_lod_bias)},
             {"occlusion_rule", cso_ ? "CSO: view-space depth test" : "ASO: any quarter-res motion is missing"},
-            {"motion", has_motion_ ? "per-pixel motion vectors from the scene pass (moving objects present)"
-                                   : "camera motion from depth reprojection (static scene)"},
+            {"motion", !has_motion_ ? "camera motion from depth reprojection (static scene)"
+                       : settings_.resolve_impl == render::ResolveImpl::Reference
+                           ? "per-pixel motion vectors written by every opaque draw (moving objects present)"
+                           : "motion vectors written by moving instances only (drawn last); elsewhere camera "
+                             "motion from depth reprojection in the resolve"},
             {"fill", "tone-mapped average of frame N's cardinal neighbours, weights 1/(1+luma)"},
             {"pipeline_detail", deferred_ ? "deferred: checkerboard G-buffer, per-sample lighting into the SRT, "
                                      "transparency in the CFB"

@@ -149,6 +149,7 @@ History fromHistory(const Inputs& in, const Mode& mode, bool has_motion, int x, 
     // The nearest cardinal neighbour (reversed Z: largest depth; the first of left, right,
     // up, down on ties) carries the motion: a foreground edge drags its own motion along.
     int nearest = -1;
+    glm::ivec2 nearest_pixel{0};
     float nearest_depth = -1.0f;
     double depth_sum = 0.0;
     int depth_count = 0;
@@ -163,13 +164,23 @@ History fromHistory(const Inputs& in, const Mode& mode, bool has_motion, int x, 
         if (d > nearest_depth) {
             nearest_depth = d;
             nearest = *s;
+            nearest_pixel = {nx, ny};
         }
     }
     if (nearest < 0) return {kOffscreen};
     glm::vec2 size(in.width, in.height);
     glm::vec2 centre = glm::vec2(x, y) + 0.5f;
     glm::vec2 prev_pos;
-    if (has_motion) {
+    // A motion target written by moving objects only holds kMotionFromDepth elsewhere: the
+    // camera's motion at the neighbour's pixel (as a target written there would hold it),
+    // none on the sky (device depth 0).
+    if (has_motion && in.now.motion[nearest].x == passes::kMotionFromDepth) {
+        glm::vec2 at = glm::vec2(nearest_pixel) + 0.5f;
+        glm::vec4 clip = in.uniforms.reproject * glm::vec4(at / size * 2.0f - 1.0f, nearest_depth, 1.0f);
+        if (nearest_depth != 0.0f && !(clip.w > 0.0f)) return {kOffscreen};  // behind the previous camera
+        glm::vec2 motion = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * size - at;
+        prev_pos = centre + (nearest_depth == 0.0f ? glm::vec2(0.0f) : motion);
+    } else if (has_motion) {
         prev_pos = centre + in.now.motion[nearest];
     } else {
         // Static geometry: where the current clip position was, through the reprojection matrix.

@@ -136,7 +136,13 @@ glm::vec4 colourAt(glm::ivec2 p, int frame) {
     return {float(p.x + 1) * bright / 8.0f, float(p.y + 1) / 8.0f, blue, 1.0f};
 }
 
-Inputs makeInputs(const Scene& s, int w, int h, int parity) {
+// How frame N's motion reaches the resolve: no motion target (camera motion from depth), a
+// target every sample wrote, or one only moving objects wrote (kMotionFromDepth elsewhere:
+// here the background, or every sample when the motion is a matrix only).
+enum Source { kTarget, kReprojection, kMovingOnly, kSourceCount };
+const char* const kSourceNames[] = {"motion", "reprojection", "moving"};
+
+Inputs makeInputs(const Scene& s, int w, int h, int parity, Source source, bool reprojection_only) {
     Inputs in;
     in.width = w, in.height = h, in.qw = (w + 1) / 2, in.qh = (h + 1) / 2;
     in.parity = parity;
@@ -153,7 +159,10 @@ Inputs makeInputs(const Scene& s, int w, int h, int parity) {
                     if (frame == 1) d = float(std::max(0.0, kPrevDepthAB.y / view - kPrevDepthAB.x));
                     f.color.push_back(colourAt(p, frame));
                     f.depth.push_back(d);
-                    f.motion.push_back(frame == 0 ? s.shift + glm::vec2(s.parallax * d, 0.0f) : glm::vec2(0.0f));
+                    glm::vec2 motion = frame == 0 ? s.shift + glm::vec2(s.parallax * d, 0.0f) : glm::vec2(0.0f);
+                    if (source == kMovingOnly && (reprojection_only || d != kNear))
+                        motion = {passes::kMotionFromDepth, 0.0f};
+                    f.motion.push_back(motion);
                 }
     }
     // The motion field as a matrix: NDC spans 2 / size per pixel, device depth is clip z.
@@ -359,14 +368,14 @@ std::string compare(const GpuResult& got, const Model& want, int w, int h) {
 // ---- the test: every case x size x occlusion mode x motion source, both parities.
 struct Param {
     int case_index, width, height, mode;
-    bool motion_target;
+    Source source;
     int impl;
 };
 
 std::string paramName(const ::testing::TestParamInfo<Param>& info) {
     const Param& p = info.param;
     return std::string(kCases[p.case_index].name) + "_" + std::to_string(p.width) + "x" + std::to_string(p.height) +
-           "_" + kModes[p.mode].name + (p.motion_target ? "_motion" : "_reprojection") + "_" + kImplNames[p.impl];
+           "_" + kModes[p.mode].name + "_" + kSourceNames[p.source] + "_" + kImplNames[p.impl];
 }
 
 std::vector<Param> allParams() {
@@ -375,9 +384,13 @@ std::vector<Param> allParams() {
         // 70x40: three groups (32x32 pixels each) across, two down, so tiles meet inside the image.
         for (glm::ivec2 size : {glm::ivec2(16, 12), glm::ivec2(15, 11), glm::ivec2(70, 40)})
             for (int m = 0; m < 3; ++m)
-                for (bool motion : {true, false})
-                    for (int impl = 0; impl < 2; ++impl)
-                        if (!(motion && kCases[c].reprojection_only)) out.push_back({c, size.x, size.y, m, motion, impl});
+                for (int source = 0; source < kSourceCount; ++source)
+                    for (int impl = 0; impl < 2; ++impl) {
+                        if (source == kTarget && kCases[c].reprojection_only) continue;
+                        // The reference resolve predates motion from moving objects only.
+                        if (source == kMovingOnly && impl != 0) continue;
+                        out.push_back({c, size.x, size.y, m, Source(source), impl});
+                    }
     return out;
 }
 
@@ -413,11 +426,12 @@ TEST_P(CbrResolve, GpuMatchesCpuModel) {
     const Param& p = GetParam();
     const Case& c = kCases[p.case_index];
     const Mode& mode = kModes[p.mode];
-    Harness& gpu = harness(p.width, p.height, p.motion_target);
+    bool has_motion = p.source != kReprojection;
+    Harness& gpu = harness(p.width, p.height, has_motion);
     for (int parity = 0; parity < 2; ++parity) {
         SCOPED_TRACE("parity " + std::to_string(parity));
-        Inputs in = makeInputs(c.build(p.width, p.height), p.width, p.height, parity);
-        Model want = reconstruct(in, mode, p.motion_target);
+        Inputs in = makeInputs(c.build(p.width, p.height), p.width, p.height, parity, p.source, c.reprojection_only);
+        Model want = reconstruct(in, mode, has_motion);
         // The case must stay clear of float32 knife-edges, or disagreement proves nothing.
         ASSERT_GT(want.position_margin, 1e-3);
         ASSERT_GT(want.depth_margin, 1e-3);
