@@ -363,12 +363,14 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                    {"timestamp_valid_bits", rc.ctx.caps.timestamp_valid_bits},
                    {"pipeline_statistics", rc.ctx.caps.pipeline_statistics},
                    {"copy_bandwidth_gb_per_s", r.copy_bandwidth.gb_per_s},
+                   {"transfer_bandwidth_gb_per_s", r.copy_bandwidth.transfer_gb_per_s},
                    {"copy_bandwidth_rule",
                     r.copy_bandwidth.copies == 0
-                        ? std::string("not measured (lavapipe's timestamps do not bracket transfers)")
-                        : "median of " + std::to_string(r.copy_bandwidth.copies) + " vkCmdCopyBuffer of " +
-                              std::to_string(int(r.copy_bandwidth.buffer_mib)) +
-                              " MiB between device-local buffers, bytes read + written"}};
+                        ? std::string("not measured (lavapipe's timestamps do not bracket a lone copy)")
+                        : "median of " + std::to_string(r.copy_bandwidth.copies) + " compute-shader copies (16-byte " +
+                              "loads and stores) of " + std::to_string(int(r.copy_bandwidth.buffer_mib)) +
+                              " MiB between device-local buffers, bytes read + written; transfer_bandwidth_gb_per_s: "
+                              "the same with vkCmdCopyBuffer"}};
     if (d.is_lavapipe)
         j["device"]["timing_note"] =
             "lavapipe timestamps measure CPU rasterisation: ratios between variants are meaningful, absolute times "

@@ -476,6 +476,8 @@ int runBenchmark(const RunOptions& options) {
     gpu::destroyGpuScene(ctx, gpu_scene);
     // The yardstick of the resolve's effective bandwidth (run.json, report). Not on lavapipe:
     // its timestamps do not bracket a transfer (a 64 MiB copy read as 10 TB/s).
+    // Not on lavapipe: its timestamps around a lone dispatch or copy in a one-off submission
+    // do not bracket the work (a 64 MiB compute copy read as 8 TB/s).
     if (!ctx.description.is_lavapipe) results.copy_bandwidth = vk::measureCopyBandwidth(ctx, 512);
     results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 

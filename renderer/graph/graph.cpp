@@ -62,11 +62,16 @@ constexpr VkAccessFlags2 kWriteAccess =
 
 void transition(VkCommandBuffer cmd, vk::Image& image, Use use) {
     UseState next = stateFor(use);
+    // A depth image is sampled in DEPTH_READ_ONLY_OPTIMAL, the layout of depth testing too:
+    // no transition (and no decompression of an MSAA depth buffer) between the lighting or
+    // resolve reads and a transparent pass's depth test.
+    if (use == Use::Sampled && image.aspect == VK_IMAGE_ASPECT_DEPTH_BIT)
+        next.layout = VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
     bool previous_wrote = (image.access & kWriteAccess) != 0;
     bool layout_change = image.layout != next.layout;
-    if (!previous_wrote && !layout_change && !next.writes) {
+    bool read_after_read = !previous_wrote && !layout_change && !next.writes;
+    if (read_after_read && (next.stage & ~image.stage) == 0) {
         // Read after read in the same layout: no barrier, but a later write must wait for both readers.
-        image.stage |= next.stage;
         image.access |= next.access;
         return;
     }
@@ -84,6 +89,13 @@ void transition(VkCommandBuffer cmd, vk::Image& image, Use use) {
     dep.imageMemoryBarrierCount = 1;
     dep.pImageMemoryBarriers = &b;
     vkCmdPipelineBarrier2(cmd, &dep);
+    if (read_after_read) {
+        // A read in a stage the last barrier did not reach (a depth buffer tested, then
+        // sampled in the same layout): chained after the earlier readers, which stay readers.
+        image.stage |= next.stage;
+        image.access |= next.access;
+        return;
+    }
     image.layout = next.layout;
     image.stage = next.stage;
     image.access = next.access;

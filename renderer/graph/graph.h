@@ -19,7 +19,7 @@ enum class Use {
     DepthWrite,      // depth attachment, cleared and written
     DepthReadWrite,  // depth attachment, loaded, tested and written
     DepthTest,       // depth attachment, tested only (read-only layout)
-    Sampled,         // sampled or texel-fetched in a fragment or compute shader
+    Sampled,         // sampled or texel-fetched in a fragment or compute shader (depth: DEPTH_READ_ONLY_OPTIMAL)
     StorageRead,     // storage image read in compute
     StorageWrite,    // storage image written in compute, every texel (contents discarded)
     TransferSrc,     // copied out (readback)

@@ -17,7 +17,6 @@ namespace cbr::passes {
 namespace {
 
 constexpr uint32_t kReferenceGroup = 8;  // local size of cbr_resolve_reference.glsl
-constexpr uint32_t kTiledGroup = 32;     // pixels per group axis: GROUP x GROUP invocations of 2x2 pixels (cbr_resolve.glsl)
 
 // The shader's OUTPUT constant.
 enum Output : int32_t { kOutputHdr = 0, kOutputDisplay = 1, kOutputClasses = 2 };
@@ -67,6 +66,9 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
                             CheckerboardSet (&sets)[2], const CbrResolveOutputs& out) {
     CbrResolve r;
     r.impl = desc.impl;
+    if (desc.group < 4 || desc.group > 16)
+        throw vk::Error("cbr_resolve: group size " + std::to_string(desc.group) + " outside 4..16");
+    r.group_pixels = uint32_t(desc.group) * 2;
     r.check_occlusion = desc.check_occlusion;
     r.out = out;
     r.push.cso_tolerance = desc.cso_tolerance;
@@ -97,6 +99,7 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
         if (!tiled) return s;
         s.push_back({/* OUTPUT= */ 5, output});
         s.push_back({/* PARITY= */ 6, parity});
+        s.push_back({/* GROUP= */ 20, desc.group});
         for (uint32_t i = 0; i < 8; ++i) s.push_back({/* PATTERN_i= */ 10 + i, r.push.pattern[i]});
         return s;
     };
@@ -116,7 +119,6 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
     }
     r.pool = vk::createPool(ctx, binding_list, 4);
     r.sampler = vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 0.0f);
-    constexpr auto kRead = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     for (int cur = 0; cur < 2; ++cur) {
         CheckerboardSet& n = sets[cur];
         CheckerboardSet& prev = sets[1 - cur];
@@ -126,14 +128,17 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
         const vk::Image& colour = desc.deferred ? n.srt : n.color;
         const vk::Image& prev_colour = desc.deferred ? prev.srt : prev.color;
         auto inputs = [&](VkDescriptorSet set) {
-            vk::writeImage(ctx, set, 0, kSampled, colour.view, kRead, r.sampler);
-            vk::writeImage(ctx, set, 1, kSampled, n.depth.view, kRead, r.sampler);
-            vk::writeImage(ctx, set, 2, kSampled, motion.view, kRead, r.sampler);
-            vk::writeImage(ctx, set, 3, kSampled, prev_colour.view, kRead, r.sampler);
-            vk::writeImage(ctx, set, 4, kSampled, prev.depth.view, kRead, r.sampler);
+            auto sampled = [&](uint32_t binding, const vk::Image& img) {
+                vk::writeImage(ctx, set, binding, kSampled, img.view, vk::sampledLayout(img), r.sampler);
+            };
+            sampled(0, colour);
+            sampled(1, n.depth);
+            sampled(2, motion);
+            sampled(3, prev_colour);
+            sampled(4, prev.depth);
             if (desc.deferred) {
-                vk::writeImage(ctx, set, 8, kSampled, (has_cfb ? n.cfb : n.depth).view, kRead, r.sampler);
-                vk::writeImage(ctx, set, 9, kSampled, (has_cfb ? prev.cfb : prev.depth).view, kRead, r.sampler);
+                sampled(8, has_cfb ? n.cfb : n.depth);
+                sampled(9, has_cfb ? prev.cfb : prev.depth);
             }
         };
         VkDescriptorSet set = vk::allocateSet(ctx, r.pool, r.kernel[0].set_layout);
@@ -216,7 +221,7 @@ void addCbrResolvePass(graph::Graph& graph, CbrResolve& r, VkDescriptorSet frame
     vk::Image* target = fused ? r.out.display : r.out.hdr;
     // The renderer writes frame N into the set of its parity: `current` is the parity.
     addDispatch(graph, fused ? "cbr_resolve_tonemap" : "cbr_resolve", true, r.kernel[current], frame_set, r.sets[current], sets,
-                current, std::move(writes), r.push, r.impl == ResolveImpl::Reference ? kReferenceGroup : kTiledGroup,
+                current, std::move(writes), r.push, r.impl == ResolveImpl::Reference ? kReferenceGroup : r.group_pixels,
                 target->extent);
 }
 
@@ -227,7 +232,7 @@ void addCbrClassMapPass(graph::Graph& graph, CbrResolve& r, VkDescriptorSet fram
     addDispatch(graph, "cbr_class_map", false, r.class_kernel[current], frame_set, r.class_sets[current], sets, current,
                 {{r.out.classes, Use::StorageWrite}, {&r.stand_ins[0], Use::StorageWrite},
                  {&r.stand_ins[2], Use::StorageWrite}},
-                r.push, kTiledGroup, r.out.classes->extent);
+                r.push, r.group_pixels, r.out.classes->extent);
 }
 
 double cbrResolveBytes(const CbrResolve& r, const CheckerboardSet& set, uint32_t width, uint32_t height) {

@@ -35,6 +35,7 @@ struct CbrResolveDesc {
     ResolveImpl impl = ResolveImpl::Fused;
     float exposure = 1.0f;          // fused tone map
     bool pass_through = false;      // fused tone map, debug pixel-id mode
+    int group = 16;                 // tiled: invocations per group axis, each resolving 2x2 pixels
 };
 
 // Push constants of the reconstruction: the route's pattern rows, the CSO tolerance and
@@ -65,6 +66,7 @@ struct CbrResolve {
     VkDescriptorSet class_sets[2] = {};
     VkSampler sampler = VK_NULL_HANDLE;
     CbrResolvePush push{};
+    uint32_t group_pixels = 32;  // pixels per group axis of the timed kernel
     CbrResolveOutputs out;
     // 1x1 stand-ins bound to the outputs a kernel does not write: hdr, classes, display.
     vk::Image stand_ins[3];

@@ -24,7 +24,7 @@ void writeSet(vk::Context& ctx, VkDescriptorSet set, VkSampler sampler, GBuffer&
     vk::writeImage(ctx, set, 0, kSampled, g.albedo.view, kRead, sampler);
     vk::writeImage(ctx, set, 1, kSampled, g.normal.view, kRead, sampler);
     vk::writeImage(ctx, set, 2, kSampled, g.emissive.view, kRead, sampler);
-    vk::writeImage(ctx, set, 3, kSampled, g.depth->view, kRead, sampler);
+    vk::writeImage(ctx, set, 3, kSampled, g.depth->view, vk::sampledLayout(*g.depth), sampler);
     vk::writeImage(ctx, set, 4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out.view, VK_IMAGE_LAYOUT_GENERAL);
 }
 

@@ -15,8 +15,10 @@
 #include "display.glsl"
 #include "shared.h"
 
-#define GROUP 16  // invocations per axis; each resolves 2x2 pixels
-layout(local_size_x = GROUP, local_size_y = GROUP) in;
+// Invocations per axis (each resolves 2x2 pixels): 16 on CPU drivers, where a bigger
+// group amortises barriers and halo, 8 on GPUs (cbr_resolve_pass.cpp).
+layout(constant_id = 20) const int GROUP = 16;
+layout(local_size_x_id = 20, local_size_y_id = 20) in;
 
 layout(constant_id = 1) const int CHECK_OCCLUSION = 0;  // 0: ASO, 1: CSO
 layout(constant_id = 2) const int CSO_ABSOLUTE = 0;     // 0: relative tolerance, 1: scene units
@@ -62,8 +64,8 @@ const uint kShaded = 0u, kReused = 1u, kMissingParity = 2u, kOccluded = 3u, kOff
 // The tile: quarter pixels [origin, origin + TILE) of frame N, two samples each. A group
 // covers GROUP quarter pixels; neighbours reach one further each way and the jitter
 // route's odd frames read one to the right (dx = 1): 1 before, 2 after.
-#define TILE (GROUP + 3)
-#define SLOTS (TILE * TILE * 2)
+const int TILE = GROUP + 3;
+const int SLOTS = TILE * TILE * 2;
 shared vec4 tile_sample[SLOTS];    // rgb colour, a device depth; a = -1: no such sample
 shared vec4 tile_weighted[SLOTS];  // fill terms: rgb max(colour, 0) * w, a w = 1 / (1 + luma)
 shared vec2 tile_motion[SLOTS];

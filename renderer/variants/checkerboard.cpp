@@ -3,6 +3,7 @@
 #include "renderer/variants/checkerboard.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "renderer/passes/cbr_resolve_pass.h"
@@ -23,6 +24,15 @@ glm::ivec2 quadrantOf(int route, int parity, int s) {
     for (int q = 0; q < 4; ++q)
         if (shaders::kCbrPattern[((route * 2 + parity) * 4 + q) * 3] == s) return {q & 1, q >> 1};
     throw vk::Error("checkerboard pattern table has no quadrant for sample " + std::to_string(s));
+}
+
+// Invocations per axis of the tiled resolve's groups (each resolves 2x2 pixels): 16 on a CPU
+// driver, where a big group amortises barriers and the halo; 8 on a GPU, where a smaller
+// group holds less shared memory and more groups fit each multiprocessor.
+// CBR_RESOLVE_GROUP=4..16 overrides it (measurements).
+int resolveGroup(const vk::Context& ctx) {
+    if (const char* env = std::getenv("CBR_RESOLVE_GROUP")) return std::atoi(env);
+    return ctx.description.is_lavapipe ? 16 : 8;
 }
 
 class CheckerboardVariant final : public VariantRenderer {
@@ -98,6 +108,7 @@ public:
         rdesc.impl = s.resolve_impl;
         rdesc.exposure = s.exposure;
         rdesc.pass_through = s.debug_pixel_id;
+        rdesc.group = resolveGroup(ctx);
         resolve_ = passes::createCbrResolve(ctx, rdesc, scene.frame_layout, sets_, {&hdr_, &display_, &class_});
         if (!fused_) tonemap_ = passes::createTonemap(ctx, hdr_, display_);
         if (desc.sample_locations)
@@ -209,6 +220,8 @@ public:
         d.push_back({"resolve", reference ? "reference: the pre-issue-14 per-pixel branching shader, 8x8 groups"
                                           : "tiled: 16x16 groups load frame N's samples (plus a halo) into shared "
                                             "memory once; every pixel evaluates every candidate, selected arithmetically"});
+        if (!reference) d.push_back({"resolve_group", std::to_string(resolve_.group_pixels) + "x" +
+                                                          std::to_string(resolve_.group_pixels) + " pixels per group"});
         d.push_back({"tonemap", fused_ ? "fused into the resolve (cbr_resolve_tonemap); frame N-1 stays in linear "
                                          "colour in the quarter-res sample sets"
                                        : "a separate tonemap pass"});

@@ -37,6 +37,13 @@ struct Image {
     VkAccessFlags2 access = VK_ACCESS_2_NONE;
 };
 
+// The layout an image is sampled in (graph::Use::Sampled): depth images stay in
+// DEPTH_READ_ONLY_OPTIMAL, which depth tests use too; everything else SHADER_READ_ONLY_OPTIMAL.
+inline VkImageLayout sampledLayout(const Image& image) {
+    return image.aspect == VK_IMAGE_ASPECT_DEPTH_BIT ? VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL
+                                                     : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+}
+
 struct ImageDesc {
     std::string name;
     VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;

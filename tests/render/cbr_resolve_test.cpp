@@ -179,8 +179,11 @@ Inputs makeInputs(const Scene& s, int w, int h, int parity, Source source, bool 
 // ---- the GPU side: one harness per image size and motion setting.
 // The tiled resolve (linear colour out, so copies can be checked bit for bit; the fused
 // tone map is display.glsl's, compared by the render tests) and the reference it replaced.
-constexpr passes::ResolveImpl kImpls[2] = {passes::ResolveImpl::Separate, passes::ResolveImpl::Reference};
-const char* const kImplNames[2] = {"tiled", "reference"};
+// The tiled shader at the group sizes the renderer picks (16 on lavapipe, 8 on GPUs), and the reference.
+constexpr passes::ResolveImpl kImpls[3] = {passes::ResolveImpl::Separate, passes::ResolveImpl::Reference,
+                                           passes::ResolveImpl::Separate};
+constexpr int kGroups[3] = {16, 16, 8};
+const char* const kImplNames[3] = {"tiled", "reference", "tiled8"};
 
 struct GpuResult {
     std::vector<uint16_t> hdr;  // rgba halves per pixel
@@ -223,11 +226,12 @@ public:
         VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO, nullptr, 0, VK_QUERY_TYPE_TIMESTAMP,
                                 graph::kMaxPasses + 1};
         VK_CHECK(vkCreateQueryPool(ctx.device, &q, nullptr, &timestamps_));
-        for (int impl = 0; impl < 2; ++impl)
+        for (int impl = 0; impl < 3; ++impl)
             for (int m = 0; m < 3; ++m) {
                 passes::CbrResolveDesc desc{kRoute, kModes[m].cso, kModes[m].absolute, kModes[m].tolerance, has_motion};
                 desc.msaa = false;
                 desc.impl = kImpls[impl];
+                desc.group = kGroups[impl];
                 resolves_[impl][m] = passes::createCbrResolve(ctx, desc, frame_layout_, sets_, {&hdr_, nullptr, &class_});
             }
     }
@@ -336,7 +340,7 @@ private:
     VkDescriptorPool frame_pool_ = VK_NULL_HANDLE;
     VkDescriptorSet frame_set_ = VK_NULL_HANDLE;
     VkQueryPool timestamps_ = VK_NULL_HANDLE;
-    passes::CbrResolve resolves_[2][3];  // [kImpls][kModes]
+    passes::CbrResolve resolves_[3][3];  // [kImpls][kModes]
 };
 
 // The store rounds to half, to nearest or toward zero (Vulkan allows either): at most one
@@ -385,7 +389,7 @@ std::vector<Param> allParams() {
         for (glm::ivec2 size : {glm::ivec2(16, 12), glm::ivec2(15, 11), glm::ivec2(70, 40)})
             for (int m = 0; m < 3; ++m)
                 for (int source = 0; source < kSourceCount; ++source)
-                    for (int impl = 0; impl < 2; ++impl) {
+                    for (int impl = 0; impl < 3; ++impl) {
                         if (source == kTarget && kCases[c].reprojection_only) continue;
                         // The reference resolve predates motion from moving objects only.
                         if (source == kMovingOnly && impl != 0) continue;
