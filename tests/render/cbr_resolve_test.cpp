@@ -226,20 +226,14 @@ public:
         VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO, nullptr, 0, VK_QUERY_TYPE_TIMESTAMP,
                                 graph::kMaxPasses + 1};
         VK_CHECK(vkCreateQueryPool(ctx.device, &q, nullptr, &timestamps_));
-        for (int impl = 0; impl < 3; ++impl)
-            for (int m = 0; m < 3; ++m) {
-                passes::CbrResolveDesc desc{kRoute, kModes[m].cso, kModes[m].absolute, kModes[m].tolerance, has_motion};
-                desc.msaa = false;
-                desc.impl = kImpls[impl];
-                desc.group = kGroups[impl];
-                resolves_[impl][m] = passes::createCbrResolve(ctx, desc, frame_layout_, sets_, {&hdr_, nullptr, &class_});
-            }
+        has_motion_ = has_motion;
     }
 
     ~Harness() {
         vkDeviceWaitIdle(ctx_.device);
         for (auto& per_impl : resolves_)
-            for (auto& r : per_impl) passes::destroyCbrResolve(ctx_, r);
+            for (auto& r : per_impl)
+                if (r.pool) passes::destroyCbrResolve(ctx_, r);
         vkDestroyQueryPool(ctx_.device, timestamps_, nullptr);
         vkDestroyDescriptorPool(ctx_.device, frame_pool_, nullptr);
         vkDestroyDescriptorSetLayout(ctx_.device, frame_layout_, nullptr);
@@ -247,6 +241,19 @@ public:
         for (vk::Image* img : {&sets_[0].color, &sets_[0].depth, &sets_[0].motion, &sets_[1].color, &sets_[1].depth,
                                &sets_[1].motion, &hdr_, &class_})
             vk::destroyImage(ctx_, *img);
+    }
+
+    // Created on first use: each test process compiles only the pipelines it runs.
+    passes::CbrResolve& resolve(int impl, int m) {
+        passes::CbrResolve& r = resolves_[impl][m];
+        if (!r.pool) {
+            passes::CbrResolveDesc desc{kRoute, kModes[m].cso, kModes[m].absolute, kModes[m].tolerance, has_motion_};
+            desc.msaa = false;
+            desc.impl = kImpls[impl];
+            desc.group = kGroups[impl];
+            r = passes::createCbrResolve(ctx_, desc, frame_layout_, sets_, {&hdr_, nullptr, &class_});
+        }
+        return r;
     }
 
     GpuResult run(const Inputs& in, int mode, int impl) {
@@ -266,8 +273,8 @@ public:
                 if (set.motion.image) staging.push_back(upload(cmd, set.motion, f.motion.data(), f.motion.size() * 8));
             }
             graph::Graph graph;
-            passes::addCbrResolvePass(graph, resolves_[impl][mode], frame_set_, sets_, current);
-            passes::addCbrClassMapPass(graph, resolves_[impl][mode], frame_set_, sets_, current);
+            passes::addCbrResolvePass(graph, resolve(impl, mode), frame_set_, sets_, current);
+            passes::addCbrClassMapPass(graph, resolve(impl, mode), frame_set_, sets_, current);
             graph.setOutputs({&hdr_, &class_});
             graph.record(cmd, {timestamps_, VK_NULL_HANDLE});
             for (auto [image, buffer] : {std::pair{&hdr_, &hdr_readback_}, std::pair{&class_, &class_readback_}}) {
@@ -340,6 +347,7 @@ private:
     VkDescriptorPool frame_pool_ = VK_NULL_HANDLE;
     VkDescriptorSet frame_set_ = VK_NULL_HANDLE;
     VkQueryPool timestamps_ = VK_NULL_HANDLE;
+    bool has_motion_ = false;
     passes::CbrResolve resolves_[3][3];  // [kImpls][kModes]
 };
 
