@@ -31,7 +31,13 @@ glm::ivec2 quadrantOf(int route, int parity, int s) {
 // group holds less shared memory and more groups fit each multiprocessor.
 // CBR_RESOLVE_GROUP=4..16 overrides it (measurements).
 int resolveGroup(const vk::Context& ctx) {
-    if (const char* env = std::getenv("CBR_RESOLVE_GROUP")) return std::atoi(env);
+    if (const char* env = std::getenv("CBR_RESOLVE_GROUP")) {
+        char* end = nullptr;
+        long group = std::strtol(env, &end, 10);
+        if (end == env || *end != '\0' || group < 4 || group > 16)
+            throw vk::Error(std::string("CBR_RESOLVE_GROUP=") + env + ": accepted are integers 4 to 16");
+        return int(group);
+    }
     return ctx.description.is_lavapipe ? 16 : 8;
 }
 
