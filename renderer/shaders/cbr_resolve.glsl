@@ -9,7 +9,7 @@
 // evaluate every test and select colour and class arithmetically. On a CPU driver a
 // divergent branch runs for the whole SIMD group; on a GPU the old per-pixel early returns
 // and up-to-8 dependent taps cost latency. Included by the cbr_resolve_*.comp files after
-// their cbr_io_*.glsl, which declare the inputs and FETCH, FETCH_CUR_COLOR, FETCH_PREV_COLOR.
+// cbr_io.glsl, which declares the inputs and FETCH, FETCH_CUR_COLOR, FETCH_PREV_COLOR.
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require
 #include "display.glsl"

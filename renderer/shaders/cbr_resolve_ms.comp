@@ -1,5 +1,7 @@
 #version 460
 // Checkerboard reconstruction (2x MSAA samples): the tiled, branch-free resolve.
 #extension GL_GOOGLE_include_directive : require
-#include "cbr_io_ms.glsl"
+#define CBR_MSAA 1
+#define CBR_DEFERRED 0
+#include "cbr_io.glsl"
 #include "cbr_resolve.glsl"
