@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/stats.h"
+#include "harness/verdict.h"
 #include "reports/csv.h"
 #include "reports/html.h"
 #include "reports/report_data.h"
@@ -25,17 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using reports::RunData;
-
-// The rule, stated once: the comment, compare.html and the README say the same.
-constexpr const char* kTimeRule =
-    "Per cell the samples are the per-repetition medians of gpu_ms (frames.csv rows with status ok). "
-    "UNKNOWN when either side has fewer than 3 repetitions, when the noise (coefficient of variation of "
-    "the per-repetition medians, the larger of the two sides) exceeds the threshold, or when the "
-    "repetitions cannot reach significance at all (smallest exact two-sided p, 2/C(n1+n2,n1), not below "
-    "alpha: 3 vs 3 gives 0.1). Otherwise a two-sided exact Mann-Whitney U p-value per cell, "
-    "Benjamini-Hochberg adjusted across the cells tested (q). SLOWER or FASTER only when q < alpha AND "
-    "|change| > threshold AND |change| > noise, change = median(current)/median(baseline) - 1 over "
-    "the per-repetition medians; else SAME.";
 
 // The settings in run.json that change timings or images: part of a cell's key.
 // (debug_slowdown is left out on purpose: it is how a detector test makes a known regression.)
@@ -54,9 +44,9 @@ struct Cell {
     const Side* base = nullptr;
     const Side* cur = nullptr;
     std::vector<double> base_reps, cur_reps;  // per-repetition median gpu_ms
-    std::optional<double> base_ms, cur_ms, change, noise, p, q;
-    std::string time_verdict = "UNKNOWN";
-    std::string note;
+    std::optional<double> base_ms, cur_ms;
+    TimeVerdict time;
+    std::string note;  // unmatched cells
     struct Quality {
         std::optional<double> base, cur, delta;
         std::string verdict = "n/a";
@@ -156,8 +146,9 @@ std::string num(std::optional<double> v) { return v ? reports::Cell(*v).text() :
 
 const std::vector<std::string> kCsvColumns = {
     "scene",          "path",           "pipeline",      "variant",      "resolution",    "settings",
-    "baseline_reps",  "current_reps",   "baseline_gpu_ms", "current_gpu_ms", "time_change_pct", "noise_cv_pct",
-    "p_value",        "q_value",        "time_verdict",  "baseline_psnr_db", "current_psnr_db", "psnr_delta_db",
+    "baseline_reps",  "current_reps",   "baseline_gpu_ms", "current_gpu_ms", "time_change_pct", "hl_change_pct",
+    "change_low_pct", "change_high_pct", "interval_confidence_pct", "detectable_change_pct", "reps_to_settle",
+    "noise_cv_pct",   "p_value",        "q_value",        "time_verdict",  "baseline_psnr_db", "current_psnr_db", "psnr_delta_db",
     "psnr_verdict",   "baseline_ssim",  "current_ssim",  "ssim_delta",   "ssim_verdict",  "baseline_eci",
     "current_eci",    "eci_change_pct", "eci_verdict",   "note"};
 
@@ -175,6 +166,17 @@ std::string verdictClass(const std::string& v) {
     return "";
 }
 
+// "[+1.2%, +4.5%] 90%" (the estimate is in the CSV), or a dash without a bounded interval.
+std::string intervalText(const TimeVerdict& t) {
+    if (!t.interval || !t.interval->bounded()) return "-";
+    char b[64];
+    std::snprintf(b, sizeof b, "[%+.1f%%, %+.1f%%] %.0f%%", t.interval->low * 100, t.interval->high * 100,
+                  t.interval->confidence * 100);
+    return b;
+}
+
+std::string noteOf(const Cell& c) { return c.note.empty() ? c.time.note : c.note; }
+
 std::string compareHtml(const CompareOptions& o, const Side& base, const Side& cur, const std::vector<Cell>& cells,
                         double threshold, double eci_threshold, const std::string& outcome) {
     using reports::esc;
@@ -191,12 +193,14 @@ std::string compareHtml(const CompareOptions& o, const Side& base, const Side& c
     h << "<p>Threshold " << fmt(threshold * 100, 2) << "%, alpha " << fmt(o.alpha, 3) << " (false discovery rate), PSNR "
       << fmt(o.psnr_db, 3) << " dB, SSIM " << fmt(o.ssim, 4) << ", ECI " << fmt(eci_threshold * 100, 2)
       << "% relative.</p>\n";
-    h << "<h2>Rule</h2><p>" << esc(kTimeRule)
+    h << "<h2>Rule</h2><p>" << esc(kTimeRule) << " Detectable: the smallest change these repetitions would call "
+         "SLOWER, the threshold plus the interval's half-width."
       << " Quality: PSNR (psnr_db_mean) and SSIM (ssim_mean) BETTER or WORSE when they change by more than their "
          "absolute thresholds, ECI (lower is better) when it changes by more than its relative threshold; else SAME. "
          "Runs on different devices or drivers are refused. Exit code 1 for any SLOWER or WORSE cell.</p>\n";
     h << "<h2>Cells</h2><table><tr><th class=l>variant</th><th class=l>cell</th><th>reps</th><th>baseline ms</th>"
-         "<th>current ms</th><th>change</th><th>noise</th><th>p</th><th>q</th><th>time</th><th>PSNR &Delta; dB</th>"
+         "<th>current ms</th><th>change</th><th>interval (HL estimate)</th><th>detectable</th><th>noise</th><th>p</th>"
+         "<th>q</th><th>time</th><th>PSNR &Delta; dB</th>"
          "<th>PSNR</th><th>SSIM &Delta;</th><th>SSIM</th><th>ECI change</th><th>ECI</th><th class=l>note</th></tr>\n";
     for (const auto& c : cells) {
         const Side& s = sideOf(c);
@@ -206,18 +210,22 @@ std::string compareHtml(const CompareOptions& o, const Side& base, const Side& c
         td(std::to_string(c.base_reps.size()) + " / " + std::to_string(c.cur_reps.size()));
         td(fmt(c.base_ms, 4));
         td(fmt(c.cur_ms, 4));
-        td(c.change ? fmt(*c.change * 100, 2) + "%" : reports::kDash);
-        td(c.noise ? fmt(*c.noise * 100, 2) + "%" : reports::kDash);
-        td(fmt(c.p, 4));
-        td(fmt(c.q, 4));
-        verdict(c.time_verdict);
+        auto percent = [&](std::optional<double> v) { td(v ? fmt(*v * 100, 2) + "%" : reports::kDash); };
+        const TimeVerdict& t = c.time;
+        percent(t.change);
+        td(intervalText(t));
+        percent(t.detectable);
+        percent(t.noise);
+        td(fmt(t.p, 4));
+        td(fmt(t.q, 4));
+        verdict(t.verdict);
         td(fmt(c.psnr.delta, 3));
         verdict(c.psnr.verdict);
         td(fmt(c.ssim.delta, 4));
         verdict(c.ssim.verdict);
         td(c.eci.delta ? fmt(*c.eci.delta * 100, 2) + "%" : reports::kDash);
         verdict(c.eci.verdict);
-        h << "<td class=l>" << esc(c.note) << "</td></tr>\n";
+        h << "<td class=l>" << esc(noteOf(c)) << "</td></tr>\n";
     }
     h << "</table>\n</body></html>\n";
     return h.str();
@@ -229,9 +237,9 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
                  double threshold, double eci_threshold) {
     bool regression = false, unknown = false, matched = false;
     for (const auto& c : cells) {
-        regression |= c.time_verdict == "SLOWER" || c.psnr.verdict == "WORSE" || c.ssim.verdict == "WORSE" ||
+        regression |= c.time.verdict == "SLOWER" || c.psnr.verdict == "WORSE" || c.ssim.verdict == "WORSE" ||
                       c.eci.verdict == "WORSE";
-        unknown |= c.time_verdict == "UNKNOWN";
+        unknown |= c.time.verdict == "UNKNOWN";
         matched |= c.base && c.cur;
     }
     int code = regression ? kCompareRegression : unknown && o.strict ? kCompareInconclusive : kCompareSame;
@@ -240,6 +248,9 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
     reports::CsvTable csv(kCsvColumns);
     for (const auto& c : cells) {
         const Side& s = sideOf(c);
+        const TimeVerdict& t = c.time;
+        const auto& ci = t.interval;
+        const bool bounded = ci && ci->bounded();
         csv.addRow({{"scene", s.scene},
                     {"path", s.path},
                     {"pipeline", s.pipeline},
@@ -250,11 +261,17 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
                     {"current_reps", int(c.cur_reps.size())},
                     {"baseline_gpu_ms", num(c.base_ms)},
                     {"current_gpu_ms", num(c.cur_ms)},
-                    {"time_change_pct", num(pct(c.change))},
-                    {"noise_cv_pct", num(pct(c.noise))},
-                    {"p_value", num(c.p)},
-                    {"q_value", num(c.q)},
-                    {"time_verdict", c.time_verdict},
+                    {"time_change_pct", num(pct(t.change))},
+                    {"hl_change_pct", num(pct(ci ? std::optional(ci->estimate) : std::nullopt))},
+                    {"change_low_pct", num(pct(bounded ? std::optional(ci->low) : std::nullopt))},
+                    {"change_high_pct", num(pct(bounded ? std::optional(ci->high) : std::nullopt))},
+                    {"interval_confidence_pct", num(pct(bounded ? std::optional(ci->confidence) : std::nullopt))},
+                    {"detectable_change_pct", num(pct(t.detectable))},
+                    {"reps_to_settle", t.reps_needed ? std::to_string(*t.reps_needed) : std::string()},
+                    {"noise_cv_pct", num(pct(t.noise))},
+                    {"p_value", num(t.p)},
+                    {"q_value", num(t.q)},
+                    {"time_verdict", t.verdict},
                     {"baseline_psnr_db", num(c.psnr.base)},
                     {"current_psnr_db", num(c.psnr.cur)},
                     {"psnr_delta_db", num(c.psnr.delta)},
@@ -267,7 +284,7 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
                     {"current_eci", num(c.eci.cur)},
                     {"eci_change_pct", num(pct(c.eci.delta))},
                     {"eci_verdict", c.eci.verdict},
-                    {"note", c.note}});
+                    {"note", noteOf(c)}});
     }
     fs::path out = o.current_dir;
     reports::writeTextAtomically(out / "compare.csv", csv.str());
@@ -276,8 +293,8 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
 
     if (!matched)
         std::fprintf(stderr, "cbrbench: compare: no cell matches (scene, path, pipeline, resolution or settings differ)\n");
-    std::printf("%-10s %6s %10s %10s %8s %7s %7s %-8s %-7s %-7s %-7s\n", "variant", "reps", "base_ms", "cur_ms",
-                "change", "noise", "q", "time", "psnr", "ssim", "eci");
+    std::printf("%-10s %6s %10s %10s %8s %-22s %7s %7s %-8s %-7s %-7s %-7s\n", "variant", "reps", "base_ms", "cur_ms",
+                "change", "interval", "noise", "q", "time", "psnr", "ssim", "eci");
     for (const auto& c : cells) {
         auto p2 = [](std::optional<double> v) {
             char b[32];
@@ -292,11 +309,13 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
             return std::string(b);
         };
         std::string reps = std::to_string(c.base_reps.size()) + "/" + std::to_string(c.cur_reps.size());
-        std::printf("%-10s %6s %10s %10s %8s %7s %7s %-8s %-7s %-7s %-7s%s%s\n", c.variant.c_str(), reps.c_str(),
-                    f(c.base_ms, "%.4f").c_str(), f(c.cur_ms, "%.4f").c_str(), p2(c.change).c_str(),
-                    f(pct(c.noise), "%.1f%%").c_str(), f(c.q, "%.3f").c_str(), c.time_verdict.c_str(),
-                    c.psnr.verdict.c_str(), c.ssim.verdict.c_str(), c.eci.verdict.c_str(), c.note.empty() ? "" : "  ",
-                    c.note.c_str());
+        const TimeVerdict& t = c.time;
+        const std::string note = noteOf(c);
+        std::printf("%-10s %6s %10s %10s %8s %-22s %7s %7s %-8s %-7s %-7s %-7s%s%s\n", c.variant.c_str(), reps.c_str(),
+                    f(c.base_ms, "%.4f").c_str(), f(c.cur_ms, "%.4f").c_str(), p2(t.change).c_str(),
+                    intervalText(t).c_str(), f(pct(t.noise), "%.1f%%").c_str(), f(t.q, "%.3f").c_str(),
+                    t.verdict.c_str(), c.psnr.verdict.c_str(), c.ssim.verdict.c_str(), c.eci.verdict.c_str(),
+                    note.empty() ? "" : "  ", note.c_str());
     }
     std::printf("compare: %s (exit %d); %s, %s\n", outcome.c_str(), code, (out / "compare.csv").c_str(),
                 (out / "compare.html").c_str());
@@ -359,11 +378,6 @@ int runCompare(const CompareOptions& o) {
             cell.cur_reps = repetitionMedians(c->data, v);
             if (!cell.base_reps.empty()) cell.base_ms = median(cell.base_reps);
             if (!cell.cur_reps.empty()) cell.cur_ms = median(cell.cur_reps);
-            if (cell.base_ms && cell.cur_ms && *cell.base_ms > 0) cell.change = *cell.cur_ms / *cell.base_ms - 1.0;
-            if (cell.base_reps.size() >= 2 && cell.cur_reps.size() >= 2)
-                cell.noise = std::max(coefficientOfVariation(cell.base_reps), coefficientOfVariation(cell.cur_reps));
-            if (cell.base_reps.size() >= 3 && cell.cur_reps.size() >= 3)
-                cell.p = mannWhitneyTwoSided(cell.cur_reps, cell.base_reps);
             auto quality = [&](Cell::Quality& q, const char* column) {
                 q.base = reports::summaryNum(b->data, v, column);
                 q.cur = reports::summaryNum(c->data, v, column);
@@ -378,30 +392,13 @@ int runCompare(const CompareOptions& o) {
         }
     }
 
-    // Benjamini-Hochberg over every cell that got a p-value.
-    std::vector<double> ps;
-    for (const auto& c : cells)
-        if (c.p) ps.push_back(*c.p);
-    auto qs = benjaminiHochberg(ps);
-    size_t qi = 0;
-    for (auto& c : cells) {
-        if (c.p) c.q = qs[qi++];
-        if (!c.base || !c.cur) continue;
-        size_t nb = c.base_reps.size(), nc = c.cur_reps.size();
-        if (nb < 3 || nc < 3) {
-            c.note = "fewer than 3 repetitions (" + std::to_string(nb) + " vs " + std::to_string(nc) + ")";
-        } else if (c.noise && *c.noise > threshold) {
-            c.note = "noise above threshold: more repetitions needed";
-        } else if (mannWhitneyMinP(int(nb), int(nc)) >= o.alpha) {
-            c.note = "too few repetitions to reach alpha";
-        } else {
-            double change = c.change.value_or(0), noise = c.noise.value_or(0);
-            bool significant = c.q && *c.q < o.alpha;
-            if (significant && std::abs(change) > threshold && std::abs(change) > noise)
-                c.time_verdict = change > 0 ? "SLOWER" : "FASTER";
-            else c.time_verdict = "SAME";
-        }
-    }
+    // Time verdicts of the matched cells, judged together (Benjamini-Hochberg across them).
+    std::vector<TimeSamples> samples;
+    std::vector<Cell*> matched;
+    for (auto& c : cells)
+        if (c.base && c.cur) samples.push_back({c.base_reps, c.cur_reps}), matched.push_back(&c);
+    auto verdicts = judgeTimes(samples, {threshold, o.alpha});
+    for (size_t i = 0; i < matched.size(); ++i) matched[i]->time = verdicts[i];
     return writeCompare(o, base, cur, cells, threshold, eci_threshold);
 }
 

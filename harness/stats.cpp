@@ -2,6 +2,7 @@
 #include "harness/stats.h"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -139,6 +140,102 @@ std::vector<double> benjaminiHochberg(const std::vector<double>& p) {
         q[order[i]] = std::min(1.0, running);
     }
     return q;
+}
+
+const std::vector<double>& mannWhitneyNullCdf(int nx, int ny) {
+    static std::map<std::pair<int, int>, std::vector<double>> cache;
+    if (nx < 1 || ny < 1) throw std::invalid_argument("Mann-Whitney distribution needs at least one value per side");
+    auto [it, fresh] = cache.try_emplace({nx, ny});
+    std::vector<double>& cdf = it->second;
+    if (!fresh) return cdf;
+    const int n = nx + ny, top = nx * ny;
+    cdf.assign(size_t(top) + 1, 0.0);
+    if (n <= 120) {
+        // ways[k][w]: subsets of k of the ranks 1..item with rank sum w; U = W - nx(nx+1)/2.
+        const int max_sum = n * (n + 1) / 2;
+        std::vector<std::vector<double>> ways(size_t(nx) + 1, std::vector<double>(size_t(max_sum) + 1, 0.0));
+        ways[0][0] = 1;
+        for (int rank = 1; rank <= n; ++rank)
+            for (int k = std::min(nx, rank); k >= 1; --k)
+                for (int w = max_sum; w >= rank; --w) ways[size_t(k)][size_t(w)] += ways[size_t(k - 1)][size_t(w - rank)];
+        const int offset = nx * (nx + 1) / 2;
+        double total = 0;
+        for (int u = 0; u <= top; ++u) total += ways[size_t(nx)][size_t(u + offset)];
+        double running = 0;
+        for (int u = 0; u <= top; ++u) {
+            running += ways[size_t(nx)][size_t(u + offset)];
+            cdf[size_t(u)] = std::min(1.0, running / total);
+        }
+    } else {
+        const double mu = double(top) / 2.0, sd = std::sqrt(double(nx) * double(ny) * double(n + 1) / 12.0);
+        for (int u = 0; u <= top; ++u) cdf[size_t(u)] = 1.0 - normalTail((double(u) + 0.5 - mu) / sd);
+    }
+    cdf[size_t(top)] = 1.0;
+    return cdf;
+}
+
+namespace {
+
+// The sorted pairwise differences log c_i - log b_j.
+std::vector<double> logDifferences(const std::vector<double>& baseline, const std::vector<double>& current) {
+    if (baseline.empty() || current.empty()) throw std::invalid_argument("a change needs values on both sides");
+    std::vector<double> d;
+    d.reserve(baseline.size() * current.size());
+    for (double c : current)
+        for (double b : baseline) {
+            if (!(c > 0 && b > 0 && std::isfinite(c) && std::isfinite(b)))
+                throw std::invalid_argument("a change on the log scale needs positive finite values");
+            d.push_back(std::log(c) - std::log(b));
+        }
+    std::sort(d.begin(), d.end());
+    return d;
+}
+
+// P(U >= u) under the null, for a count u that may be a half (ties count one half):
+// rounded down, so a tie never makes the evidence look stronger.
+double upperTail(const std::vector<double>& cdf, double u) {
+    long k = long(std::floor(u));
+    if (k <= 0) return 1.0;
+    if (size_t(k) >= cdf.size()) return 0.0;
+    return 1.0 - cdf[size_t(k - 1)];
+}
+
+double countAbove(const std::vector<double>& d, double at) {
+    auto lo = std::lower_bound(d.begin(), d.end(), at), hi = std::upper_bound(d.begin(), d.end(), at);
+    return double(d.end() - hi) + 0.5 * double(hi - lo);
+}
+
+}  // namespace
+
+ChangeInterval changeInterval(const std::vector<double>& baseline, const std::vector<double>& current,
+                              double confidence) {
+    const auto d = logDifferences(baseline, current);
+    const auto& cdf = mannWhitneyNullCdf(int(current.size()), int(baseline.size()));
+    ChangeInterval out;
+    out.estimate = std::expm1(median(d));
+    const double tail = (1.0 - confidence) / 2.0;
+    // k: the largest with P(U <= k - 1) <= tail, found on the (symmetric) lower tail.
+    size_t k = 0;
+    while (k < cdf.size() && cdf[k] <= tail + 1e-12) ++k;
+    if (k == 0) return out;  // even complete separation is not that unlikely
+    const size_t n = d.size();
+    k = std::min(k, (n + 1) / 2);
+    out.low = std::expm1(d[k - 1]);
+    out.high = std::expm1(d[n - k]);
+    out.confidence = 1.0 - 2.0 * cdf[k - 1];
+    return out;
+}
+
+double changeAboveP(const std::vector<double>& baseline, const std::vector<double>& current, double change) {
+    const auto d = logDifferences(baseline, current);
+    const auto& cdf = mannWhitneyNullCdf(int(current.size()), int(baseline.size()));
+    return upperTail(cdf, countAbove(d, std::log1p(change)));
+}
+
+double changeBelowP(const std::vector<double>& baseline, const std::vector<double>& current, double change) {
+    const auto d = logDifferences(baseline, current);
+    const auto& cdf = mannWhitneyNullCdf(int(current.size()), int(baseline.size()));
+    return upperTail(cdf, double(d.size()) - countAbove(d, std::log1p(change)));
 }
 
 }  // namespace cbr::harness
