@@ -112,20 +112,6 @@ std::string deviceText(const RunData& d) {
            jsonString(d.run, "/device/driver_version");
 }
 
-std::vector<double> repetitionMedians(const RunData& d, const std::string& variant) {
-    std::map<double, std::vector<double>> by_rep;
-    const auto& f = d.frames;
-    for (size_t r = 0; r < f.rows.size(); ++r) {
-        if (f.text(r, "variant") != variant || f.text(r, "status") != "ok") continue;
-        auto ms = f.num(r, "gpu_ms");
-        auto rep = f.num(r, "repeat");
-        if (ms && rep && std::isfinite(*ms)) by_rep[*rep].push_back(*ms);
-    }
-    std::vector<double> out;
-    for (auto& [rep, v] : by_rep) out.push_back(median(v));
-    return out;
-}
-
 // Higher is better for PSNR and SSIM (absolute threshold), lower for ECI (relative).
 void judgeQuality(Cell::Quality& q, bool higher_better, double threshold, bool relative) {
     if (!q.base || !q.cur) return;
@@ -323,6 +309,20 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
 }
 
 }  // namespace
+
+std::vector<double> repetitionMedians(const reports::RunData& d, const std::string& variant, int max_repeats) {
+    std::map<double, std::vector<double>> by_rep;
+    const auto& f = d.frames;
+    for (size_t r = 0; r < f.rows.size(); ++r) {
+        if (f.text(r, "variant") != variant || f.text(r, "status") != "ok") continue;
+        auto ms = f.num(r, "gpu_ms");
+        auto rep = f.num(r, "repeat");
+        if (ms && rep && std::isfinite(*ms) && *rep < max_repeats) by_rep[*rep].push_back(*ms);
+    }
+    std::vector<double> out;
+    for (auto& [rep, v] : by_rep) out.push_back(median(v));
+    return out;
+}
 
 int runCompare(const CompareOptions& o) {
     double threshold = 0, eci_threshold = 0;

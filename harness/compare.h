@@ -1,7 +1,11 @@
 // `cbrbench compare`: regression verdicts between two run directories (method/timing.md).
 #pragma once
 
+#include <climits>
 #include <string>
+#include <vector>
+
+#include "reports/report_data.h"
 
 namespace cbr::harness {
 
@@ -25,5 +29,10 @@ inline constexpr int kCompareBadInput = 3;
 // every input parsed), prints a short table. Returns one of the kCompare* codes; bad
 // input prints one line on stderr and writes nothing.
 int runCompare(const CompareOptions& o);
+
+// A cell's samples: the median gpu_ms of each repetition (frames.csv rows with status ok)
+// of `variant`, repetitions 0 .. max_repeats - 1 (a run's first repetitions are what a
+// shorter run would have measured: calibrate judges several counts from one run).
+std::vector<double> repetitionMedians(const reports::RunData& d, const std::string& variant, int max_repeats = INT_MAX);
 
 }  // namespace cbr::harness

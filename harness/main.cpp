@@ -14,6 +14,7 @@
 #include "reports/report.h"
 #include "reports/sweep.h"
 #include "metrics/metrics.h"
+#include "harness/calibrate.h"
 #include "harness/compare.h"
 #include "harness/interrupt.h"
 #include "harness/matrix.h"
@@ -134,6 +135,20 @@ int main(int argc, char** argv) {
     compare->add_option("--ssim-threshold", cmp.ssim, "SSIM change that counts")->capture_default_str();
     compare->add_option("--eci-threshold", cmp.eci, "relative ECI change that counts")->capture_default_str();
     compare->add_flag("--strict", cmp.strict, "UNKNOWN cells give exit code 2");
+    cbr::harness::RunOptions o;
+    std::string variant_list;
+    auto* calibrate = app.add_subcommand("calibrate", "false-alarm and detection rates of compare's time verdicts on "
+                                                       "this device: A/A pairs and injected slowdowns (calibrate.csv)");
+    cbr::harness::CalibrateOptions cal;
+    addRunOptions(calibrate, cal.run, variant_list);
+    calibrate->add_option("--pairs", cal.pairs, "A/A pairs (two runs of the same settings)")->capture_default_str();
+    calibrate->add_option("--slow-pairs", cal.slow_pairs, "pairs per injected slowdown")->capture_default_str();
+    calibrate->add_option("--slowdown", cal.slowdowns, "PASS=PCT[,PCT...]: slowdowns injected with --debug-slowdown "
+                                                       "(empty: A/A only)")->capture_default_str();
+    calibrate->add_option("--repeats", cal.repeats, "repetition counts judged, each >= 3 (runs use the largest)")
+        ->capture_default_str();
+    calibrate->add_option("--threshold", cal.threshold, "compare's --threshold")->capture_default_str();
+    calibrate->add_option("--alpha", cal.alpha, "compare's --alpha")->capture_default_str();
     auto* metric_cost = app.add_subcommand("metric-cost", "benchmark: PSNR, SSIM and ECI milliseconds per frame");
     std::string cost_res = "1920x1080";
     int cost_frames = 10;
@@ -145,8 +160,6 @@ int main(int argc, char** argv) {
     score->add_option("IMAGE", score_img, "PNG to score")->required();
     score->add_option("--crop", score_crop, "score only X,Y,W,H (e.g. to leave out a border column)");
 
-    cbr::harness::RunOptions o;
-    std::string variant_list;
     addRunOptions(run, o, variant_list);
     std::string shard_flag;
     run->add_option("--shard", shard_flag,
@@ -180,10 +193,12 @@ int main(int argc, char** argv) {
     bool stress_list = false;
     stress->add_flag("--list", stress_list, "list the cases and their expectations");
     auto* sweep = app.add_subcommand("sweep", "run the variants over swept settings, interleaved in one process; write "
-                                              "sweep.csv and sweep.html (recommended CSO tolerance, quality at equal cost)");
+                                              "sweep.csv and sweep.html (recommended value per swept setting, quality at equal cost)");
     addRunOptions(sweep, o, variant_list);
     sweep->add_option("--param", o.params,
-                      "NAME=LO:HI:log|lin:N or NAME=V1,V2,...; NAME: cso-tolerance, drr-scale, shading-cost (repeatable)")
+                      "NAME=LO:HI:log|lin:N or NAME=V1,V2,... (repeatable); numeric NAME: cso-tolerance, drr-scale, "
+                      "shading-cost, cbr-lod-bias; word-valued NAME=W1,W2,...: cbr-route, cso-mode, drr-filter, and "
+                      "reference (full,ssaa: one run per value into OUT/ref=K/, as --path a,b runs one per path)")
         ->required();
 
     cbr::harness::installInterruptHandler();
@@ -217,6 +232,12 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (*compare) return cbr::harness::runCompare(cmp);
+        if (*calibrate) {
+            cal.run.variants = cbr::harness::splitList(variant_list.empty() ? std::string("full") : variant_list);
+            cal.run.argv.assign(argv, argv + argc);
+            cal.out = cal.run.out;
+            return cbr::harness::runCalibrate(cal);
+        }
         if (*score) return scoreImages(score_ref, score_img, score_crop);
         if (*report) {
             if (!std::filesystem::is_directory(report_dir))

@@ -42,6 +42,8 @@ struct RunOptions {
     std::optional<double> near, far;     // every keyframe's clip planes, after placement
     std::vector<std::string> params;  // `cbrbench sweep --param` specs (empty: a plain run)
     bool sweep = false;               // write sweep.csv and sweep.html besides the run's files
+    std::string shown_out;            // where the output ends up, if not --out (an outer sweep's temporary)
+    bool quiet = false;               // calibrate's runs: no report.html, no printed summary
     std::vector<std::string> argv;    // the command line, for run.json
 };
 

@@ -1,0 +1,282 @@
+// A/A pairs and injected slowdowns through compare's verdict rule: false-alarm and
+// detection rates per repetition count, with intervals.
+#include "harness/calibrate.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/compare.h"
+#include "harness/run.h"
+#include "harness/stats.h"
+#include "harness/verdict.h"
+#include "reports/csv.h"
+#include "reports/output_dir.h"
+#include "reports/report_data.h"
+
+namespace cbr::harness {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Slowdown {
+    std::string pass;
+    double pct = 0;
+    std::string spec() const { return pass + "=" + reports::Cell(pct).text(); }
+};
+
+struct Plan {
+    CalibrateOptions o;
+    std::vector<Slowdown> slowdowns;
+    std::vector<int> repeats;  // ascending
+    VerdictRule rule;
+    fs::path out;
+};
+
+int parseCount(const std::string& text, const std::string& what) {
+    size_t used = 0;
+    int v = 0;
+    try {
+        v = std::stoi(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (text.empty() || used != text.size() || v < 1)
+        throw std::invalid_argument("calibrate: " + what + " '" + text + "': expected a positive integer");
+    return v;
+}
+
+double parsePercent(const std::string& text, const std::string& what) {
+    std::string t = text;
+    if (!t.empty() && t.back() == '%') t.pop_back();
+    size_t used = 0;
+    double v = 0;
+    try {
+        v = std::stod(t, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (t.empty() || used != t.size() || !std::isfinite(v) || v < 0)
+        throw std::invalid_argument("calibrate: " + what + " '" + text + "': expected a non-negative percentage such as 3%");
+    return v;
+}
+
+Plan plan(const CalibrateOptions& o) {
+    Plan p;
+    p.o = o;
+    if (o.pairs < 1 || o.slow_pairs < 0)
+        throw std::invalid_argument("calibrate: --pairs must be >= 1 and --slow-pairs >= 0");
+    for (const auto& r : splitList(o.repeats)) p.repeats.push_back(parseCount(r, "--repeats"));
+    std::sort(p.repeats.begin(), p.repeats.end());
+    p.repeats.erase(std::unique(p.repeats.begin(), p.repeats.end()), p.repeats.end());
+    if (p.repeats.empty() || p.repeats.front() < 3)
+        throw std::invalid_argument("calibrate: --repeats '" + o.repeats + "': expected counts >= 3 (a verdict needs 3)");
+    size_t eq = o.slowdowns.find('=');
+    if (!o.slowdowns.empty()) {
+        if (eq == std::string::npos || eq == 0)
+            throw std::invalid_argument("calibrate: --slowdown '" + o.slowdowns + "': expected PASS=PCT[,PCT...], e.g. opaque=3,10");
+        for (const auto& pct : splitList(o.slowdowns.substr(eq + 1))) {
+            double v = parsePercent(pct, "--slowdown");
+            if (!(v > 0)) throw std::invalid_argument("calibrate: --slowdown " + pct + ": expected a percentage > 0");
+            p.slowdowns.push_back({o.slowdowns.substr(0, eq), v});
+        }
+    }
+    p.rule.threshold = parsePercent(o.threshold, "--threshold") / 100.0;
+    p.rule.alpha = o.alpha;
+    if (!(o.alpha > 0 && o.alpha < 1)) throw std::invalid_argument("calibrate: --alpha: expected 0 < alpha < 1");
+    const auto& r = o.run;
+    p.out = o.out.empty() ? fs::path("out") / ("calibrate-" + specStem(r.scene) + "-" + specStem(r.path) + "-" +
+                                                timestampForName())
+                          : fs::path(o.out);
+    if (fs::exists(p.out)) throw std::invalid_argument("--out " + p.out.string() + ": already exists; expected a new directory");
+    // The runs' own checks (scene, path, settings, and the slowdown's pass) before any output.
+    RunOptions check = r;
+    check.repeat = p.repeats.back();
+    check.out = (p.out / "check").string();
+    if (!p.slowdowns.empty()) check.debug_slowdown = p.slowdowns.front().spec();
+    checkRunOptions(check);
+    return p;
+}
+
+// Wilson score interval for k of n at 95%.
+std::pair<double, double> wilson(int k, int n) {
+    if (n == 0) return {0, 1};
+    const double z = 1.959963984540054, ph = double(k) / n, z2n = z * z / n;
+    double centre = (ph + z2n / 2) / (1 + z2n);
+    double half = z / (1 + z2n) * std::sqrt(ph * (1 - ph) / n + z2n / (4.0 * n));
+    return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
+struct PairVerdicts {
+    std::string kind;  // aa or the slowdown's spec
+    int pair = 0;
+    int repeats = 0;
+    std::vector<std::string> variants;
+    std::vector<TimeVerdict> verdicts;
+    bool slower() const {  // compare's exit 1 from time alone (the images are the same)
+        for (const auto& v : verdicts)
+            if (v.verdict == "SLOWER") return true;
+        return false;
+    }
+};
+
+PairVerdicts judgePair(const reports::RunData& base, const reports::RunData& cur, const std::string& kind, int pair,
+                       int repeats, const VerdictRule& rule) {
+    PairVerdicts out{kind, pair, repeats, base.variants, {}};
+    std::vector<TimeSamples> cells;
+    for (const auto& v : base.variants) cells.push_back({repetitionMedians(base, v, repeats), repetitionMedians(cur, v, repeats)});
+    out.verdicts = judgeTimes(cells, rule);
+    return out;
+}
+
+reports::RunData runOnce(const Plan& p, const std::string& name, const std::string& slowdown) {
+    RunOptions r = p.o.run;
+    r.repeat = p.repeats.back();
+    r.debug_slowdown = slowdown;
+    r.quiet = true;
+    r.sweep = false;
+    r.out = (p.out / "runs" / name).string();
+    std::printf("calibrate: %s%s\n", name.c_str(), slowdown.empty() ? "" : (" (" + slowdown + ")").c_str());
+    std::fflush(stdout);
+    int code = runBenchmark(r);
+    if (code != 0) throw std::runtime_error("calibrate: run " + name + " exited " + std::to_string(code));
+    return reports::loadRun(p.out / "runs" / name);
+}
+
+// A slowdown of a pass no variant runs would measure nothing: refused after the first run
+// (the output directory is removed with the exception).
+void checkSlowdownPasses(const Plan& p, const reports::RunData& base) {
+    std::set<std::string> ran;
+    if (const auto* variants = reports::jsonAt(base.run, "/variants"); variants && variants->is_array())
+        for (const auto& v : *variants)
+            if (v.contains("passes") && v["passes"].is_array())
+                for (const auto& pass : v["passes"])
+                    if (pass.contains("name") && pass["name"].is_string()) ran.insert(pass["name"].get<std::string>());
+    for (const auto& s : p.slowdowns)
+        if (!ran.count(s.pass)) {
+            std::string names;
+            for (const auto& n : ran) names += (names.empty() ? "" : ", ") + n;
+            throw std::invalid_argument("calibrate: --slowdown " + s.spec() + ": no variant runs a pass '" + s.pass +
+                                        "'; passes of these variants: " + names);
+        }
+}
+
+const std::vector<std::string> kRateColumns = {
+    "kind", "injected_pct", "repeats", "pairs", "exit1_pairs", "rate", "rate_low", "rate_high",
+    "median_change_pct", "median_detectable_pct", "median_noise_cv_pct", "unknown_cells", "same_cells"};
+const std::vector<std::string> kPairColumns = {"kind", "injected_pct", "pair", "repeats", "variant", "verdict",
+                                               "change_pct", "hl_change_pct", "change_low_pct", "change_high_pct",
+                                               "noise_cv_pct", "q_value"};
+
+}  // namespace
+
+int runCalibrate(const CalibrateOptions& options) {
+    const Plan p = plan(options);
+    const auto start = std::chrono::steady_clock::now();
+    reports::OutputDir out(p.out);
+    fs::create_directories(out.path() / "runs");
+    Plan in_temp = p;
+    in_temp.out = out.path();
+
+    // kind -> (repeats -> verdicts of every pair)
+    std::map<std::string, std::map<int, std::vector<PairVerdicts>>> judged;
+    std::map<std::string, double> injected = {{"aa", 0.0}};
+    std::string device;
+    const int pairs = std::max(p.o.pairs, p.slowdowns.empty() ? 0 : p.o.slow_pairs);
+    for (int i = 0; i < pairs; ++i) {
+        char id[16];
+        std::snprintf(id, sizeof id, "%03d", i);
+        auto base = runOnce(in_temp, std::string("base-") + id, "");
+        if (i == 0) checkSlowdownPasses(p, base);
+        if (device.empty())
+            if (const auto* name = reports::jsonAt(base.run, "/device/name"); name && name->is_string()) device = *name;
+        auto judgeAll = [&](const reports::RunData& cur, const std::string& kind) {
+            for (int r : p.repeats) judged[kind][r].push_back(judgePair(base, cur, kind, i, r, p.rule));
+        };
+        if (i < p.o.pairs) judgeAll(runOnce(in_temp, std::string("aa-") + id, ""), "aa");
+        if (i < p.o.slow_pairs)
+            for (const auto& s : p.slowdowns) {
+                injected[s.spec()] = s.pct;
+                judgeAll(runOnce(in_temp, "slow-" + s.pass + "-" + reports::Cell(s.pct).text() + "-" + id, s.spec()), s.spec());
+            }
+    }
+
+    reports::CsvTable rates(kRateColumns), pair_rows(kPairColumns);
+    std::string variants;
+    for (const auto& v : judged.begin()->second.begin()->second.front().variants) variants += (variants.empty() ? "" : ",") + v;
+    std::printf("calibrate on %s: threshold %s, alpha %g, %s %s %s, %d frames, variants %s\n", device.c_str(),
+                p.o.threshold.c_str(), p.rule.alpha, p.o.run.resolution.c_str(), p.o.run.scene.c_str(),
+                p.o.run.path.c_str(), p.o.run.frames, variants.c_str());
+    std::printf("%-14s %7s %6s %7s %20s %10s %10s %8s\n", "kind", "repeats", "pairs", "exit 1", "rate [95% Wilson]",
+                "change", "detectable", "noise");
+    for (const auto& [kind, by_reps] : judged)
+        for (const auto& [reps, list] : by_reps) {
+            int exit1 = 0, unknown = 0, same = 0;
+            std::vector<double> changes, detectable, noise;
+            for (const auto& pv : list) {
+                exit1 += pv.slower();
+                for (size_t v = 0; v < pv.verdicts.size(); ++v) {
+                    const auto& t = pv.verdicts[v];
+                    unknown += t.verdict == "UNKNOWN";
+                    same += t.verdict == "SAME";
+                    if (t.interval) changes.push_back(t.interval->estimate);
+                    if (t.detectable) detectable.push_back(*t.detectable);
+                    if (t.noise) noise.push_back(*t.noise);
+                    auto opt = [](std::optional<double> x) { return x ? reports::Cell(*x * 100) : reports::Cell(); };
+                    const auto& ci = t.interval;
+                    bool b = ci && ci->bounded();
+                    pair_rows.addRow({{"kind", kind}, {"injected_pct", injected[kind]}, {"pair", pv.pair},
+                                      {"repeats", reps}, {"variant", pv.variants[v]}, {"verdict", t.verdict},
+                                      {"change_pct", opt(t.change)},
+                                      {"hl_change_pct", opt(ci ? std::optional(ci->estimate) : std::nullopt)},
+                                      {"change_low_pct", opt(b ? std::optional(ci->low) : std::nullopt)},
+                                      {"change_high_pct", opt(b ? std::optional(ci->high) : std::nullopt)},
+                                      {"noise_cv_pct", opt(t.noise)},
+                                      {"q_value", t.q ? reports::Cell(*t.q) : reports::Cell()}});
+                }
+            }
+            const int n = int(list.size());
+            auto [lo, hi] = wilson(exit1, n);
+            double med_change = changes.empty() ? NAN : median(changes), med_det = detectable.empty() ? NAN : median(detectable);
+            rates.addRow({{"kind", kind}, {"injected_pct", injected[kind]}, {"repeats", reps},
+                          {"pairs", n}, {"exit1_pairs", exit1}, {"rate", double(exit1) / n}, {"rate_low", lo},
+                          {"rate_high", hi}, {"median_change_pct", changes.empty() ? reports::Cell() : reports::Cell(med_change * 100)},
+                          {"median_detectable_pct", detectable.empty() ? reports::Cell() : reports::Cell(med_det * 100)},
+                          {"unknown_cells", unknown}, {"same_cells", same},
+                          {"median_noise_cv_pct", noise.empty() ? reports::Cell() : reports::Cell(median(noise) * 100)}});
+            char rate[64];
+            std::snprintf(rate, sizeof rate, "%.2f [%.2f, %.2f]", double(exit1) / n, lo, hi);
+            std::printf("%-14s %7d %6d %7d %20s %9.1f%% %9.1f%% %7.1f%%\n", kind == "aa" ? "A/A" : kind.c_str(), reps, n,
+                        exit1, rate, med_change * 100, med_det * 100, noise.empty() ? NAN : median(noise) * 100);
+        }
+    reports::writeTextAtomically(out.path() / "calibrate.csv", rates.str());
+    reports::writeTextAtomically(out.path() / "calibrate_pairs.csv", pair_rows.str());
+    nlohmann::json j;
+    j["command"] = "calibrate";
+    j["argv"] = p.o.run.argv;
+    j["device"] = device;
+    j["threshold"] = p.rule.threshold;
+    j["alpha"] = p.rule.alpha;
+    j["repeats"] = p.repeats;
+    j["pairs"] = p.o.pairs;
+    j["slow_pairs"] = p.o.slow_pairs;
+    j["slowdowns"] = p.o.slowdowns;
+    j["rule"] = kTimeRule;
+    j["rate_interval"] = "Wilson score, 95%";
+    j["exit1"] = "a pair exits 1 when any of its cells is SLOWER (the images are equal, so quality never fails it)";
+    j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    reports::writeTextAtomically(out.path() / "calibrate.json", j.dump(2) + "\n");
+    out.commit();
+    std::printf("calibrate: %s (rates), %s (every verdict); run directories under %s\n",
+                (p.out / "calibrate.csv").c_str(), (p.out / "calibrate_pairs.csv").c_str(), (p.out / "runs").c_str());
+    return 0;
+}
+
+}  // namespace cbr::harness
