@@ -124,7 +124,8 @@ std::string isoNow() {
 
 bool isMatrix(const RunOptions& o) {
     for (const auto* s : {&o.scene, &o.path, &o.pipeline, &o.resolution})
-        if (s->find(',') != std::string::npos) return true;
+        // A sweep's paths are its outer dimension (one sweep per path, run.cpp), not jobs.
+        if (s->find(',') != std::string::npos && !(o.sweep && s == &o.path)) return true;
     return false;
 }
 

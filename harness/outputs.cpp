@@ -456,7 +456,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
             v["variant"] = vr.variant;
             v["speedup_baseline"] = vr.baseline;
             json set = json::object();
-            for (const auto& [key, value] : vr.settings) set[key] = value;
+            for (const auto& st : vr.settings) set[st.name] = st.word.empty() ? json(st.value) : json(st.word);
             v["settings"] = set;
         }
         for (const auto& [key, value] : vr.description) v[key] = value;
@@ -502,6 +502,32 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
     reports::writeTextAtomically(dir / "run.json", j.dump(2) + "\n");
 }
 
+namespace {
+
+// The settings of the variants they change: the swept value, else the run's own.
+void sweepSettingCells(std::map<std::string, Cell>& row, const VariantRun& vr, const RunContext& rc) {
+    const render::Settings& s = rc.settings;
+    if (vr.variant == "drr") {
+        row["drr_scale"] = s.drr_scale;
+        row["drr_filter"] = rc.options.drr_filter;
+    }
+    if (vr.variant == "cbr-cso") {
+        row["cso_tolerance"] = s.cso_tolerance;
+        row["cso_mode"] = rc.options.cso_mode;
+    }
+    if (vr.variant == "cbr-aso" || vr.variant == "cbr-cso") {
+        row["cbr_lod_bias"] = rc.options.cbr_lod_bias;
+        row["cbr_route"] = rc.options.cbr_route;
+    }
+    for (const auto& st : vr.settings) {
+        std::string column = st.name;
+        std::replace(column.begin(), column.end(), '-', '_');
+        row[column] = st.word.empty() ? Cell(st.value) : Cell(st.word);
+    }
+}
+
+}  // namespace
+
 void writeSweepCsv(const std::filesystem::path& dir, const RunContext& rc) {
     const RunResults& r = rc.results;
     auto summaries = summarize(r);
@@ -511,19 +537,15 @@ void writeSweepCsv(const std::filesystem::path& dir, const RunContext& rc) {
         const auto& sm = summaries[i];
         std::map<std::string, Cell> row{{"config", vr.name},
                                         {"variant", vr.variant},
+                                        {"path", sweepPathName(rc.options.path)},
+                                        {"reference", rc.options.reference},
                                         {"pipeline", rc.settings.deferred ? "deferred" : "forward"},
                                         {"shading_cost", rc.settings.shading_cost},
                                         {"status", sm.status},
                                         {"note", sm.note},
                                         {"frames", sm.frames},
                                         {"repeats", r.repeats}};
-        if (vr.variant == "drr") row["drr_scale"] = rc.settings.drr_scale;
-        if (vr.variant == "cbr-cso") row["cso_tolerance"] = rc.settings.cso_tolerance;
-        for (const auto& [name, value] : vr.settings) {
-            if (name == "shading-cost") row["shading_cost"] = value;
-            if (name == "drr-scale") row["drr_scale"] = value;
-            if (name == "cso-tolerance") row["cso_tolerance"] = value;
-        }
+        sweepSettingCells(row, vr, rc);
         if (sm.frames > 0) {
             row["gpu_ms_median"] = sm.gpu_ms_median;
             row["gpu_ms_ci_low"] = optional(sm.gpu_ms_ci_low);

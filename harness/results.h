@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/sweep.h"
 #include "renderer/settings.h"
 
 namespace cbr::harness {
@@ -53,7 +54,7 @@ struct VariantRun {
     std::string name;      // the configuration's label: the variant's name, or e.g. cbr-cso_tol=0.01 in a sweep
     std::string variant;   // the variant in the table (full, drr, cbr-aso, cbr-cso)
     std::string baseline = "full";  // the full configuration its speedups are paired with
-    std::vector<std::pair<std::string, double>> settings;  // swept settings (sweep only)
+    std::vector<SweepSetting> settings;  // swept settings (sweep only)
     std::optional<AlignmentCheck> alignment;
     std::string status = "ok";
     std::string note;

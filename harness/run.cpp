@@ -179,7 +179,12 @@ Prepared prepare(const RunOptions& o) {
         Prepared::Config c{&variants::findVariant(sc.variant), p.settings, sc};
         for (const auto& s : sc.settings) {
             if (s.name == "cso-tolerance") c.settings.cso_tolerance = s.value;
+            if (s.name == "cso-mode") c.settings.cso_absolute = s.word == "absolute";
             if (s.name == "drr-scale") c.settings.drr_scale = s.value;
+            if (s.name == "drr-filter")
+                c.settings.drr_filter = s.word == "bilinear" ? render::DrrFilter::Bilinear : render::DrrFilter::CatmullRom;
+            if (s.name == "cbr-lod-bias") c.settings.cbr_lod_bias = float(s.value);
+            if (s.name == "cbr-route") c.settings.cbr_route = s.word;
             if (s.name == "shading-cost") c.settings.shading_cost = int(s.value);
         }
         p.configs.push_back(std::move(c));
@@ -249,7 +254,56 @@ AlignmentCheck checkAlignment(const std::vector<uint8_t>& variant, const std::ve
 
 void checkRunOptions(const RunOptions& options) { (void)prepare(options); }
 
+namespace {
+
+// The sweeps of the outer dimensions (harness/sweep.h) one after another into OUT/<dir>/,
+// then OUT/sweep.csv (every row, naming its path and reference) and the index sweep.html.
+// Every sweep's input is checked before the first renders; OUT appears whole or not at all.
+int runOuterSweeps(const RunOptions& options, const std::vector<OuterSweep>& outer) {
+    auto sub = [&](const OuterSweep& o, const std::filesystem::path& out) {
+        RunOptions s = options;
+        s.path = o.path;
+        s.reference = o.reference;
+        s.params = o.params;
+        s.out = out.string();
+        return s;
+    };
+    if (outer.size() == 1) return runBenchmark(sub(outer[0], options.out));
+    std::string names;
+    for (const auto& path : splitList(options.path)) names += (names.empty() ? "" : "+") + sweepPathName(path);
+    const std::filesystem::path final_out =
+        options.out.empty() ? std::filesystem::path("out") / ("sweep-" + specStem(options.scene) + "-" + names + "-" +
+                                                              timestampForName())
+                            : std::filesystem::path(options.out);
+    for (const auto& o : outer) checkRunOptions(sub(o, final_out / o.dir));
+    reports::OutputDir out(final_out);
+    std::vector<std::string> dirs;
+    for (const auto& o : outer) {
+        RunOptions s = sub(o, out.path() / o.dir);
+        s.shown_out = (final_out / o.dir).string();
+        std::cout << "sweep " << dirs.size() + 1 << "/" << outer.size() << ": " << o.dir << "\n";
+        if (int rc = runBenchmark(s); rc != 0) return rc;
+        dirs.push_back(o.dir);
+    }
+    reports::combineSweeps(out.path(), dirs);
+    reports::writeSweepReport(out.path());
+    out.commit();
+    std::cout << "\nsweep over " << outer.size() << " runs:\n";
+    for (const auto& line : reports::sweepSummaryLines(reports::loadSweep(out.finalPath()).points))
+        std::cout << line << "\n";
+    std::cout << "sweep: " << (out.finalPath() / "sweep.csv").string() << ", "
+              << (out.finalPath() / "sweep.html").string() << " (each run in its own subdirectory)\n";
+    return 0;
+}
+
+}  // namespace
+
 int runBenchmark(const RunOptions& options) {
+    // A sweep over paths or reference kinds (harness/sweep.h): one run per combination.
+    if (options.sweep) {
+        auto outer = outerSweeps(options.path, options.reference, options.params);
+        if (outer.size() > 1 || outer[0].params.size() != options.params.size()) return runOuterSweeps(options, outer);
+    }
     auto wall_start = std::chrono::steady_clock::now();
     Prepared p = prepare(options);
     vk::Context ctx({options.validate, options.device});
@@ -288,7 +342,7 @@ int runBenchmark(const RunOptions& options) {
         vr.name = c.sweep.label;
         vr.variant = c.sweep.variant;
         vr.baseline = c.sweep.baseline;
-        for (const auto& s : c.sweep.settings) vr.settings.push_back({s.name, s.value});
+        vr.settings = c.sweep.settings;
         results.variants.push_back(std::move(vr));
     }
 
@@ -483,20 +537,19 @@ int runBenchmark(const RunOptions& options) {
 
     RunContext rc{options, p.settings, p.scene, p.path, p.times, p.poses, ctx, results};
     writeOutputs(out.path(), rc);
-    reports::writeReport(out.path());
+    if (!options.quiet) reports::writeReport(out.path());
     if (options.sweep) {
         writeSweepCsv(out.path(), rc);
         reports::writeSweepReport(out.path());
     }
     out.commit();
-    printSummary(std::cout, out.finalPath(), rc);
+    // An outer sweep's run is renamed once more with the others: name where it will be.
+    const std::filesystem::path shown = options.shown_out.empty() ? out.finalPath() : std::filesystem::path(options.shown_out);
+    if (!options.quiet) printSummary(std::cout, shown, rc);
     if (options.sweep) {
-        const auto sweep = reports::loadSweep(out.finalPath());
-        const auto choices = reports::recommendTolerance(sweep.points);
-        for (const auto& c : choices) std::cout << "recommended " << c.sentence << "\n";
-        for (const auto& e : reports::equalCost(sweep.points, choices)) std::cout << "equal cost: " << e.verdict << "\n";
-        std::cout << "sweep: " << (out.finalPath() / "sweep.csv").string() << ", "
-                  << (out.finalPath() / "sweep.html").string() << "\n";
+        for (const auto& line : reports::sweepSummaryLines(reports::loadSweep(out.finalPath()).points))
+            std::cout << line << "\n";
+        std::cout << "sweep: " << (shown / "sweep.csv").string() << ", " << (shown / "sweep.html").string() << "\n";
     }
     return 0;
 }

@@ -1,5 +1,5 @@
-// The sweep's analysis and page: sweep.csv in, a recommended CSO tolerance, quality at
-// equal cost, and sweep.html out.
+// The sweep's analysis and page: sweep.csv in, a recommended value per swept setting, quality
+// at equal cost, and sweep.html out (or, for a sweep over outer dimensions, an index page).
 #pragma once
 
 #include <filesystem>
@@ -17,8 +17,11 @@ struct SweepPoint {
     std::string config;   // label, e.g. cbr-cso_tol=0.01_cost=4
     std::string variant;  // full, drr, cbr-aso, cbr-cso
     std::string status;   // ok, failed, skipped
+    std::string path, reference;  // the outer dimensions: one sweep per (path, reference)
     double shading_cost = 1;
-    std::optional<double> drr_scale, cso_tolerance;
+    // The settings of the variants they change (empty on the others' rows).
+    std::optional<double> drr_scale, cso_tolerance, cbr_lod_bias;
+    std::string drr_filter, cso_mode, cbr_route;
     std::optional<double> gpu_ms, gpu_ms_low, gpu_ms_high, speedup, speedup_low, speedup_high;
     std::optional<double> psnr_db, ssim, eci, flicker;
     std::map<std::string, double> classes;  // px_* mean shares
@@ -26,6 +29,23 @@ struct SweepPoint {
 
 // The columns of sweep.csv, in order (the pixel classes follow).
 const std::vector<std::string>& sweepColumns();
+
+// The settings a sweep can vary per configuration (shading cost is the workload, not a
+// choice), with their sweep.csv column and SweepPoint field (a number or a word).
+struct SweepSettingField {
+    const char* name;    // as --param names it, e.g. cbr-lod-bias
+    const char* column;  // e.g. cbr_lod_bias
+    std::optional<double> SweepPoint::*number;  // null for word-valued settings
+    std::string SweepPoint::*word;              // null for numeric settings
+};
+const std::vector<SweepSettingField>& sweepSettingFields();
+const SweepSettingField* findSweepSetting(const std::string& name);
+// The point's value of a setting as labels write it; nullopt where the setting does not apply.
+std::optional<std::string> settingText(const SweepPoint& p, const SweepSettingField& f);
+
+// The subdirectory of one (path, reference) sweep of a sweep over outer dimensions:
+// "orbit", "ref=ssaa" or "orbit_ref=ssaa", naming only the dimensions that vary.
+std::string sweepGroupDir(const std::string& path, const std::string& reference, bool paths_vary, bool references_vary);
 
 // Reads DIR/sweep.csv (and the run's run.json for the page's title). Throws
 // std::invalid_argument naming the file and line for anything missing or malformed.
@@ -48,6 +68,28 @@ struct ToleranceChoice {
 inline constexpr double kCostMargin = 0.05;
 std::vector<ToleranceChoice> recommendTolerance(const std::vector<SweepPoint>& points, double margin = kCostMargin);
 
+// The recommended value of every swept setting (two or more values among the rows it
+// applies to), per path, reference and shading cost; kSettingRule says how, in one sentence.
+struct SettingChoice {
+    std::string path, reference;
+    double shading_cost = 1;
+    std::string setting;   // e.g. cbr-lod-bias
+    std::string value;     // as labels write it, e.g. -1
+    std::string config;    // the configuration it was read from
+    std::string sentence;  // one sentence why
+};
+extern const char* const kSettingRule;
+std::vector<SettingChoice> recommendSettings(const std::vector<SweepPoint>& points, double margin = kCostMargin);
+
+// One line per setting whose recommended value differs between paths at the same
+// reference and shading cost, e.g. "the recommended cbr-lod-bias differs between paths: -1
+// on flythrough, -0.5 on orbit; ...". Empty when they agree or only one path ran.
+std::vector<std::string> pathDisagreements(const std::vector<SettingChoice>& choices);
+
+// What `cbrbench sweep` prints after the runs: the recommendations, the rule, the
+// disagreements (as "warning: ..."), and quality at equal cost. One line each.
+std::vector<std::string> sweepSummaryLines(const std::vector<SweepPoint>& points);
+
 // Quality at equal cost: the drr scale whose GPU time matches a checkerboard
 // configuration's, interpolated linearly in time between the two swept scales around it.
 struct EqualCost {
@@ -62,7 +104,14 @@ struct EqualCost {
 std::vector<EqualCost> equalCost(const std::vector<SweepPoint>& points, const std::vector<ToleranceChoice>& choices);
 
 // Builds sweep.html from DIR (same offline rules as report.html) and writes it atomically.
+// A directory whose sweep.csv holds more than one (path, reference) sweep gets the index
+// page: the recommendations side by side, disagreements between paths, links to each.
 std::string sweepHtml(const std::filesystem::path& dir);
+std::string sweepIndexHtml(const std::filesystem::path& dir);
 void writeSweepReport(const std::filesystem::path& dir);
+
+// DIR/sweep.csv from DIR/<sub>/sweep.csv for each of `subdirs`, rows in that order (the
+// columns are the same: each row names its path and reference). Written atomically.
+void combineSweeps(const std::filesystem::path& dir, const std::vector<std::string>& subdirs);
 
 }  // namespace cbr::reports

@@ -1,6 +1,7 @@
 // libFuzzer target: option strings -> parseResolution (checked against the grammar it
 // promises), and the resolution plus a name -> builtinPath, whose poses must be finite.
 // Input: "<resolution>\n<path name>"; without a newline, all of it is the resolution.
+#include <cmath>
 #include <string>
 
 #include "camera_paths/path.h"
@@ -67,8 +68,11 @@ void checkBuiltin(const std::string& name, uint32_t width, uint32_t height) {
 void checkSweepParam(const std::string& spec) {
     cbr::fuzz::expectOnlyInvalidArgument("parseSweepParam", [&] {
         const cbr::harness::SweepParam p = cbr::harness::parseSweepParam(spec);
-        require(!p.values.empty() && p.values.size() <= 64, "parseSweepParam gave " + std::to_string(p.values.size()) + " values");
-        for (double v : p.values) require(cbr::fuzz::finite(v) && v > 0, "parseSweepParam gave a value out of range for " + spec);
+        require(p.size() >= 1 && p.size() <= 64, "parseSweepParam gave " + std::to_string(p.size()) + " values");
+        require(p.values.empty() || p.words.empty(), "parseSweepParam gave numbers and words for " + spec);
+        for (double v : p.values)
+            require(cbr::fuzz::finite(v) && (p.name == "cbr-lod-bias" ? std::abs(v) <= 16 : v > 0),
+                    "parseSweepParam gave a value out of range for " + spec);
         const auto configs = cbr::harness::expandSweep({p}, {});
         for (size_t i = 0; i < configs.size(); ++i)
             for (size_t j = 0; j < i; ++j) require(configs[i].label != configs[j].label, "duplicate label " + configs[i].label);

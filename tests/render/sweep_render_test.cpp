@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include "tests/render/bench_runner.h"
@@ -62,6 +63,9 @@ TEST(Sweep, BadParameterIsOneLineExitTwoAndNoOutput) {
     auto work = cbr::test::scratchDir("sweep-bad");
     for (std::vector<std::string> extra : {std::vector<std::string>{"--param", "cso-tolerance=0:1:log:4"},
                                            {"--param", "tolerance=1"},
+                                           {"--param", "cbr-route=msaa"},
+                                           {"--param", "cbr-lod-bias=-1,0", "--variants", "drr"},
+                                           {"--param", "cbr-lod-bias=-1,0", "--path", "orbit,orbit"},
                                            {"--param", "drr-scale=0.5,1", "--variants", "cbr-aso"}}) {
         fs::path out = work / "out";
         std::vector<std::string> args = {"sweep", "--scene", "blocks", "--res", "64x48", "--out", out.string()};
@@ -69,7 +73,70 @@ TEST(Sweep, BadParameterIsOneLineExitTwoAndNoOutput) {
         auto r = runBench(args, work);
         EXPECT_EQ(r.exit_code, 2) << extra[1];
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-        EXPECT_NE(r.err.find("--param"), std::string::npos) << r.err;
+        EXPECT_TRUE(r.err.find("--param") != std::string::npos || r.err.find("--path") != std::string::npos) << r.err;
         EXPECT_FALSE(fs::exists(out));
     }
+}
+
+TEST(Sweep, LodBiasAndRouteAreColumnsAndAnUnsupportedRouteIsSkippedRows) {
+    auto work = cbr::test::scratchDir("sweep-lod");
+    fs::path out = work / "out";
+    // msaa-jitter needs 2x MSAA, which lavapipe lacks: skipped rows on it, ok rows elsewhere.
+    auto r = runBench({"sweep", "--scene", "atrium", "--path", "flythrough", "--res", "160x90", "--frames", "4",
+                       "--repeat", "1", "--warmup", "1", "--validate", "--variants", "cbr-aso", "--param",
+                       "cbr-lod-bias=-1,0", "--param", "cbr-route=multiview,msaa-jitter", "--out", out.string()},
+                      work);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto run = readJson(out / "run.json");
+    EXPECT_EQ(run["validation"]["errors"], 0) << run["validation"]["first_messages"].dump(1);
+    EXPECT_EQ(run["validation"]["warnings"], 0) << run["validation"]["first_messages"].dump(1);
+
+    auto csv = readCsv(out / "sweep.csv");
+    ASSERT_EQ(csv.rows.size(), 5u);  // full, then lod x route
+    const std::vector<std::string> labels = {"full", "cbr-aso_lod=-1_route=multiview", "cbr-aso_lod=-1_route=msaa-jitter",
+                                             "cbr-aso_lod=0_route=multiview", "cbr-aso_lod=0_route=msaa-jitter"};
+    std::map<std::string, std::string> psnr;
+    for (size_t i = 0; i < csv.rows.size(); ++i) {
+        EXPECT_EQ(csv.at(i, "config"), labels[i]);
+        EXPECT_EQ(csv.at(i, "path"), "flythrough");
+        EXPECT_EQ(csv.at(i, "reference"), "full");
+        if (i == 0) {
+            EXPECT_EQ(csv.at(i, "cbr_lod_bias"), "");
+            continue;
+        }
+        EXPECT_EQ(csv.at(i, "cbr_lod_bias"), i < 3 ? "-1" : "0");
+        EXPECT_EQ(csv.at(i, "cbr_route"), i % 2 ? "multiview" : "msaa-jitter");
+        if (csv.at(i, "status") == "ok") psnr[csv.at(i, "cbr_route") + csv.at(i, "cbr_lod_bias")] = csv.at(i, "psnr_db");
+        else EXPECT_EQ(csv.at(i, "status"), "skipped") << csv.at(i, "note");
+    }
+    ASSERT_TRUE(psnr.count("multiview-1") && psnr.count("multiview0"));
+    EXPECT_NE(psnr["multiview-1"], psnr["multiview0"]) << "the lod bias does not change the image";
+    EXPECT_NE(r.out.find("recommended cbr-lod-bias"), std::string::npos) << r.out;
+    std::string html = cbr::test::slurp(out / "sweep.html");
+    EXPECT_NE(html.find("cbr-aso against cbr-lod-bias"), std::string::npos);
+}
+
+TEST(Sweep, CommaPathsEachSweepIntoTheirOwnDirectoryWithACombinedTable) {
+    auto work = cbr::test::scratchDir("sweep-paths");
+    fs::path out = work / "out";
+    auto r = runBench({"sweep", "--scene", "atrium", "--path", "flythrough,orbit", "--res", "96x54", "--frames", "3",
+                       "--repeat", "1", "--warmup", "1", "--validate", "--variants", "cbr-aso", "--param",
+                       "cbr-lod-bias=-1,0", "--out", out.string()},
+                      work);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* sub : {"flythrough", "orbit"}) {
+        auto run = readJson(out / sub / "run.json");
+        EXPECT_EQ(run["validation"]["errors"], 0) << run["validation"]["first_messages"].dump(1);
+        EXPECT_EQ(run["validation"]["warnings"], 0) << run["validation"]["first_messages"].dump(1);
+        EXPECT_TRUE(fs::exists(out / sub / "sweep.html"));
+        EXPECT_EQ(readCsv(out / sub / "sweep.csv").rows.size(), 3u);
+    }
+    auto csv = readCsv(out / "sweep.csv");
+    ASSERT_EQ(csv.rows.size(), 6u);
+    EXPECT_EQ(csv.at(0, "path"), "flythrough");
+    EXPECT_EQ(csv.at(5, "path"), "orbit");
+    std::string html = cbr::test::slurp(out / "sweep.html");
+    EXPECT_NE(html.find("href=\"orbit/sweep.html\""), std::string::npos);
+    EXPECT_NE(r.out.find("sweep over 2 runs"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("recommended [orbit] cbr-lod-bias"), std::string::npos) << r.out;
 }

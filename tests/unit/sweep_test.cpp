@@ -1,4 +1,4 @@
-// Sweep specs, their expansion, the tolerance recommendation and quality at equal cost.
+// Sweep specs, their expansion, outer dimensions, the recommendations and quality at equal cost.
 #include <cmath>
 #include <stdexcept>
 
@@ -8,6 +8,7 @@
 #include "reports/sweep.h"
 
 using cbr::harness::expandSweep;
+using cbr::harness::outerSweeps;
 using cbr::harness::parseSweepParam;
 using cbr::reports::SweepPoint;
 
@@ -33,7 +34,10 @@ TEST(SweepParam, BadSpecsNameTheSpecAndWhatIsAccepted) {
     for (const char* bad : {"cso-tolerance", "=1", "tolerance=1,2", "cso-tolerance=0:1:log:4", "cso-tolerance=1:0.1:lin:3",
                             "drr-scale=0.5,1.5", "shading-cost=1.5", "shading-cost=0", "cso-tolerance=1:2:cubic:3",
                             "cso-tolerance=1:2:lin:0", "cso-tolerance=1:2:lin:65", "cso-tolerance=nan", "cso-tolerance=1,,2",
-                            "drr-scale=inf", "cso-tolerance=0.1:1:lin:2.5"}) {
+                            "drr-scale=inf", "cso-tolerance=0.1:1:lin:2.5", "cbr-route=foo", "cbr-route=",
+                            "cbr-route=multiview,,auto", "cso-mode=relative,bogus", "drr-filter=nearest",
+                            "cbr-lod-bias=17", "cbr-lod-bias=-1:1:log:3", "reference=msaa", "cbr-route=0:1:lin:2",
+                            "cbr-lod-bias=a,b"}) {
         try {
             parseSweepParam(bad);
             ADD_FAILURE() << bad << " was accepted";
@@ -141,4 +145,204 @@ TEST(SweepParam, ControlCharactersInASpecKeepTheMessageOneLine) {
         EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("\\x0a"), std::string::npos) << e.what();
     }
+}
+
+TEST(SweepParam, LodBiasTakesNegativeValuesAndLinearRangesHitZeroExactly) {
+    auto p = parseSweepParam("cbr-lod-bias=-1.5:0:lin:7");
+    ASSERT_EQ(p.values.size(), 7u);
+    EXPECT_DOUBLE_EQ(p.values.front(), -1.5);
+    EXPECT_DOUBLE_EQ(p.values[1], -1.25);
+    EXPECT_EQ(p.values.back(), 0.0);
+    auto q = parseSweepParam("cbr-lod-bias=-0.3:0.3:lin:3");
+    EXPECT_EQ(cbr::harness::formatParamValue(q.values[1]), "0");  // not 5.551e-17
+    EXPECT_EQ(cbr::harness::formatParamValue(parseSweepParam("cbr-lod-bias=-0").values[0]), "0");  // not -0
+    EXPECT_EQ(parseSweepParam("cbr-lod-bias=-1,0,-1").values, (std::vector<double>{-1, 0}));
+}
+
+TEST(SweepParam, WordValuedSettingsKeepTheirWordsInOrder) {
+    auto r = parseSweepParam("cbr-route=multiview,auto,multiview");
+    EXPECT_EQ(r.words, (std::vector<std::string>{"multiview", "auto"}));
+    EXPECT_TRUE(r.values.empty());
+    EXPECT_EQ(r.size(), 2u);
+    EXPECT_EQ(parseSweepParam("cso-mode=absolute,relative").words.size(), 2u);
+    EXPECT_EQ(parseSweepParam("drr-filter=bilinear,catmull-rom").words.size(), 2u);
+    EXPECT_EQ(parseSweepParam("reference=full,ssaa").words.size(), 2u);
+}
+
+TEST(SweepParam, AnUnknownWordNamesTheSpecAndTheAcceptedWords) {
+    try {
+        parseSweepParam("cbr-route=msaa,multiview");
+        ADD_FAILURE() << "accepted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_EQ(std::string(e.what()), "--param cbr-route=msaa,multiview: unknown cbr-route 'msaa'; expected "
+                                         "cbr-route=W1,W2,... with W one of auto, msaa-jitter, msaa-locations, "
+                                         "multiview, layers");
+    }
+}
+
+TEST(SweepExpand, LodBiasAndRouteMultiplyTheCheckerboardVariantsInTableOrder) {
+    // Given route before lod: labels still follow the table (lod, then route).
+    auto configs = expandSweep({parseSweepParam("cbr-route=multiview,auto"), parseSweepParam("cbr-lod-bias=-1,0")},
+                               {"cbr-aso", "drr"});
+    std::vector<std::string> labels;
+    for (const auto& c : configs) labels.push_back(c.label);
+    EXPECT_EQ(labels, (std::vector<std::string>{"full", "drr", "cbr-aso_lod=-1_route=multiview", "cbr-aso_lod=-1_route=auto",
+                                                "cbr-aso_lod=0_route=multiview", "cbr-aso_lod=0_route=auto"}));
+    ASSERT_EQ(configs[2].settings.size(), 2u);
+    EXPECT_EQ(configs[2].settings[0].name, "cbr-lod-bias");
+    EXPECT_EQ(configs[2].settings[0].value, -1);
+    EXPECT_EQ(configs[2].settings[1].word, "multiview");
+    for (const auto& c : configs)
+        for (char ch : c.label)
+            EXPECT_TRUE((ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || std::string(".=_-").find(ch) != std::string::npos)
+                << c.label;
+}
+
+TEST(SweepExpand, ModeAndFilterApplyToTheirOwnVariantsAndTheReferenceToNone) {
+    auto configs = expandSweep({parseSweepParam("cso-tolerance=0.1"), parseSweepParam("cso-mode=relative,absolute"),
+                                parseSweepParam("drr-filter=bilinear,catmull-rom"), parseSweepParam("reference=full,ssaa")},
+                               {});
+    std::vector<std::string> labels;
+    for (const auto& c : configs) labels.push_back(c.label);
+    EXPECT_EQ(labels, (std::vector<std::string>{"full", "drr_filter=bilinear", "drr_filter=catmull-rom", "cbr-aso",
+                                                "cbr-cso_tol=0.1_mode=relative", "cbr-cso_tol=0.1_mode=absolute"}));
+}
+
+TEST(SweepExpand, RefusesASettingNoWantedVariantUsesNamingWhichWould) {
+    try {
+        expandSweep({parseSweepParam("cbr-lod-bias=-1,0")}, {"drr"});
+        ADD_FAILURE() << "accepted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_EQ(std::string(e.what()), "--param cbr-lod-bias: no swept variant uses it; expected cbr-aso or cbr-cso in "
+                                         "--variants");
+    }
+    EXPECT_THROW(expandSweep({parseSweepParam("cso-mode=absolute")}, {"cbr-aso"}), std::invalid_argument);
+    EXPECT_THROW(expandSweep({parseSweepParam("drr-filter=bilinear")}, {"cbr-cso"}), std::invalid_argument);
+}
+
+TEST(SweepOuter, PathsAndReferencesEachGetADirectoryAndLeaveTheInnerParams) {
+    auto outer = outerSweeps("flythrough,paths/orbit.json", "full", {"cbr-lod-bias=-1,0", "reference=full,ssaa"});
+    ASSERT_EQ(outer.size(), 4u);
+    EXPECT_EQ(outer[0].dir, "flythrough_ref=full");
+    EXPECT_EQ(outer[1].dir, "flythrough_ref=ssaa");
+    EXPECT_EQ(outer[3].dir, "orbit_ref=ssaa");
+    EXPECT_EQ(outer[3].path, "paths/orbit.json");
+    EXPECT_EQ(outer[3].reference, "ssaa");
+    EXPECT_EQ(outer[3].params, (std::vector<std::string>{"cbr-lod-bias=-1,0"}));
+    auto paths_only = outerSweeps("flythrough,orbit", "ssaa", {});
+    ASSERT_EQ(paths_only.size(), 2u);
+    EXPECT_EQ(paths_only[1].dir, "orbit");
+    EXPECT_EQ(paths_only[1].reference, "ssaa");
+    auto one = outerSweeps("flythrough", "full", {"reference=ssaa"});
+    ASSERT_EQ(one.size(), 1u);
+    EXPECT_EQ(one[0].dir, "");  // a single sweep writes into --out itself
+    EXPECT_EQ(one[0].reference, "ssaa");
+    EXPECT_TRUE(one[0].params.empty());
+}
+
+TEST(SweepOuter, RefusesRepeatedPathsAndReferences) {
+    for (auto [paths, params] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+             {"orbit,orbit", {}}, {"a/orbit.json,b/orbit.json", {}}, {"orbit,", {}},
+             {"orbit", {"reference=full", "reference=ssaa"}}, {"orbit", {"reference=msaa"}}}) {
+        try {
+            outerSweeps(paths, "full", params);
+            ADD_FAILURE() << paths << " accepted";
+        } catch (const std::invalid_argument& e) {
+            std::string what = e.what();
+            EXPECT_TRUE(what.rfind("--path", 0) == 0 || what.rfind("--param", 0) == 0) << what;
+            EXPECT_NE(what.find("expected"), std::string::npos) << what;
+        }
+    }
+}
+
+namespace {
+
+SweepPoint lodPoint(const std::string& path, double lod, double ms, double psnr, double ssim = 0.9, double eci = 0.02) {
+    SweepPoint p = point("cbr-aso", ms, psnr, eci);
+    p.config = "cbr-aso_lod=" + cbr::harness::formatParamValue(lod);
+    p.path = path;
+    p.reference = "full";
+    p.ssim = ssim;
+    p.cbr_lod_bias = lod;
+    p.cbr_route = "auto";
+    return p;
+}
+
+}  // namespace
+
+TEST(SweepRecommendSettings, HighestPsnrOnTheFrontWithinTheMarginOfItsFastest) {
+    std::vector<SweepPoint> pts{lodPoint("a", -1.5, 5.0, 30.0), lodPoint("a", -1, 5.1, 30.6),
+                                lodPoint("a", -0.5, 5.6, 31.0),  // best PSNR, but 12% dearer than the fastest
+                                lodPoint("a", 0, 5.2, 30.5)};    // dominated by -1
+    auto choices = cbr::reports::recommendSettings(pts);
+    ASSERT_EQ(choices.size(), 1u);  // cbr-route has one value: not swept
+    EXPECT_EQ(choices[0].setting, "cbr-lod-bias");
+    EXPECT_EQ(choices[0].value, "-1");
+    EXPECT_EQ(choices[0].config, "cbr-aso_lod=-1");
+    EXPECT_NE(choices[0].sentence.find("the highest sequence PSNR"), std::string::npos) << choices[0].sentence;
+    EXPECT_EQ(choices[0].sentence.find('\n'), std::string::npos);
+}
+
+TEST(SweepRecommendSettings, OverlappingTimeIntervalsCountAsNotSlower) {
+    // 8% dearer by the median, but the intervals overlap: noise, not cost.
+    std::vector<SweepPoint> pts{lodPoint("a", -0.25, 5.0, 30.0), lodPoint("a", -1, 5.4, 31.0)};
+    pts[0].gpu_ms_low = 4.6, pts[0].gpu_ms_high = 5.5;
+    pts[1].gpu_ms_low = 5.3, pts[1].gpu_ms_high = 6.0;
+    EXPECT_EQ(cbr::reports::recommendSettings(pts)[0].value, "-1");
+    pts[1].gpu_ms_low = 5.6;  // measurably slower now
+    EXPECT_EQ(cbr::reports::recommendSettings(pts)[0].value, "-0.25");
+}
+
+TEST(SweepRecommendSettings, PsnrTiesGoToHigherSsimThenLowerEciThenLowerTime) {
+    std::vector<SweepPoint> ssim{lodPoint("a", -1, 5.0, 30.00, 0.90), lodPoint("a", 0, 5.1, 30.01, 0.95)};
+    EXPECT_EQ(cbr::reports::recommendSettings(ssim)[0].value, "0");
+    std::vector<SweepPoint> eci{lodPoint("a", -1, 5.0, 30.00, 0.9, 0.030), lodPoint("a", 0, 5.1, 30.01, 0.9, 0.020)};
+    EXPECT_EQ(cbr::reports::recommendSettings(eci)[0].value, "0");
+    // Routes give the same image: the faster wins.
+    std::vector<SweepPoint> routes{lodPoint("a", -1, 5.0, 30.0), lodPoint("a", -1, 4.9, 30.0)};
+    routes[0].cbr_route = "multiview", routes[1].cbr_route = "msaa-locations";
+    auto c = cbr::reports::recommendSettings(routes);
+    ASSERT_EQ(c.size(), 1u);
+    EXPECT_EQ(c[0].setting, "cbr-route");
+    EXPECT_EQ(c[0].value, "msaa-locations");
+}
+
+TEST(SweepRecommendSettings, ASettingWhoseConfigurationsAllSkippedGetsNoValue) {
+    std::vector<SweepPoint> pts{lodPoint("a", -1, 5.0, 30.0), lodPoint("a", -1, 5.0, 30.0)};
+    pts[0].cbr_route = "msaa-jitter", pts[0].status = "skipped", pts[0].gpu_ms.reset();
+    pts[1].cbr_route = "multiview";
+    auto c = cbr::reports::recommendSettings(pts);
+    ASSERT_EQ(c.size(), 1u);
+    EXPECT_EQ(c[0].value, "multiview");  // the skipped route is no candidate
+    pts[1].status = "failed", pts[1].gpu_ms.reset();
+    c = cbr::reports::recommendSettings(pts);
+    ASSERT_EQ(c.size(), 1u);
+    EXPECT_EQ(c[0].value, "");
+    EXPECT_NE(c[0].sentence.find("none of its configurations ran"), std::string::npos) << c[0].sentence;
+}
+
+TEST(SweepRecommendSettings, WarnsWhenPathsDisagree) {
+    std::vector<SweepPoint> pts{lodPoint("flythrough", -1, 5.0, 30.5), lodPoint("flythrough", 0, 5.0, 30.0),
+                                lodPoint("orbit", -1, 5.0, 28.0), lodPoint("orbit", 0, 5.0, 28.4)};
+    auto choices = cbr::reports::recommendSettings(pts);
+    ASSERT_EQ(choices.size(), 2u);
+    auto warnings = cbr::reports::pathDisagreements(choices);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_EQ(warnings[0].rfind("the recommended cbr-lod-bias differs between paths: -1 on flythrough, 0 on orbit", 0), 0u)
+        << warnings[0];
+    bool printed = false;
+    for (const auto& line : cbr::reports::sweepSummaryLines(pts))
+        printed = printed || line.rfind("warning: the recommended cbr-lod-bias differs", 0) == 0;
+    EXPECT_TRUE(printed);
+    pts[3].psnr_db = 27.0;  // orbit now agrees: -1
+    EXPECT_TRUE(cbr::reports::pathDisagreements(cbr::reports::recommendSettings(pts)).empty());
+}
+
+TEST(SweepRecommendSettings, ToleranceKeepsItsOwnRule) {
+    std::vector<SweepPoint> pts{point("cbr-aso", 6, 30, 0.02), point("cbr-cso", 6, 30.01, 0.030, 0.01),
+                                point("cbr-cso", 6, 30.00, 0.025, 0.1), point("cbr-cso", 6, 30.00, 0.025, 0.3)};
+    auto c = cbr::reports::recommendSettings(pts);
+    ASSERT_EQ(c.size(), 1u);
+    EXPECT_EQ(c[0].setting, "cso-tolerance");
+    EXPECT_EQ(c[0].value, "0.3");  // the plateau's edge, as recommendTolerance
 }

@@ -1,0 +1,35 @@
+// Helpers shared by the sweep's data, recommendation and page files (reports/sweep*.cpp).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "reports/sweep.h"
+
+namespace cbr::reports::sweep_detail {
+
+std::string fmtMs(double ms);
+std::string fmtDb(std::optional<double> v);
+
+// The shading costs of `points`, ascending.
+std::vector<double> shadingCosts(const std::vector<SweepPoint>& points);
+// The first ok configuration of a variant at a cost, with a time.
+const SweepPoint* findVariant(const std::vector<SweepPoint>& points, const std::string& variant, double cost);
+double psnrKey(const SweepPoint& p);
+// " at shading cost K" when the sweep has more than one cost, else "".
+std::string costSuffix(const std::vector<SweepPoint>& points, double cost);
+
+// The (path, reference) sweeps in `points`, in the order they first appear, with their points.
+struct Group {
+    std::string path, reference;
+    std::vector<SweepPoint> points;
+};
+std::vector<Group> groups(const std::vector<SweepPoint>& points);
+// "flythrough", "ref=ssaa" or "flythrough, ref=ssaa": the group as the page names it.
+std::string groupName(const Group& g, bool paths_vary, bool references_vary);
+bool pathsVary(const std::vector<Group>& gs);
+bool referencesVary(const std::vector<Group>& gs);
+
+}  // namespace cbr::reports::sweep_detail

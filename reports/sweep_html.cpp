@@ -1,0 +1,360 @@
+// sweep.html: the answers, the error-against-time plane, metrics against each swept
+// setting and the configurations; and the index page of a sweep over outer dimensions.
+#include "reports/sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <set>
+
+#include "reports/csv.h"
+#include "reports/html.h"
+#include "reports/report_sections.h"
+#include "reports/svg.h"
+#include "reports/sweep_detail.h"
+
+namespace cbr::reports {
+namespace {
+
+using namespace sweep_detail;
+
+std::string variantColour(const std::string& v) {
+    if (v == "full") return "#404040";
+    if (v == "drr") return "#e69f00";
+    if (v == "cbr-aso") return "#0072b2";
+    if (v == "cbr-cso") return "#009e73";
+    return "#cc79a7";
+}
+const char* kCostColours[] = {"#009e73", "#0072b2", "#d55e00", "#cc79a7", "#e69f00", "#56b4e9", "#a08c00"};
+
+std::string jsonString(const nlohmann::json& j, const char* ptr) {
+    try {
+        const auto& v = j.at(nlohmann::json::json_pointer(ptr));
+        return v.is_string() ? v.get<std::string>() : v.dump();
+    } catch (const std::exception&) {
+        return "";
+    }
+}
+
+struct Metric {
+    const char* label;
+    std::function<std::optional<double>(const SweepPoint&)> value;
+};
+std::optional<double> classShare(const SweepPoint& p, const char* cls) {
+    return p.classes.count(cls) ? std::optional<double>(p.classes.at(cls)) : std::nullopt;
+}
+const std::vector<Metric>& metrics() {
+    static const std::vector<Metric> m = {
+        {"GPU frame time, median (ms)", [](const SweepPoint& p) { return p.gpu_ms; }},
+        {"sequence PSNR (dB)", [](const SweepPoint& p) { return p.psnr_db; }},
+        {"SSIM", [](const SweepPoint& p) { return p.ssim; }},
+        {"edge crawl index ECI", [](const SweepPoint& p) { return p.eci; }}};
+    return m;
+}
+const std::vector<Metric>& classMetrics() {
+    static const std::vector<Metric> m = {
+        {"px_reused share", [](const SweepPoint& p) { return classShare(p, "px_reused"); }},
+        {"px_occluded share", [](const SweepPoint& p) { return classShare(p, "px_occluded"); }}};
+    return m;
+}
+
+// What a point shares with the others of its line in a chart against one setting: its
+// variant, the other settings that vary, its shading cost and its (path, reference) sweep.
+struct Families {
+    std::vector<const SweepSettingField*> varying;
+    bool costs_vary = false, groups_vary = false;
+    std::string of(const SweepPoint& p) const {
+        std::string key = p.variant;
+        for (const auto* f : varying) key += " " + std::string(f->name) + "=" + settingText(p, *f).value_or("-");
+        if (costs_vary) key += " cost " + fmtShort(p.shading_cost);
+        if (groups_vary) key += " [" + p.path + (p.reference.empty() ? "" : " ref=" + p.reference) + "]";
+        return key;
+    }
+};
+
+Families familiesFor(const std::vector<SweepPoint>& points, const std::string& variant, const SweepSettingField& f) {
+    Families fam;
+    fam.costs_vary = shadingCosts(points).size() > 1;
+    fam.groups_vary = groups(points).size() > 1;
+    for (const auto& other : sweepSettingFields()) {
+        std::set<std::string> values;
+        for (const auto& p : points)
+            if (p.variant == variant && &other != &f) values.insert(settingText(p, other).value_or("-"));
+        if (values.size() > 1) fam.varying.push_back(&other);
+    }
+    return fam;
+}
+
+// Charts of each metric against one numeric setting for one variant, a line per family
+// (Families); `flat` (cbr-aso beside the tolerance) is drawn as a constant line.
+std::string paramCharts(const std::vector<SweepPoint>& points, const std::string& variant, const SweepSettingField& f,
+                        const char* flat, bool with_classes) {
+    std::set<double> xs_set;
+    for (const auto& p : points)
+        if (p.variant == variant && p.*f.number) xs_set.insert(*(p.*f.number));
+    if (xs_set.size() < 2) return "";
+    std::vector<double> xs(xs_set.begin(), xs_set.end());
+    const bool log_x = xs.front() > 0 && xs.back() / xs.front() >= 20;
+    std::vector<double> x_plot;
+    for (double x : xs) x_plot.push_back(log_x ? std::log10(x) : x);
+    const Families fam = familiesFor(points, variant, f);
+    std::vector<std::string> families;
+    for (const auto& p : points)
+        if (p.variant == variant && p.*f.number) {
+            std::string family = fam.of(p);
+            if (std::find(families.begin(), families.end(), family) == families.end()) families.push_back(family);
+        }
+    std::vector<Series> legend;
+    for (size_t k = 0; k < families.size(); ++k) legend.push_back({families[k], kCostColours[k % 7], {}});
+    if (flat) legend.push_back({flat, "#888", {}});
+    std::string out = "<h3>" + esc(variant) + " against " + esc(f.name) + "</h3>" +
+                      legendHtml(legend, flat ? std::string(flat) + ": grey, flat (it has no such setting)." : "") +
+                      "<div class=\"grid2\">";
+    auto chart = [&](const Metric& m) {
+        LineChart c;
+        c.y_label = m.label;
+        c.x_label = log_x ? "log10 " + std::string(f.name) : std::string(f.name);
+        c.x = x_plot;
+        c.x_integer = false;
+        for (size_t k = 0; k < families.size(); ++k) {
+            Series s{families[k], kCostColours[k % 7], {}};
+            for (double x : xs) {
+                std::optional<double> y;
+                for (const auto& p : points)
+                    if (p.variant == variant && p.*f.number && *(p.*f.number) == x && p.status == "ok" &&
+                        fam.of(p) == families[k])
+                        y = m.value(p);
+                s.y.push_back(y);
+            }
+            c.series.push_back(s);
+        }
+        if (flat)
+            if (const auto* fp = findVariant(points, flat, shadingCosts(points).front())) {
+                Series fs{flat, "#888", {}};
+                fs.y.assign(xs.size(), m.value(*fp));
+                c.series.push_back(fs);
+            }
+        return "<div class=\"chart-block\">" + lineChartSvg(c) + "</div>";
+    };
+    for (const auto& m : metrics()) out += chart(m);
+    // Where the reconstruction's pixels come from, against the setting (checkerboard only).
+    if (with_classes)
+        for (const auto& m : classMetrics()) out += chart(m);
+    return out + "</div>";
+}
+
+// Charts against every swept numeric setting, for each variant it changes.
+std::string paramsSection(const std::vector<SweepPoint>& points) {
+    std::string html = "<section id=\"params\"><h2>Metrics against each setting</h2>";
+    for (const auto& f : sweepSettingFields()) {
+        if (!f.number) continue;
+        const bool tol = std::string(f.name) == "cso-tolerance";
+        for (const char* v : {"drr", "cbr-aso", "cbr-cso"})
+            html += paramCharts(points, v, f, tol ? "cbr-aso" : nullptr, tol);
+    }
+    if (shadingCosts(points).size() > 1) {
+        html += "<h3>GPU time against shading cost</h3><div class=\"grid2\">";
+        LineChart c;
+        c.y_label = "GPU frame time, median (ms)";
+        c.x_label = "shading cost";
+        c.x = shadingCosts(points);
+        c.x_integer = false;
+        std::vector<Series> legend;
+        for (const char* v : {"full", "drr", "cbr-aso", "cbr-cso"}) {
+            // The first configuration of each variant per cost (the swept values' first).
+            Series s{v, variantColour(v), {}};
+            for (double cost : c.x) {
+                const SweepPoint* p = findVariant(points, v, cost);
+                s.y.push_back(p ? p->gpu_ms : std::nullopt);
+            }
+            c.series.push_back(s);
+            legend.push_back({v, variantColour(v), {}});
+        }
+        html += legendHtml(legend) + "<div class=\"chart-block\">" + lineChartSvg(c) + "</div></div>";
+    }
+    return html + "</section>";
+}
+
+std::string answerSection(const std::vector<SweepPoint>& points) {
+    const auto choices = recommendTolerance(points);
+    const auto settings = recommendSettings(points);
+    const bool others = std::any_of(settings.begin(), settings.end(),
+                                    [](const SettingChoice& c) { return c.setting != "cso-tolerance"; });
+    std::string html = "<section id=\"answer\">";
+    if (choices.empty() && !others)
+        html += "<p class=\"answer\"><b>CSO tolerance:</b> no cbr-cso configuration ran, so none is recommended.</p>";
+    for (const auto& c : choices) html += "<p class=\"answer\"><b>Recommended:</b> " + esc(c.sentence) + "</p>";
+    if (!choices.empty() || !others)
+        html += "<p class=\"note\">Rule: among the cbr-cso tolerances whose median GPU time stays within " +
+                fmtShort(kCostMargin * 100) + "% of cbr-aso's at the same shading cost, those within 0.02 dB of the "
+                "best sequence PSNR; of these the lowest edge crawl index (within 1e-4); of these the loosest "
+                "tolerance: the edge of the quality plateau, before more reuse starts to cost quality.</p>";
+    bool any = false;
+    for (const auto& c : settings)
+        if (c.setting != "cso-tolerance")
+            html += "<p class=\"answer\"><b>Recommended:</b> " + esc(c.sentence) + "</p>", any = true;
+    if (any) {
+        std::string rule = kSettingRule;
+        rule[0] = char(std::toupper(static_cast<unsigned char>(rule[0])));
+        html += "<p class=\"note\">Rule for every other swept setting: " + esc(rule) + ".</p>";
+    }
+    return html + "</section>";
+}
+
+std::string equalSection(const std::vector<SweepPoint>& points) {
+    const auto equal = equalCost(points, recommendTolerance(points));
+    std::string html = "<section id=\"equal\"><h2>Quality at equal cost: checkerboard against dynamic resolution</h2>";
+    for (const auto& e : equal) html += "<p class=\"answer\">" + esc(e.verdict) + "</p>";
+    if (!equal.empty()) {
+        html += "<div class=\"scroll\"><table><tr><th>checkerboard</th><th class=\"num\">cost</th><th class=\"num\">GPU ms"
+                "</th><th class=\"num\">PSNR dB</th><th class=\"num\">SSIM</th><th class=\"num\">ECI</th><th>drr at that "
+                "cost</th><th class=\"num\">scale</th><th class=\"num\">GPU ms</th><th class=\"num\">PSNR dB</th>"
+                "<th class=\"num\">SSIM</th><th class=\"num\">ECI</th></tr>";
+        for (const auto& e : equal)
+            html += "<tr><td>" + esc(e.config) + "</td><td class=\"num\">" + fmtShort(e.shading_cost) +
+                    "</td><td class=\"num\">" + fmt(e.cbr_ms, 2) + "</td><td class=\"num\">" + fmt(e.cbr_psnr, 2) +
+                    "</td><td class=\"num\">" + fmt(e.cbr_ssim, 4) + "</td><td class=\"num\">" + fmt(e.cbr_eci, 4) +
+                    "</td><td>" + (e.matched ? "interpolated" : "nearest (no match)") + "</td><td class=\"num\">" +
+                    fmt(e.drr_scale, 3) + "</td><td class=\"num\">" + fmt(e.drr_ms, 2) + "</td><td class=\"num\">" +
+                    fmt(e.drr_psnr, 2) + "</td><td class=\"num\">" + fmt(e.drr_ssim, 4) + "</td><td class=\"num\">" +
+                    fmt(e.drr_eci, 4) + "</td></tr>";
+        html += "</table></div>";
+    }
+    return html + "<p class=\"note\">The drr scale whose median GPU time equals the checkerboard configuration's, with "
+                  "its quality, interpolated linearly in time between the two swept drr scales around it (the drr times "
+                  "sorted). Without a drr scale on both sides the nearest is shown and no equal-cost claim is made.</p>"
+                  "</section>";
+}
+
+std::string planeSection(const std::vector<SweepPoint>& points) {
+    std::string html = "<section id=\"plane\"><h2>Error against run time</h2>";
+    for (double cost : shadingCosts(points)) {
+        ScatterChart sc;
+        sc.title = "PSNR against GPU time" + costSuffix(points, cost);
+        sc.width = 560;
+        sc.label_front_only = true;
+        sc.lane_above = 50.0;  // drr at scale 1 is nearly the reference: on the lane, not squashing the rest
+        sc.x_label = "GPU frame time, median (ms)";
+        sc.y_label = "sequence PSNR (dB)";
+        sc.y_higher_is_better = true;
+        for (const auto& p : points)
+            if (p.shading_cost == cost && p.status == "ok" && p.gpu_ms)
+                sc.points.push_back({p.config, variantColour(p.variant), *p.gpu_ms, p.psnr_db});
+        html += "<h3>Sequence PSNR against median GPU time" + esc(costSuffix(points, cost)) + "</h3>" +
+                legendHtml({{"full", variantColour("full"), {}}, {"drr", variantColour("drr"), {}},
+                            {"cbr-aso", variantColour("cbr-aso"), {}}, {"cbr-cso", variantColour("cbr-cso"), {}}}) +
+                "<div class=\"chart-block\" style=\"max-width:900px\">" + scatterChartSvg(sc) + "</div>";
+        std::string list;
+        for (size_t i : paretoFront(sc.points, true)) list += (list.empty() ? "" : ", ") + sc.points[i].label;
+        html += "<p class=\"note\">Pareto front (no other configuration is both faster and better): " + esc(list) +
+                ". Only the front is labelled (every point has a tooltip). Full's PSNR is infinite (it is the "
+                "reference); it and anything above 50 dB sit on the lane above the plot.</p>";
+    }
+    return html + "</section>";
+}
+
+std::string tableSection(const std::vector<SweepPoint>& points) {
+    std::string html = "<section id=\"table\"><h2>Configurations</h2><div class=\"scroll\"><table><tr>";
+    const char* head[] = {"config", "status", "GPU ms", "95% CI", "speedup", "PSNR dB", "SSIM", "ECI", "reused %",
+                          "occluded %"};
+    for (const char* h : head) html += std::string("<th") + (h == head[0] || h == head[1] ? ">" : " class=\"num\">") + h + "</th>";
+    html += "</tr>";
+    for (const auto& p : points) {
+        html += "<tr><td class=\"variant\" style=\"color:" + variantColour(p.variant) + "\">" + esc(p.config) +
+                "</td><td>" + esc(p.status) + "</td><td class=\"num\">" + fmt(p.gpu_ms, 2) + "</td><td class=\"num\">" +
+                (p.gpu_ms_low ? fmt(p.gpu_ms_low, 2) + "\u2013" + fmt(p.gpu_ms_high, 2) : std::string(kDash)) +
+                "</td><td class=\"num\">" + fmt(p.speedup, 2) + "</td><td class=\"num\">" + fmt(p.psnr_db, 2) +
+                "</td><td class=\"num\">" + fmt(p.ssim, 4) + "</td><td class=\"num\">" + fmt(p.eci, 4) +
+                "</td><td class=\"num\">" + fmtPct(classShare(p, "px_reused"), 1) + "</td><td class=\"num\">" +
+                fmtPct(classShare(p, "px_occluded"), 1) + "</td></tr>";
+    }
+    return html + "</table></div><p class=\"note\">From sweep.csv. GPU ms: median over all frames and repetitions; the "
+                  "interval is a 95% bootstrap interval of the median over repetitions. Speedup: paired per frame against "
+                  "the full configuration at the same shading cost. A configuration whose route or feature the device "
+                  "lacks is `skipped`, with the reason in sweep.csv's note.</p></section>";
+}
+
+std::string runTitle(const nlohmann::json& run) {
+    std::string where = jsonString(run, "/scene/name") + " / " + jsonString(run, "/path/name") + " at " +
+                        jsonString(run, "/settings/width") + "\u00d7" + jsonString(run, "/settings/height");
+    std::string pipeline;
+    for (const auto& v : run.value("variants", nlohmann::json::array()))
+        if (v.is_object() && v.contains("pipeline") && v["pipeline"].is_string()) pipeline = v["pipeline"];
+    return "cbrbench sweep: " + where + (pipeline.empty() ? "" : " (" + pipeline + ")");
+}
+
+}  // namespace
+
+std::string sweepHtml(const std::filesystem::path& dir) {
+    const SweepData d = loadSweep(dir);
+    const std::string title = runTitle(d.run);
+    std::string html = pageStart(title);
+    html += "<h1>" + esc(title) + "</h1><div class=\"sub\">" + esc(jsonString(d.run, "/device/name")) + " \u00b7 " +
+            esc(jsonString(d.run, "/date")) + " \u00b7 commit " + esc(jsonString(d.run, "/tool/commit")) + " \u00b7 " +
+            std::to_string(d.points.size()) + " configurations, interleaved in one process \u00b7 <a href=\"report.html\">"
+            "the run's full report</a></div>";
+    if (auto note = jsonString(d.run, "/device/timing_note"); !note.empty())
+        html += "<p class=\"callout\"><b>Timing note:</b> " + esc(note) + "</p>";
+    html += "<nav><a href=\"#answer\">answer</a><a href=\"#equal\">equal cost</a><a href=\"#plane\">error vs time</a>"
+            "<a href=\"#params\">settings</a><a href=\"#table\">configurations</a></nav>";
+    html += answerSection(d.points) + equalSection(d.points) + planeSection(d.points) + paramsSection(d.points) +
+            tableSection(d.points);
+    return html + pageEnd();
+}
+
+std::string sweepIndexHtml(const std::filesystem::path& dir) {
+    const SweepData d = loadSweep(dir);
+    const auto gs = groups(d.points);
+    const bool paths_vary = pathsVary(gs), refs_vary = referencesVary(gs);
+    nlohmann::json first_run;
+    if (!gs.empty()) first_run = loadSweep(dir / sweepGroupDir(gs[0].path, gs[0].reference, paths_vary, refs_vary)).run;
+    std::string title = "cbrbench sweep: " + jsonString(first_run, "/scene/name") + " over " + std::to_string(gs.size()) +
+                        " sweeps (" + (paths_vary ? "paths" : "") + (paths_vary && refs_vary ? " \u00d7 " : "") +
+                        (refs_vary ? "reference kinds" : "") + ")";
+    std::string html = pageStart(title) + "<h1>" + esc(title) + "</h1><div class=\"sub\">" +
+                       esc(jsonString(first_run, "/device/name")) + " \u00b7 " + esc(jsonString(first_run, "/date")) +
+                       " \u00b7 each sweep a run of its own (its reference rendered once), one after another</div>";
+    const auto choices = recommendSettings(d.points);
+    for (const auto& w : pathDisagreements(choices))
+        html += "<p class=\"callout\"><b>Warning:</b> " + esc(w) + ".</p>";
+    html += "<section id=\"answer\"><h2>Recommended values</h2><div class=\"scroll\"><table><tr><th>setting</th>"
+            "<th class=\"num\">cost</th>";
+    for (const auto& g : gs) html += "<th>" + esc(groupName(g, paths_vary, refs_vary)) + "</th>";
+    html += "</tr>";
+    std::vector<std::pair<std::string, double>> rows;
+    for (const auto& c : choices)
+        if (std::find(rows.begin(), rows.end(), std::make_pair(c.setting, c.shading_cost)) == rows.end())
+            rows.emplace_back(c.setting, c.shading_cost);
+    for (const auto& [setting, cost] : rows) {
+        html += "<tr><td>" + esc(setting) + "</td><td class=\"num\">" + fmtShort(cost) + "</td>";
+        for (const auto& g : gs) {
+            std::string cell(kDash), why;
+            for (const auto& c : choices)
+                if (c.setting == setting && c.shading_cost == cost && c.path == g.path && c.reference == g.reference)
+                    cell = c.value.empty() ? std::string(kDash) : c.value, why = c.sentence;
+            html += "<td title=\"" + esc(why) + "\">" + esc(cell) + "</td>";
+        }
+        html += "</tr>";
+    }
+    std::string rule = kSettingRule;
+    rule[0] = char(std::toupper(static_cast<unsigned char>(rule[0])));
+    html += "</table></div><p class=\"note\">Rule: " + esc(rule) + ". Hover a value for its sentence.</p>";
+    for (const auto& g : gs) {
+        const std::string sub = sweepGroupDir(g.path, g.reference, paths_vary, refs_vary);
+        html += "<h3>" + esc(groupName(g, paths_vary, refs_vary)) + ": <a href=\"" + esc(sub) + "/sweep.html\">sweep.html"
+                "</a> \u00b7 <a href=\"" + esc(sub) + "/report.html\">report.html</a></h3>";
+        for (const auto& c : choices)
+            if (c.path == g.path && c.reference == g.reference) html += "<p class=\"answer\">" + esc(c.sentence) + "</p>";
+    }
+    html += "</section>" + paramsSection(d.points);
+    html += "<p class=\"note\">From sweep.csv: every sweep's rows, each naming its path and reference.</p>";
+    return html + pageEnd();
+}
+
+void writeSweepReport(const std::filesystem::path& dir) {
+    const bool index = groups(loadSweep(dir).points).size() > 1;
+    const std::string html = index ? sweepIndexHtml(dir) : sweepHtml(dir);
+    writeTextAtomically(dir / "sweep.html", html);
+}
+
+}  // namespace cbr::reports
