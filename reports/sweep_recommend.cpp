@@ -20,8 +20,27 @@ std::optional<double> lerp(std::optional<double> a, std::optional<double> b, dou
     return *a + f * (*b - *a);
 }
 
-}  // namespace
+// cbr-aso's and cbr-cso's best-PSNR configuration at one cost (cbr-cso's at the
+// recommended tolerance): one each, whatever else was swept.
+std::vector<const SweepPoint*> checkerboardConfigs(const std::vector<SweepPoint>& points, double cost,
+                                                   const std::vector<ToleranceChoice>& choices) {
+    std::vector<const SweepPoint*> cbr;
+    for (const char* v : {"cbr-aso", "cbr-cso"}) {
+        const SweepPoint* best = nullptr;
+        for (const auto& p : points) {
+            if (p.variant != v || p.shading_cost != cost || p.status != "ok" || !p.gpu_ms) continue;
+            bool at_choice = std::string(v) == "cbr-aso" || choices.empty();
+            for (const auto& ch : choices)
+                at_choice = at_choice || (ch.shading_cost == cost && ch.tolerance && p.cso_tolerance &&
+                                          fmtShort(*p.cso_tolerance) == fmtShort(*ch.tolerance));
+            if (at_choice && (!best || psnrKey(p) > psnrKey(*best))) best = &p;
+        }
+        if (best) cbr.push_back(best);
+    }
+    return cbr;
+}
 
+}  // namespace
 
 std::vector<ToleranceChoice> recommendTolerance(const std::vector<SweepPoint>& points, double margin) {
     std::vector<ToleranceChoice> out;
@@ -90,22 +109,7 @@ std::vector<EqualCost> equalCost(const std::vector<SweepPoint>& points, const st
         for (const auto& p : points)
             if (p.variant == "drr" && p.shading_cost == cost && p.status == "ok" && p.gpu_ms) drr.push_back(&p);
         std::sort(drr.begin(), drr.end(), [](auto* a, auto* b) { return *a->gpu_ms < *b->gpu_ms; });
-        // cbr-aso's and cbr-cso's best-PSNR configuration (cbr-cso's at the recommended
-        // tolerance): one each, whatever else was swept.
-        std::vector<const SweepPoint*> cbr;
-        for (const char* v : {"cbr-aso", "cbr-cso"}) {
-            const SweepPoint* best = nullptr;
-            for (const auto& p : points) {
-                if (p.variant != v || p.shading_cost != cost || p.status != "ok" || !p.gpu_ms) continue;
-                bool at_choice = std::string(v) == "cbr-aso" || choices.empty();
-                for (const auto& ch : choices)
-                    at_choice = at_choice || (ch.shading_cost == cost && ch.tolerance && p.cso_tolerance &&
-                                              fmtShort(*p.cso_tolerance) == fmtShort(*ch.tolerance));
-                if (at_choice && (!best || psnrKey(p) > psnrKey(*best))) best = &p;
-            }
-            if (best) cbr.push_back(best);
-        }
-        for (const auto* c : cbr) {
+        for (const auto* c : checkerboardConfigs(points, cost, choices)) {
             EqualCost e;
             e.config = c->config;
             e.shading_cost = cost;

@@ -346,3 +346,12 @@ TEST(SweepRecommendSettings, ToleranceKeepsItsOwnRule) {
     EXPECT_EQ(c[0].setting, "cso-tolerance");
     EXPECT_EQ(c[0].value, "0.3");  // the plateau's edge, as recommendTolerance
 }
+
+TEST(SweepEqualCost, OneConfigurationPerCheckerboardVariantItsBestPsnr) {
+    std::vector<SweepPoint> pts{point("drr", 4, 26, 0.05, {}, 0.5), point("drr", 8, 30, 0.03, {}, 1.0),
+                                lodPoint("a", 0, 6, 28), lodPoint("a", -1, 6, 29)};
+    for (auto& p : pts) p.path = "a";
+    auto eq = cbr::reports::equalCost(pts, {});
+    ASSERT_EQ(eq.size(), 1u);
+    EXPECT_EQ(eq[0].config, "cbr-aso_lod=-1");
+}
