@@ -13,7 +13,7 @@ const char* const kTimeRule =
     "baseline) with the exact Mann-Whitney interval. Three one-sided exact tests per cell: the change lies above "
     "+threshold (SLOWER), below -threshold (FASTER), inside +-threshold (SAME, an equivalence test: both one-sided "
     "tests). The smallest of the three p-values is the cell's, Benjamini-Hochberg adjusted across the cells (q); "
-    "the conclusion holds when q < alpha, else UNKNOWN. The interval printed is at confidence 1 - 2 alpha R / m (R "
+    "the conclusion holds when q <= alpha (as Benjamini-Hochberg rejects), else UNKNOWN. The interval printed is at confidence 1 - 2 alpha R / m (R "
     "cells concluded of m; 90% for one cell at alpha 0.05): a SLOWER or FASTER cell's interval lies wholly beyond "
     "the threshold, a SAME cell's inside it, an UNKNOWN cell's straddles a boundary. The interval narrows as "
     "repetitions grow, so any real change beyond the threshold becomes a verdict with enough of them: an UNKNOWN "
@@ -113,7 +113,7 @@ std::vector<TimeVerdict> judgeTimes(const std::vector<TimeSamples>& cells, const
     for (size_t k = 0; k < tested.size(); ++k) {
         auto& v = out[tested[k]];
         v.q = qs[k];
-        if (qs[k] < rule.alpha) v.verdict = tests[tested[k]].conclusion, ++concluded;
+        if (qs[k] <= rule.alpha) v.verdict = tests[tested[k]].conclusion, ++concluded;
     }
     // Benjamini-Yekutieli: intervals of the selected cells at 1 - 2 alpha R / m.
     const double tail = rule.alpha * double(std::max<size_t>(concluded, 1)) / double(std::max<size_t>(tested.size(), 1));

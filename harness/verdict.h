@@ -37,7 +37,7 @@ struct TimeVerdict {
 // Judges every cell together: per cell the one-sided exact Mann-Whitney tests of "above
 // +threshold" (SLOWER), "below -threshold" (FASTER) and "inside +-threshold" (SAME, both
 // one-sided tests), the smallest p of the three as the cell's p, Benjamini-Hochberg over
-// the cells. A cell gets its conclusion when q < alpha, else UNKNOWN. The interval shown is
+// the cells. A cell gets its conclusion when q <= alpha, else UNKNOWN. The interval shown is
 // at confidence 1 - 2 alpha R / m (R cells concluded of m; Benjamini-Yekutieli's false
 // coverage rate), so a concluded cell's interval lies wholly beyond (SLOWER, FASTER) or
 // inside (SAME) the threshold, and an UNKNOWN cell's straddles a boundary.
