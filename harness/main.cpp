@@ -282,8 +282,8 @@ int main(int argc, char** argv) {
         if (*run && (cbr::harness::isMatrix(o) || !shard_flag.empty()))
             return cbr::harness::runMatrix(o, cbr::harness::resolveShard(shard_flag));
         if (cbr::harness::isMatrix(o))
-            throw std::invalid_argument("sweep: comma lists in --scene, --path, --pipeline or --res; expected one of "
-                                        "each (a sweep is one job: its configurations are compared with each other)");
+            throw std::invalid_argument("sweep: comma lists in --scene, --pipeline or --res; expected one of "
+                                        "each (a sweep is one job: its configurations are compared with each other; --path may list several)");
         return cbr::harness::runBenchmark(o);
     } catch (const cbr::harness::Interrupted&) {
         std::fprintf(stderr, "cbrbench: interrupted: stopped before the next frame; this run's partial output was "
