@@ -96,6 +96,7 @@ Plan plan(const CalibrateOptions& o) {
                                                 timestampForName())
                           : fs::path(o.out);
     if (fs::exists(p.out)) throw std::invalid_argument("--out " + p.out.string() + ": already exists; expected a new directory");
+    if (!o.from.empty()) return p;  // judged from existing runs: nothing renders
     // The runs' own checks (scene, path, settings, and the slowdown's pass) before any output.
     RunOptions check = r;
     check.repeat = p.repeats.back();
@@ -175,48 +176,101 @@ const std::vector<std::string> kPairColumns = {"kind", "injected_pct", "pair", "
                                                "change_pct", "hl_change_pct", "change_low_pct", "change_high_pct",
                                                "noise_cv_pct", "q_value"};
 
-}  // namespace
-
-int runCalibrate(const CalibrateOptions& options) {
-    const Plan p = plan(options);
-    const auto start = std::chrono::steady_clock::now();
-    reports::OutputDir out(p.out);
-    fs::create_directories(out.path() / "runs");
-    Plan in_temp = p;
-    in_temp.out = out.path();
-
-    // kind -> (repeats -> verdicts of every pair)
-    std::map<std::string, std::map<int, std::vector<PairVerdicts>>> judged;
+// Every pair judged at every count: kind -> repeats -> pairs.
+struct Judged {
+    std::map<std::string, std::map<int, std::vector<PairVerdicts>>> by_kind;
     std::map<std::string, double> injected = {{"aa", 0.0}};
-    std::string device;
+    std::string device, setup;  // from the first baseline's run.json
+    void add(const reports::RunData& base, const reports::RunData& cur, const std::string& kind, int pair,
+             const Plan& p) {
+        for (int r : p.repeats) by_kind[kind][r].push_back(judgePair(base, cur, kind, pair, r, p.rule));
+    }
+    void describe(const reports::RunData& base) {
+        auto text = [&](const char* ptr) {
+            const auto* j = reports::jsonAt(base.run, ptr);
+            return !j ? std::string() : j->is_string() ? j->get<std::string>() : j->dump();
+        };
+        device = text("/device/name");
+        setup = text("/settings/width") + "x" + text("/settings/height") + " " + text("/scene/name") + " " +
+                text("/path/name") + ", " + text("/settings/frames") + " frames";
+    }
+};
+
+std::string pairId(int i) {
+    char id[16];
+    std::snprintf(id, sizeof id, "%03d", i);
+    return id;
+}
+
+// Renders the pairs into DIR/runs, in time order per pair: baseline, A/A twin, slowdowns.
+Judged renderPairs(const Plan& p, const fs::path& dir) {
+    Plan in_dir = p;
+    in_dir.out = dir;
+    Judged j;
     const int pairs = std::max(p.o.pairs, p.slowdowns.empty() ? 0 : p.o.slow_pairs);
     for (int i = 0; i < pairs; ++i) {
-        char id[16];
-        std::snprintf(id, sizeof id, "%03d", i);
-        auto base = runOnce(in_temp, std::string("base-") + id, "");
-        if (i == 0) checkSlowdownPasses(p, base);
-        if (device.empty())
-            if (const auto* name = reports::jsonAt(base.run, "/device/name"); name && name->is_string()) device = *name;
-        auto judgeAll = [&](const reports::RunData& cur, const std::string& kind) {
-            for (int r : p.repeats) judged[kind][r].push_back(judgePair(base, cur, kind, i, r, p.rule));
-        };
-        if (i < p.o.pairs) judgeAll(runOnce(in_temp, std::string("aa-") + id, ""), "aa");
+        auto base = runOnce(in_dir, "base-" + pairId(i), "");
+        if (i == 0) checkSlowdownPasses(p, base), j.describe(base);
+        if (i < p.o.pairs) j.add(base, runOnce(in_dir, "aa-" + pairId(i), ""), "aa", i, p);
         if (i < p.o.slow_pairs)
             for (const auto& s : p.slowdowns) {
-                injected[s.spec()] = s.pct;
-                judgeAll(runOnce(in_temp, "slow-" + s.pass + "-" + reports::Cell(s.pct).text() + "-" + id, s.spec()), s.spec());
+                j.injected[s.spec()] = s.pct;
+                j.add(base, runOnce(in_dir, "slow-" + s.pass + "-" + reports::Cell(s.pct).text() + "-" + pairId(i), s.spec()),
+                      s.spec(), i, p);
             }
     }
+    return j;
+}
 
+// `--from DIR`: the runs of an earlier calibration judged again (another threshold, alpha
+// or counts) without rendering. Runs are matched by name: base-I, aa-I, slow-PASS-PCT-I.
+Judged judgeExisting(const Plan& p) {
+    const fs::path runs = fs::path(p.o.from) / "runs";
+    auto bad = [&](const std::string& why) {
+        return std::invalid_argument("calibrate: --from " + p.o.from + ": " + why +
+                                     "; expected an earlier calibrate's output directory (runs/base-000, ...)");
+    };
+    if (!fs::is_directory(runs)) throw bad("no runs/ directory");
+    auto load = [&](const fs::path& d) {
+        auto data = reports::loadRun(d);
+        if (data.repeats < p.repeats.back())
+            throw bad(d.filename().string() + " has " + std::to_string(data.repeats) + " repetitions, --repeats asks " +
+                      std::to_string(p.repeats.back()));
+        return data;
+    };
+    Judged j;
+    for (int i = 0; fs::is_directory(runs / ("base-" + pairId(i))); ++i) {
+        auto base = load(runs / ("base-" + pairId(i)));
+        if (i == 0) j.describe(base);
+        for (const auto& e : fs::directory_iterator(runs)) {
+            const std::string name = e.path().filename().string(), suffix = "-" + pairId(i);
+            if (name.size() <= suffix.size() || name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) continue;
+            const std::string stem = name.substr(0, name.size() - suffix.size());
+            if (stem == "aa") j.add(base, load(e.path()), "aa", i, p);
+            if (stem.rfind("slow-", 0) != 0) continue;
+            size_t dash = stem.rfind('-');
+            std::string pass = stem.substr(5, dash - 5), pct = stem.substr(dash + 1);
+            std::string kind = pass + "=" + pct;
+            j.injected[kind] = std::stod(pct);
+            j.add(base, load(e.path()), kind, i, p);
+        }
+    }
+    if (j.by_kind.empty()) throw bad("no pairs (base-000 with aa-000 or slow-...-000)");
+    return j;
+}
+
+// calibrate.csv, calibrate_pairs.csv and the printed table.
+void writeTables(const Plan& p, const Judged& judged, const fs::path& dir) {
+    auto injected = judged.injected;
+    const std::string& device = judged.device;
     reports::CsvTable rates(kRateColumns), pair_rows(kPairColumns);
     std::string variants;
-    for (const auto& v : judged.begin()->second.begin()->second.front().variants) variants += (variants.empty() ? "" : ",") + v;
-    std::printf("calibrate on %s: threshold %s, alpha %g, %s %s %s, %d frames, variants %s\n", device.c_str(),
-                p.o.threshold.c_str(), p.rule.alpha, p.o.run.resolution.c_str(), p.o.run.scene.c_str(),
-                p.o.run.path.c_str(), p.o.run.frames, variants.c_str());
+    for (const auto& v : judged.by_kind.begin()->second.begin()->second.front().variants) variants += (variants.empty() ? "" : ",") + v;
+    std::printf("calibrate on %s: threshold %s, alpha %g, %s, variants %s\n", device.c_str(), p.o.threshold.c_str(),
+                p.rule.alpha, judged.setup.c_str(), variants.c_str());
     std::printf("%-14s %7s %6s %7s %20s %10s %10s %8s\n", "kind", "repeats", "pairs", "exit 1", "rate [95% Wilson]",
                 "change", "detectable", "noise");
-    for (const auto& [kind, by_reps] : judged)
+    for (const auto& [kind, by_reps] : judged.by_kind)
         for (const auto& [reps, list] : by_reps) {
             int exit1 = 0, unknown = 0, same = 0;
             std::vector<double> changes, detectable, noise;
@@ -256,12 +310,25 @@ int runCalibrate(const CalibrateOptions& options) {
             std::printf("%-14s %7d %6d %7d %20s %9.1f%% %9.1f%% %7.1f%%\n", kind == "aa" ? "A/A" : kind.c_str(), reps, n,
                         exit1, rate, med_change * 100, med_det * 100, noise.empty() ? NAN : median(noise) * 100);
         }
-    reports::writeTextAtomically(out.path() / "calibrate.csv", rates.str());
-    reports::writeTextAtomically(out.path() / "calibrate_pairs.csv", pair_rows.str());
+    reports::writeTextAtomically(dir / "calibrate.csv", rates.str());
+    reports::writeTextAtomically(dir / "calibrate_pairs.csv", pair_rows.str());
+}
+
+}  // namespace
+
+int runCalibrate(const CalibrateOptions& options) {
+    const Plan p = plan(options);
+    const auto start = std::chrono::steady_clock::now();
+    reports::OutputDir out(p.out);
+    if (p.o.from.empty()) fs::create_directories(out.path() / "runs");
+    const Judged judged = p.o.from.empty() ? renderPairs(p, out.path()) : judgeExisting(p);
+    writeTables(p, judged, out.path());
     nlohmann::json j;
     j["command"] = "calibrate";
     j["argv"] = p.o.run.argv;
-    j["device"] = device;
+    j["device"] = judged.device;
+    j["setup"] = judged.setup;
+    if (!p.o.from.empty()) j["from"] = p.o.from;
     j["threshold"] = p.rule.threshold;
     j["alpha"] = p.rule.alpha;
     j["repeats"] = p.repeats;
@@ -275,7 +342,8 @@ int runCalibrate(const CalibrateOptions& options) {
     reports::writeTextAtomically(out.path() / "calibrate.json", j.dump(2) + "\n");
     out.commit();
     std::printf("calibrate: %s (rates), %s (every verdict); run directories under %s\n",
-                (p.out / "calibrate.csv").c_str(), (p.out / "calibrate_pairs.csv").c_str(), (p.out / "runs").c_str());
+                (p.out / "calibrate.csv").c_str(), (p.out / "calibrate_pairs.csv").c_str(),
+                (p.o.from.empty() ? p.out / "runs" : fs::path(p.o.from) / "runs").c_str());
     return 0;
 }
 

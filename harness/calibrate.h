@@ -18,6 +18,7 @@ struct CalibrateOptions {
     std::string threshold = "3%";
     double alpha = 0.05;
     std::string out;                      // "" -> out/calibrate-<scene>-<path>-<date-time>
+    std::string from;                     // an earlier calibration's directory: judge its runs again
 };
 
 // Runs, in time order per pair i: baseline i, its A/A twin, then one run per injected

@@ -149,6 +149,8 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     calibrate->add_option("--threshold", cal.threshold, "compare's --threshold")->capture_default_str();
     calibrate->add_option("--alpha", cal.alpha, "compare's --alpha")->capture_default_str();
+    calibrate->add_option("--from", cal.from, "an earlier calibration's directory: judge its runs again (other "
+                                              "--threshold, --alpha or --repeats) without rendering");
     auto* metric_cost = app.add_subcommand("metric-cost", "benchmark: PSNR, SSIM and ECI milliseconds per frame");
     std::string cost_res = "1920x1080";
     int cost_frames = 10;

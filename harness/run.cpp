@@ -100,7 +100,7 @@ Prepared prepare(const RunOptions& o) {
     if (!(o.exposure > 0 && std::isfinite(o.exposure)))
         throw std::invalid_argument("--exposure: expected a positive finite number");
     if (!std::isfinite(o.cbr_lod_bias) || std::abs(o.cbr_lod_bias) > 16)
-        throw std::invalid_argument("--cbr-lod-bias: expected a finite bias in [-16, 16] (the paper's -0.5; -1 matches full-res derivatives)");
+        throw std::invalid_argument("--cbr-lod-bias: expected a finite bias in [-16, 16] (default -1, which matches full-res derivatives; the paper's -0.5)");
     if (!(o.cso_tolerance > 0 && std::isfinite(o.cso_tolerance)))
         throw std::invalid_argument("--cso-tolerance " + std::to_string(o.cso_tolerance) + ": expected a positive finite number");
     if (o.cso_mode != "relative" && o.cso_mode != "absolute")

@@ -192,12 +192,15 @@ std::vector<double> logDifferences(const std::vector<double>& baseline, const st
 }
 
 // P(U >= u) under the null, for a count u that may be a half (ties count one half):
-// rounded down, so a tie never makes the evidence look stronger.
+// rounded down, so a tie never makes the evidence look stronger. Read off the lower tail
+// by symmetry (P(U >= k) = P(U <= nx ny - k)): 1 - cdf would turn 3 vs 3's exact 1/20 into
+// 0.05000000000000004, just above alpha.
 double upperTail(const std::vector<double>& cdf, double u) {
     long k = long(std::floor(u));
     if (k <= 0) return 1.0;
-    if (size_t(k) >= cdf.size()) return 0.0;
-    return 1.0 - cdf[size_t(k - 1)];
+    const long top = long(cdf.size()) - 1;
+    if (k > top) return 0.0;
+    return cdf[size_t(top - k)];
 }
 
 double countAbove(const std::vector<double>& d, double at) {

@@ -251,7 +251,7 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
          }});
     cases.push_back(
         {"camera-cut", "a cut: history resets on the cut frame (reset share >= 40%, nothing reused), no smear from the "
-                       "old shot (PSNR within 3 dB of the run's median)",
+                       "old shot (PSNR within 3 dB of the first frame's, the other reset, or of the run's median)",
          {{"cut", {"--scene", "atrium", "--path", cut.string(), "--frames", "22"}}},
          [frame11](Children& c) {
              Verdict v = base(c);
@@ -262,11 +262,17 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
                  auto reset = frame11(r, var, "px_reset"), reused = frame11(r, var, "px_reused");
                  auto p = frame11(r, var, "psnr_db");
                  auto s = frameSeries(r, var, "psnr_db");
+                 // The first frame is the other reset (spatial fill only): a cut frame without
+                 // smear is as good as it. With LOD bias -1 the reconstructed frames gained more
+                 // than reset frames do (atrium: cut 25.5 dB, median 29.1), so the median alone
+                 // no longer measures smear.
+                 double first = s.empty() ? 0 : s.front();
                  std::sort(s.begin(), s.end());
                  double med = s.empty() ? 0 : s[s.size() / 2];
                  v.detail += var + " cut frame reset " + num(reset) + ", reused " + num(reused) + ", " + db(p) +
-                             " dB (median " + db(med) + "); ";
-                 if (!reset || *reset < 0.4 || !reused || *reused > 0.001 || !p || *p < med - 3) v.held = false;
+                             " dB (first frame " + db(first) + ", median " + db(med) + "); ";
+                 if (!reset || *reset < 0.4 || !reused || *reused > 0.001 || !p || *p < std::min(first, med) - 3)
+                     v.held = false;
              }
              v.quality = qualityLine(r);
              return v;

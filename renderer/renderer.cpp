@@ -260,9 +260,14 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
             calibrating ? kSpinCalibration * uint32_t(1 + (calibration_frames_++ & 1)) : spin_iterations_;
         auto spin = [this, iterations](VkCommandBuffer cmd) {
             // The sink is rewritten every frame: order the writes (no image, so not the graph's).
+            // And the spin waits for all of the pass's work: lavapipe otherwise runs the
+            // dispatch on its compute thread while its rasterizer threads are still drawing
+            // the pass, and a 30% opaque slowdown measured +9% at 640x360.
             VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-            b.srcStageMask = b.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-            b.srcAccessMask = b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+            b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+            b.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+            b.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+            b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
             VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
             dep.memoryBarrierCount = 1;
             dep.pMemoryBarriers = &b;

@@ -44,7 +44,7 @@ struct Settings {
     bool deferred = false;           // --pipeline deferred: G-buffer, lighting resolve, forward transparency
     // Checkerboard rendering.
     std::string cbr_route = "auto";  // auto | msaa-jitter | msaa-locations | multiview
-    float cbr_lod_bias = -0.5f;      // the paper's; -1 matches full-res derivatives
+    float cbr_lod_bias = -1.0f;      // matches full-res derivatives (README: chosen by a sweep); the paper: -0.5
     double cso_tolerance = 0.05;
     bool cso_absolute = false;       // false: relative to the mean neighbour depth
     ResolveImpl resolve_impl = ResolveImpl::Fused;

@@ -4,6 +4,7 @@
 // themselves are timings (they live in the README's calibration tables, not in asserts).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -60,6 +61,24 @@ TEST(Calibrate, WritesRatesPerKindAndRepetitionCount) {
         ++runs;
     }
     EXPECT_EQ(runs, 5);  // 2 baselines, 2 A/A twins, 1 slowed
+
+    // The same runs judged again without rendering: another threshold and count.
+    auto again = work / "again";
+    auto r2 = runBench({"calibrate", "--from", out.string(), "--repeats", "3", "--threshold", "50%", "--out",
+                        again.string()},
+                       work);
+    ASSERT_EQ(r2.exit_code, 0) << r2.out << r2.err;
+    auto rates2 = cbr::test::readCsv(again / "calibrate.csv");
+    ASSERT_EQ(rates2.rows.size(), 2u);  // aa and opaque=50 at 3 repetitions
+    for (size_t i = 0; i < rates2.rows.size(); ++i) EXPECT_EQ(rates2.at(i, "repeats"), "3");
+    EXPECT_FALSE(fs::exists(again / "runs"));
+    // More repetitions than the runs have: one line, nothing written.
+    auto more = work / "more";
+    auto r3 = runBench({"calibrate", "--from", out.string(), "--repeats", "3,6", "--out", more.string()}, work);
+    EXPECT_EQ(r3.exit_code, 2) << r3.err;
+    EXPECT_NE(r3.err.find("repetitions"), std::string::npos) << r3.err;
+    EXPECT_EQ(std::count(r3.err.begin(), r3.err.end(), '\n'), 1) << r3.err;
+    EXPECT_FALSE(fs::exists(more));
 }
 
 TEST(Calibrate, BadOptionsAreOneLineAndNoOutput) {

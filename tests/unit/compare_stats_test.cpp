@@ -231,3 +231,13 @@ TEST(TimeVerdict, ManyCellsWidenTheIntervals) {
     EXPECT_GE(v.back().interval->confidence, alone.interval->confidence);
     for (size_t i = 0; i + 1 < v.size(); ++i) EXPECT_NE(v[i].verdict, "SLOWER") << i;
 }
+
+// 3 vs 3 with complete separation: p = 1/20 exactly, which is alpha 0.05, so the cell
+// concludes (Benjamini-Hochberg rejects at p <= alpha) and its 90% interval clears the
+// threshold. (1 - P(U <= 8) in floating point was 0.05000000000000004: never SLOWER.)
+TEST(TimeVerdict, ThreeVersusThreeCompleteSeparationConcludes) {
+    EXPECT_EQ(changeAboveP({10.0, 10.01, 10.02}, {11.0, 11.01, 11.02}, 0.03), 0.05);
+    auto v = judgeTimes({{{10.0, 10.01, 10.02}, {11.0, 11.01, 11.02}}}, {0.03, 0.05})[0];
+    EXPECT_EQ(v.verdict, "SLOWER") << v.note;
+    EXPECT_GT(v.interval->low, 0.03);
+}
