@@ -53,21 +53,6 @@ int parseCount(const std::string& text, const std::string& what) {
     return v;
 }
 
-double parsePercent(const std::string& text, const std::string& what) {
-    std::string t = text;
-    if (!t.empty() && t.back() == '%') t.pop_back();
-    size_t used = 0;
-    double v = 0;
-    try {
-        v = std::stod(t, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (t.empty() || used != t.size() || !std::isfinite(v) || v < 0)
-        throw std::invalid_argument("calibrate: " + what + " '" + text + "': expected a non-negative percentage such as 3%");
-    return v;
-}
-
 Plan plan(const CalibrateOptions& o) {
     Plan p;
     p.o = o;
@@ -83,12 +68,12 @@ Plan plan(const CalibrateOptions& o) {
         if (eq == std::string::npos || eq == 0)
             throw std::invalid_argument("calibrate: --slowdown '" + o.slowdowns + "': expected PASS=PCT[,PCT...], e.g. opaque=3,10");
         for (const auto& pct : splitList(o.slowdowns.substr(eq + 1))) {
-            double v = parsePercent(pct, "--slowdown");
+            double v = parseFraction(pct + (pct.empty() || pct.back() == '%' ? "" : "%"), "calibrate", "--slowdown") * 100;
             if (!(v > 0)) throw std::invalid_argument("calibrate: --slowdown " + pct + ": expected a percentage > 0");
             p.slowdowns.push_back({o.slowdowns.substr(0, eq), v});
         }
     }
-    p.rule.threshold = parsePercent(o.threshold, "--threshold") / 100.0;
+    p.rule.threshold = parseFraction(o.threshold, "calibrate", "--threshold");
     p.rule.alpha = o.alpha;
     if (!(o.alpha > 0 && o.alpha < 1)) throw std::invalid_argument("calibrate: --alpha: expected 0 < alpha < 1");
     const auto& r = o.run;

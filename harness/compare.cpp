@@ -53,22 +53,6 @@ struct Cell {
     } psnr, ssim, eci;
 };
 
-double parseFraction(const std::string& text, const std::string& option) {
-    std::string t = text;
-    bool pct = !t.empty() && t.back() == '%';
-    if (pct) t.pop_back();
-    size_t used = 0;
-    double v = 0;
-    try {
-        v = std::stod(t, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (t.empty() || used != t.size() || !std::isfinite(v) || v < 0)
-        throw std::invalid_argument("compare: " + option + " '" + text +
-                                    "': accepted: a non-negative percentage such as 3% or a fraction such as 0.03");
-    return pct ? v / 100.0 : v;
-}
 
 std::string jsonString(const nlohmann::json& run, const std::string& pointer) {
     const nlohmann::json* j = reports::jsonAt(run, pointer);
@@ -324,13 +308,30 @@ std::vector<double> repetitionMedians(const reports::RunData& d, const std::stri
     return out;
 }
 
+double parseFraction(const std::string& text, const std::string& command, const std::string& option) {
+    std::string t = text;
+    bool pct = !t.empty() && t.back() == '%';
+    if (pct) t.pop_back();
+    size_t used = 0;
+    double v = 0;
+    try {
+        v = std::stod(t, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (t.empty() || used != t.size() || !std::isfinite(v) || v < 0)
+        throw std::invalid_argument(command + ": " + option + " '" + text +
+                                    "': accepted: a non-negative percentage such as 3% or a fraction such as 0.03");
+    return pct ? v / 100.0 : v;
+}
+
 int runCompare(const CompareOptions& o) {
     double threshold = 0, eci_threshold = 0;
     std::vector<Cell> cells;
     Side base, cur;
     try {
-        threshold = parseFraction(o.threshold, "--threshold");
-        eci_threshold = parseFraction(o.eci, "--eci-threshold");
+        threshold = parseFraction(o.threshold, "compare", "--threshold");
+        eci_threshold = parseFraction(o.eci, "compare", "--eci-threshold");
         if (!(o.alpha > 0 && o.alpha < 1))
             throw std::invalid_argument("compare: --alpha " + std::to_string(o.alpha) + ": accepted: 0 < alpha < 1");
         if (!(o.psnr_db >= 0) || !(o.ssim >= 0))

@@ -30,6 +30,10 @@ inline constexpr int kCompareBadInput = 3;
 // input prints one line on stderr and writes nothing.
 int runCompare(const CompareOptions& o);
 
+// "3%" or "0.03" -> 0.03; anything else throws std::invalid_argument naming COMMAND, the
+// option and what is accepted.
+double parseFraction(const std::string& text, const std::string& command, const std::string& option);
+
 // A cell's samples: the median gpu_ms of each repetition (frames.csv rows with status ok)
 // of `variant`, repetitions 0 .. max_repeats - 1 (a run's first repetitions are what a
 // shorter run would have measured: calibrate judges several counts from one run).
