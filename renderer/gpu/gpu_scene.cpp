@@ -27,7 +27,7 @@ std::vector<glm::mat4> instanceMatrices(const scene::Scene& scene, double t, glm
     std::vector<glm::mat4> out;
     out.reserve(scene.instances.size());
     const glm::dmat4 to_origin = glm::translate(glm::dmat4(1.0), -origin);
-    for (const auto& inst : scene.instances) out.push_back(glm::mat4(to_origin * scene::instanceTransform(inst, t)));
+    for (const glm::dmat4& model : scene::instanceTransforms(scene, t)) out.push_back(glm::mat4(to_origin * model));
     return out;
 }
 
@@ -102,8 +102,7 @@ GpuScene uploadScene(vk::Context& ctx, const scene::Scene& s) {
 
     for (size_t i = 0; i < s.instances.size(); ++i) {
         const auto& mesh = s.meshes.at(size_t(s.instances[i].mesh));
-        DrawItem d{int(i), s.instances[i].mesh, mesh.material,
-                   s.instances[i].animation.kind != scene::Animation::Kind::None};
+        DrawItem d{int(i), s.instances[i].mesh, mesh.material, scene::instanceMoves(s, s.instances[i])};
         switch (s.materials.at(size_t(mesh.material)).alpha_mode) {
             case scene::AlphaMode::Opaque: g.opaque.push_back(d); break;
             case scene::AlphaMode::Mask: g.masked.push_back(d); break;

@@ -98,6 +98,23 @@ void checkScene(const Scene& scene) {
             (a.kind != Animation::Kind::None && glm::length(a.axis) < 1e-6f))
             fail(scene, where, "animation is not finite or has no axis");
     }
+    for (size_t i = 0; i < scene.instances.size(); ++i)
+        if (scene.instances[i].node >= int(scene.nodes.size()))
+            fail(scene, "instance " + std::to_string(i), "node " + std::to_string(scene.instances[i].node) + " does not exist");
+    for (size_t i = 0; i < scene.nodes.size(); ++i)
+        if (scene.nodes[i].parent >= int(i)) fail(scene, "node " + std::to_string(i), "parent does not come first");
+    for (const NodeAnimation& a : scene.animations)
+        for (const AnimationChannel& c : a.channels) {
+            const size_t n = c.path == AnimationChannel::Path::Rotation ? 4 : 3;
+            const size_t per_key = n * (c.interpolation == AnimationChannel::Interpolation::CubicSpline ? 3 : 1);
+            if (c.node < 0 || size_t(c.node) >= scene.nodes.size() || c.times.empty() || c.values.size() != per_key * c.times.size())
+                fail(scene, "animation " + a.name, "a channel's node, keys or values are inconsistent");
+            for (size_t k = 0; k < c.times.size(); ++k)
+                if (!std::isfinite(c.times[k]) || (k && !(c.times[k] > c.times[k - 1])))
+                    fail(scene, "animation " + a.name, "key times are not finite and increasing");
+            for (double v : c.values)
+                if (!std::isfinite(v)) fail(scene, "animation " + a.name, "a value is not finite");
+        }
     for (size_t i = 0; i < scene.lights.size(); ++i) {
         const Light& l = scene.lights[i];
         if (!fitsFloat(l.position) || !finite(l.direction) || !finite(l.color) || !std::isfinite(l.intensity) || !std::isfinite(l.range))
@@ -173,7 +190,14 @@ void placeScene(Scene& scene, glm::dvec3 offset, double scale) {
         m.bounds_min *= s;
         m.bounds_max *= s;
     }
+    // Node chains: world' = P world(t) model S(1 / scale), P = T(offset) S(scale).
+    scene.placement = glm::translate(glm::dmat4(1.0), offset) * glm::scale(glm::dmat4(1.0), glm::dvec3(scale)) *
+                      scene.placement;
     for (Instance& inst : scene.instances) {
+        if (inst.node >= 0) {
+            inst.model = inst.model * glm::scale(glm::dmat4(1.0), glm::dvec3(1.0 / scale));
+            continue;
+        }
         // world' = T(offset) S(scale) world S(1 / scale) on scaled vertices: the linear part
         // stays, translations scale. An orbit's point carries the offset (its model is
         // relative to it); everything else carries it in its own translation.
@@ -248,17 +272,20 @@ void finalizeScene(Scene& scene) {
     SceneInfo& info = scene.info;
     info.opaque_draws = info.masked_draws = info.blend_draws = info.animated_instances = info.triangles = 0;
     info.recentred_meshes += recentreMeshes(scene);
+    if (!scene.animations.empty()) selectAnimations(scene, "all");
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-    for (const Instance& inst : scene.instances) {
+    const std::vector<glm::dmat4> models = instanceTransforms(scene, 0.0);
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& inst = scene.instances[i];
         const Mesh& mesh = scene.meshes[size_t(inst.mesh)];
         switch (scene.materials[size_t(mesh.material)].alpha_mode) {
             case AlphaMode::Opaque: ++info.opaque_draws; break;
             case AlphaMode::Mask: ++info.masked_draws; break;
             case AlphaMode::Blend: ++info.blend_draws; break;
         }
-        if (inst.animation.kind != Animation::Kind::None) ++info.animated_instances;
+        if (instanceMoves(scene, inst)) ++info.animated_instances;
         info.triangles += int(mesh.index_count / 3);
-        const glm::dmat4 model = instanceTransform(inst, 0.0);
+        const glm::dmat4& model = models[i];
         for (int corner = 0; corner < 8; ++corner) {
             const glm::dvec3 p((corner & 1) ? mesh.bounds_max.x : mesh.bounds_min.x,
                                (corner & 2) ? mesh.bounds_max.y : mesh.bounds_min.y,

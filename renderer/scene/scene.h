@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 namespace cbr::scene {
 
@@ -71,8 +72,46 @@ struct Animation {
 
 struct Instance {
     int mesh = 0;
-    glm::dmat4 model{1.0};  // node hierarchy flattened; Orbit: relative to the circle's point
+    // Node hierarchy flattened; Orbit: relative to the circle's point. With node >= 0: the
+    // part after the node (mesh recentring, placement's 1 / scale), applied to node space.
+    glm::dmat4 model{1.0};
     Animation animation;
+    int node = -1;          // glTF: Scene::nodes index of an animated node chain, else -1
+};
+
+// glTF node animation (glTF 2.0 section 3.11). A file with animations keeps its node tree
+// (parents before children) so transforms can be evaluated per frame; instances under a
+// targeted node refer to it, the rest stay flattened.
+struct Node {
+    std::string name;
+    int parent = -1;                  // index into Scene::nodes, always lower than this one's
+    int gltf_index = 0;               // the file's node index, for messages
+    glm::dvec3 translation{0};
+    glm::dquat rotation{1, 0, 0, 0};
+    glm::dvec3 scale{1};
+    bool has_matrix = false;          // a `matrix` node: fixed (the spec forbids animating it)
+    glm::dmat4 matrix{1.0};
+    bool animated = false;            // it or an ancestor is targeted by a played channel
+};
+
+struct AnimationChannel {
+    enum class Path { Translation, Rotation, Scale };
+    enum class Interpolation { Linear, Step, CubicSpline };
+    int node = 0;                     // index into Scene::nodes
+    Path path = Path::Translation;
+    Interpolation interpolation = Interpolation::Linear;
+    std::vector<double> times;        // seconds, strictly increasing, at least one
+    // 3 (translation, scale) or 4 (rotation x, y, z, w) per key; CUBICSPLINE keeps
+    // in-tangent, value, out-tangent per key (glTF order).
+    std::vector<double> values;
+};
+
+struct NodeAnimation {
+    std::string name;                 // the file's name, or "animation N"
+    int gltf_index = 0;
+    double length = 0;                // last key time: the loop period
+    std::vector<AnimationChannel> channels;
+    bool played = true;               // selected (selectAnimations); all by default
 };
 
 struct Light {
@@ -93,6 +132,20 @@ struct SceneInfo {
     int triangles = 0;
     bool default_light = false;  // no lights in the file: one directional light added
     int recentred_meshes = 0;    // meshes far from their own origin moved to it (finalizeScene)
+    int animations = 0;          // glTF animations that target nodes (all, played or not)
+    int skinned_instances = 0;   // rendered in the bind pose: skins are not animated
+    int morphed_meshes = 0;      // rendered with base positions: morph targets are not applied
+};
+
+// A glTF camera, for `--path gltf`. Perspective only is usable as a path; an orthographic
+// one is kept so the refusal can name it.
+struct SceneCamera {
+    std::string name;                 // the camera's name, else its node's, else "camera N"
+    int node = 0;                     // index into Scene::nodes
+    bool perspective = true;
+    double yfov_rad = 0.8;
+    double znear = 0.1;
+    double zfar = 0;                  // 0: infinite
 };
 
 struct Scene {
@@ -105,6 +158,10 @@ struct Scene {
     std::vector<Mesh> meshes;
     std::vector<Instance> instances;
     std::vector<Light> lights;        // at least one
+    std::vector<Node> nodes;          // glTF only: the node tree in parent-first order
+    std::vector<NodeAnimation> animations;
+    std::vector<SceneCamera> cameras; // in node order (the first is `--path gltf`'s)
+    glm::dmat4 placement{1.0};        // placeScene's world' = offset + scale * world, for node chains
     glm::dvec3 bounds_min{0};         // world space, static pose (t = 0)
     glm::dvec3 bounds_max{0};
     glm::vec3 background{0.02f, 0.02f, 0.03f};  // linear clear colour
@@ -120,7 +177,25 @@ struct Scene {
 // ties) made perpendicular to it and v = axis x u (so +y orbits start at +x and turn
 // right-handed); Spin gives rotate(a about `axis` through center) * model.
 // Computed in double: world placement may be far from the origin.
+// Instances driven by a node (node >= 0) need the scene: use instanceTransforms.
 glm::dmat4 instanceTransform(const Instance& instance, double t);
+
+// World transform of every node at time t (after placement): each played animation loops
+// with its own length (a time that is a whole number of lengths past zero samples the end,
+// so a path as long as the animation ends on its last key); before an animation's first
+// key the first value holds. Rotation: slerp (LINEAR), normalised Hermite (CUBICSPLINE).
+std::vector<glm::dmat4> nodeTransforms(const Scene& scene, double t);
+// Model matrices of all instances at time t, in instance order.
+std::vector<glm::dmat4> instanceTransforms(const Scene& scene, double t);
+// Whether an instance moves over time (writes motion vectors of its own).
+bool instanceMoves(const Scene& scene, const Instance& instance);
+
+// Plays the animations `spec` names: "all" (default), "none", or a comma list of names
+// or indices into the file's animations. Updates Node::animated and info.animated_instances.
+// Throws std::invalid_argument naming --animation and the accepted names.
+void selectAnimations(Scene& scene, const std::string& spec);
+// Length of the played animations that move `node` (0 when none do).
+double animationLength(const Scene& scene, int node);
 
 // Moves and scales a whole scene: world' = offset + scale * world, with the image (seen
 // by a camera moved the same way, placePath) unchanged: vertex positions, mesh and scene
