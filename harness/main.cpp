@@ -65,11 +65,20 @@ int scoreImages(const std::string& ref_file, const std::string& img_file, const 
 // The options of `run` and `sweep` (a sweep is a run over configurations).
 void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& variant_list) {
     cmd->add_option("--scene", o.scene, "procedural scene name or a .gltf/.glb file")->capture_default_str();
-    cmd->add_option("--path", o.path, "built-in path name or a path .json file")->capture_default_str();
+    cmd->add_option("--path", o.path,
+                    "built-in path name, a path .json file, or gltf / gltf:NAME (the scene file's camera)")
+        ->capture_default_str();
+    cmd->add_option("--fps", o.fps, "frame rate of a --path gltf camera (frames over the animation's length)")
+        ->capture_default_str();
+    cmd->add_option("--animation", o.animation,
+                    "glTF animations to play: all, none, or a comma list of names or indices (looped)")
+        ->capture_default_str();
     cmd->add_option("--variants", variant_list, "comma-separated variants (default: all; full always runs)");
     cmd->add_option("--res", o.resolution, "output resolution WIDTHxHEIGHT")->capture_default_str();
-    cmd->add_option("--frames", o.frames, "frames sampled evenly over the path (0: the path's own length)")
-        ->capture_default_str();
+    cmd->add_option("--frames", o.frames,
+                    "frames sampled evenly over the path (0: the path's own length; --path gltf: default 0)")
+        ->capture_default_str()
+        ->each([&o](const std::string&) { o.frames_set = true; });
     cmd->add_option("--repeat", o.repeat, "repetitions of the whole flythrough, variants interleaved")
         ->capture_default_str();
     cmd->add_option("--warmup", o.warmup, "untimed warm-up frames per variant and repetition")->capture_default_str();

@@ -15,6 +15,9 @@ struct RunOptions {
     std::vector<std::string> variants;  // empty: every variant in the table
     std::string resolution = "960x540";
     int frames = 60;                  // 0: the path's own length
+    bool frames_set = false;          // --frames given: else a --path gltf runs at --fps over its length
+    double fps = 60;                  // frame rate of a --path gltf camera
+    std::string animation = "all";    // glTF animations played: all, none, or names/indices
     int repeat = 5;                   // timing.md: default 5, never fewer than 3 for a verdict
     int warmup = 5;
     std::string device;

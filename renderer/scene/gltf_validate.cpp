@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -393,7 +394,29 @@ void checkOthers(const Checker& c, const json& root) {
     each(c, root, "cameras", "", [&](const json& cam, const std::string& p) {
         optEnum(c, cam, "type", p, std::set<std::string>{"perspective", "orthographic"}, true);
         const std::string type = cam.at("type").get<std::string>();
-        object(c, *member(c, cam, type.c_str(), p, true, "an object"), child(p, type));
+        const json& params = *member(c, cam, type.c_str(), p, true, "an object");
+        const std::string pp = child(p, type);
+        object(c, params, pp);
+        // Open intervals: a field of view or near plane of 0 is as unusable as a negative one.
+        auto positive = [&](const char* key, bool required, double below, const std::string& expected) {
+            const json* j = member(c, params, key, pp, required, expected.c_str());
+            if (!j) return std::optional<double>();
+            const double v = j->is_number() ? j->get<double>() : NAN;
+            if (!(v > 0 && v < below)) fail(c, child(pp, key), "is " + describe(*j), expected);
+            return std::optional<double>(v);
+        };
+        if (type == "perspective") {
+            positive("yfov", true, 3.14159265358979323846, "a vertical field of view in radians, 0 < yfov < pi");
+            const auto znear = positive("znear", true, INFINITY, "a near plane distance > 0");
+            const auto zfar = positive("zfar", false, INFINITY, "a far plane distance > znear, or none (infinite)");
+            if (znear && zfar && !(*zfar > *znear)) fail(c, child(pp, "zfar"), "is not beyond znear", "zfar > znear");
+            positive("aspectRatio", false, INFINITY, "an aspect ratio > 0");
+        } else {
+            optNumber(c, params, "xmag", pp, -INFINITY, INFINITY, true);
+            optNumber(c, params, "ymag", pp, -INFINITY, INFINITY, true);
+            optNumber(c, params, "znear", pp, 0, INFINITY, true);
+            optNumber(c, params, "zfar", pp, 0, INFINITY, true);
+        }
     });
     each(c, root, "skins", "", [&](const json& skin, const std::string& p) {
         optIndices(c, skin, "joints", p, "/nodes", true);

@@ -2,9 +2,11 @@
 #include "tests/support/gltf_writer.h"
 
 #include <cstring>
+#include <fstream>
 #include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
 
 namespace cbr::testsupport {
 
@@ -161,6 +163,13 @@ void GltfWriter::write(const std::filesystem::path& file) const {
     if (!writer.WriteGltfSceneToFile(&copy, file.string(), /*embedImages=*/true, /*embedBuffers=*/true,
                                      /*prettyPrint=*/true, /*writeBinary=*/false))
         throw std::runtime_error("cannot write " + file.string());
+    // tinygltf writes zfar 0 for a camera without one; glTF's infinite projection omits it.
+    nlohmann::json doc;
+    std::ifstream(file) >> doc;
+    if (doc.contains("cameras"))
+        for (auto& c : doc["cameras"])
+            if (c.contains("perspective") && c["perspective"].value("zfar", 1.0) == 0.0) c["perspective"].erase("zfar");
+    std::ofstream(file) << doc.dump(1);
 }
 
 glm::dquat lookRotation(glm::dvec3 eye, glm::dvec3 target) {
