@@ -2,6 +2,7 @@
 // converted into Scene::animations and Scene::cameras.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "renderer/scene/gltf_internal.h"
 
@@ -81,6 +82,39 @@ AnimationChannel channel(const GltfContext& ctx, const tinygltf::Animation& anim
     return out;
 }
 
+// Animated world transforms must fit a float as the flattened ones do (flattenNodes): checked
+// at every key time and half way between keys (a cubic overshoots between them), at most
+// kMaxChecks times per animation, with every animation playing.
+void checkAnimatedTransforms(const GltfContext& ctx) {
+    constexpr size_t kMaxChecks = 4096;
+    const Scene& scene = ctx.scene;
+    for (size_t a = 0; a < scene.animations.size(); ++a) {
+        std::vector<double> times;
+        for (const AnimationChannel& c : scene.animations[a].channels)
+            for (size_t k = 0; k < c.times.size(); ++k) {
+                times.push_back(c.times[k]);
+                if (k) times.push_back(0.5 * (c.times[k - 1] + c.times[k]));
+            }
+        std::sort(times.begin(), times.end());
+        times.erase(std::unique(times.begin(), times.end()), times.end());
+        const size_t step = std::max<size_t>(1, times.size() / kMaxChecks);
+        for (size_t i = 0; i < times.size(); i += step) {
+            const std::vector<glm::dmat4> world = nodeTransforms(scene, times[i]);
+            for (size_t n = 0; n < world.size(); ++n) {
+                bool ok = true;
+                for (int col = 0; col < 4; ++col)
+                    for (int row = 0; row < 3; ++row)
+                        ok = ok && std::abs(world[n][col][row]) <= double(std::numeric_limits<float>::max());
+                if (!ok)
+                    gltfError(ctx, gltfAt("nodes", size_t(scene.nodes[n].gltf_index)),
+                              "its animated world transform overflows a float at t = " + std::to_string(times[i]) +
+                                  " s (" + gltfAt("animations", size_t(scene.animations[a].gltf_index)) + ")",
+                              "translations and scales whose products along the node path stay below 3.4e38");
+            }
+        }
+    }
+}
+
 }  // namespace
 
 std::vector<bool> gltfAnimatedNodes(const GltfContext& ctx) {
@@ -122,6 +156,7 @@ void gltfAnimations(GltfContext& ctx, const std::vector<int>& scene_node) {
         if (!out.channels.empty()) scene.animations.push_back(std::move(out));
     }
     scene.info.animations = int(scene.animations.size());
+    checkAnimatedTransforms(ctx);
     if (weight_channels)
         scene.warnings.push_back("/animations: " + std::to_string(weight_channels) +
                                  " morph-weight channel(s) ignored (morph targets are not animated)");

@@ -70,6 +70,14 @@ void checkScene(const cbr::scene::Scene& scene) {
         require(finiteVec(l.position) && finiteVec(l.direction) && finiteVec(l.color) && std::isfinite(l.intensity) &&
                     std::isfinite(l.range),
                 "non-finite light");
+    // Animated instances: their per-frame transforms too, inside, at and past each loop.
+    std::vector<double> times = {0.0, 0.37};
+    for (const NodeAnimation& a : scene.animations) times.insert(times.end(), {a.length, 1.5 * a.length + 0.01});
+    for (double t : times)
+        for (const glm::dmat4& m : instanceTransforms(scene, t))
+            require(renderableModel(m), "animated instance transform not finite or beyond float range");
+    for (const SceneCamera& c : scene.cameras)
+        require(c.node >= 0 && size_t(c.node) < scene.nodes.size(), "camera node out of range");
     require(finiteVec(scene.bounds_min) && finiteVec(scene.bounds_max), "non-finite scene bounds");
     require(finiteVec(glm::vec3(scene.bounds_max - scene.bounds_min)), "scene extent beyond float range");
 }

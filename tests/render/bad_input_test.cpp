@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "tests/render/bench_runner.h"
+#include "tests/support/gltf_writer.h"
 
 namespace cbr::test {
 namespace {
@@ -54,7 +55,42 @@ std::vector<Case> cases() {
     std::string times = write("times.json",
                               R"({"fps": 30, "keyframes": [{"time": 1, "position": [0,1,5], "target": [0,0,0]},
                                                          {"time": 0.5, "position": [1,1,5], "target": [0,0,0]}]})");
+    // Generated glTF files, each broken in one place (issue 16); the fuzz corpus has copies.
+    auto gltf = [&](const std::string& name, auto&& edit) {
+        testsupport::GltfWriter w;
+        w.node({"box", w.box({0.5f, 0.5f, 0.5f}, w.material({1, 1, 1, 1}))});
+        edit(w);
+        const auto p = work / (name + ".gltf");
+        w.write(p);
+        return p.string();
+    };
+    const std::string bad_sampler = gltf("anim-sampler", [](testsupport::GltfWriter& w) {
+        w.channel(w.animation("a"), 0, "translation", "LINEAR", {0.0f, 1.0f}, {0, 0, 0, 1, 0, 0});
+        w.model.animations[0].channels[0].sampler = 3;
+    });
+    const std::string bad_times = gltf("anim-times", [](testsupport::GltfWriter& w) {
+        w.channel(w.animation("a"), 0, "translation", "LINEAR", {0.0f, 0.5f, 0.25f}, {0, 0, 0, 1, 0, 0, 2, 0, 0});
+    });
+    const std::string bad_nan = gltf("anim-nan", [](testsupport::GltfWriter& w) {
+        w.channel(w.animation("a"), 0, "rotation", "LINEAR", {0.0f, 1.0f}, {0, 0, 0, 1, 0, NAN, 0, 1});
+    });
+    const std::string bad_yfov = gltf("camera-yfov", [](testsupport::GltfWriter& w) {
+        w.node({"cam", -1, w.perspectiveCamera("c", 0.0, 0.1, 100), -1, {0, 0, 5}});
+    });
+    const std::string ortho = gltf("camera-ortho", [](testsupport::GltfWriter& w) {
+        w.node({"cam", -1, w.orthographicCamera("top"), -1, {0, 0, 5}});
+    });
+    const std::string no_camera = gltf("no-camera", [](testsupport::GltfWriter&) {});
     return {
+        {"anim_sampler_out_of_range", {"--scene", bad_sampler}, {"anim-sampler.gltf", "/animations/0/channels/0/sampler"}},
+        {"anim_times_not_increasing", {"--scene", bad_times}, {"anim-times.gltf", "/animations/0/samplers/0/input", "increasing"}},
+        {"anim_nan_output", {"--scene", bad_nan}, {"anim-nan.gltf", "/animations/0/samplers/0/output", "non-finite"}},
+        {"camera_yfov_zero", {"--scene", bad_yfov}, {"camera-yfov.gltf", "/cameras/0/perspective/yfov", "0 < yfov"}},
+        {"path_gltf_orthographic", {"--scene", ortho, "--path", "gltf"}, {"--path gltf", "orthographic", "perspective"}},
+        {"path_gltf_no_camera", {"--scene", no_camera, "--path", "gltf"}, {"--path gltf", "no camera"}},
+        {"path_gltf_unknown_name", {"--scene", ortho, "--path", "gltf:dolly"}, {"gltf:dolly", "\"top\""}},
+        {"unknown_animation", {"--scene", no_camera, "--animation", "walk"}, {"--animation walk", "none"}},
+        {"bad_fps", {"--scene", ortho, "--path", "gltf", "--fps", "0"}, {"--fps"}},
         {"missing_gltf", {"--scene", "/nonexistent/model.gltf"}, {"/nonexistent/model.gltf"}},
         {"index_out_of_range", {"--scene", models("IndexOutOfRange/IndexOutOfRange.gltf")}, {"IndexOutOfRange.gltf"}},
         {"all_indices_out_of_range", {"--scene", models("IndexOutOfRange/AllIndicesOutOfRange.gltf")},
