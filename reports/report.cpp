@@ -149,6 +149,10 @@ std::string summarySection(const RunData& d) {
     for (const auto& v : d.variants)
         if (std::string note = summaryText(d, v, "note"); !note.empty())
             notes += "<li><b>" + esc(v) + "</b>: " + esc(note) + "</li>";
+    // What loading repaired or left out (skins and morph targets not animated, ...), once.
+    if (const auto* warnings = jsonAt(d.run, "/scene/warnings"); warnings && warnings->is_array())
+        for (const auto& w : *warnings)
+            if (w.is_string()) notes += "<li><b>scene</b>: " + esc(w.get<std::string>()) + "</li>";
     if (!notes.empty()) out += "<ul class=\"notes\">" + notes + "</ul>";
     const auto repeats = d.repeats;
     out += "<p class=\"note\">GPU times over all frames of the " + std::to_string(repeats) +

@@ -91,7 +91,8 @@ const char* kRunJson = R"({
              "timing_note": "lavapipe timestamps measure CPU rasterisation"},
   "settings": {"width": 32, "height": 16, "frames": 3, "repeat": 2, "pipeline": "forward", "warmup_frames": 1,
                "variant_order": ["full", "drr", "cbr-cso", "cbr-aso"], "drr_control": {"step": 0.05}},
-  "scene": {"name": "blocks", "hash": "abc"},
+  "scene": {"name": "blocks", "hash": "abc",
+            "warnings": ["/skins: 1 skinned mesh instance(s) rendered in the bind pose, skins are not animated"]},
   "path": {"name": "orbit", "frames": 3},
   "tool": {"name": "cbrbench", "version": "0.1.0", "commit": "deadbeef1234"},
   "validation": {"enabled": true, "errors": 0, "warnings": 2, "messages": 2, "first_messages": ["a warning"]},
@@ -224,7 +225,8 @@ TEST(Report, WritesSelfContainedReport) {
                                "no 2x MSAA on this device", "static camera and scene", "no blended draws",
                                "lavapipe timestamps measure CPU rasterisation", "needs 2x MSAA, &quot;sample rate&quot;",
                                "<svg", "\u221e", "median over the 2 repetitions", "Edge crawl index",
-                               "Flicker ratio", "ECI (lower is better)", "class=\"pareto\"", "wipe-box"})
+                               "Flicker ratio", "ECI (lower is better)", "class=\"pareto\"", "wipe-box",
+                               "<b>scene</b>: /skins: 1 skinned mesh instance(s) rendered in the bind pose"})
         EXPECT_NE(text.find(needle), std::string::npos) << needle;
     // Absent files of a present worst/ folder are marked, not fatal.
     EXPECT_NE(text.find("cbr-cso_ssim_ssim_map.png absent"), std::string::npos);
