@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string_view>
 
 #include <glm/gtc/constants.hpp>
 
@@ -21,6 +22,11 @@ constexpr double kSubpixelPx = 0.25;
 // whole scene from the farthest standpoint (1.5 diagonals from the bounds' far side).
 constexpr double kNearOfSize = 2e-3;
 constexpr double kFarOfSize = 4;
+// Inside a free region: cameras keep this share of the region's short side from its edges
+// (on top of the region's own clearance from geometry, up to a grid cell), and the near
+// plane stays within this share of the distance to the floor and of the short side.
+constexpr double kInsideMargin = 0.15;
+constexpr double kInsideNear = 0.05;
 // The cut path's second shot starts at frame 45 (1.5 s); its first shot's last key sits
 // on frame 44, so the camera never stalls before the cut.
 constexpr int kCutFrame = 45;
@@ -37,17 +43,49 @@ struct Stage {
     double size = 0;             // bounds diagonal
     double near = 0;
     double far = 0;
-    // atrium: inside the aisle, which is clear for |z| < 1 up to half the height; other
-    // scenes: one diagonal from the centre, outside the bounding sphere (radius size / 2)
-    // and so clear of any geometry, with the whole scene in a 60-degree view.
+    // atrium: inside the aisle, which is clear for |z| < 1 up to half the height; an
+    // interior: inside its free region (centre, along, across and the lengths are the
+    // region's); other scenes: one diagonal from the centre, outside the bounding sphere
+    // (radius size / 2) and so clear of any geometry, with the whole scene in a 60-degree view.
     bool aisle = false;
+    bool inside = false;
+    double reach_along = 0;      // inside: how far cameras may go from the centre along each axis
+    double reach_across = 0;
     double eye_y = 0;
+    double dolly = 0;            // how far each shot of the cut moves
     glm::dvec3 stand{0};         // start of static, subpixel-pan, fast-turn, the cut's first shot
     glm::dvec3 opposite{0};      // the other end, looking back along -along
 };
 
 [[noreturn]] void badContext(const std::string& name, const std::string& what, const std::string& expected) {
     throw std::invalid_argument("built-in path '" + printable(name) + "': " + what + "; expected " + expected);
+}
+
+// Along the region's longer side, from one end (less the margin) to the other; the near
+// plane shrinks to the room, the far plane still covers the whole scene.
+void insideStage(Stage& s, const InteriorRegion& r, const std::string& name) {
+    const double values[] = {r.min.x, r.min.y, r.min.z, r.max.x, r.max.y, r.max.z, r.eye_y};
+    for (double v : values)
+        if (!std::isfinite(v)) badContext(name, "interior region is not finite", "finite numbers");
+    if (!(r.min.x < r.max.x && r.min.z < r.max.z && r.min.y < r.eye_y && r.eye_y < r.max.y))
+        badContext(name, "interior region is empty or its eye height lies outside it",
+                   "min < max in x and z and floor < eye_y < ceiling");
+    const double wx = r.max.x - r.min.x, wz = r.max.z - r.min.z;
+    const bool x_long = wx >= wz;
+    s.inside = true;
+    s.along = x_long ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 0, 1);
+    s.across = glm::cross(s.along, kUp);
+    s.len_along = std::max(wx, wz);
+    s.len_across = std::min(wx, wz);
+    const double margin = kInsideMargin * s.len_across;
+    s.reach_along = 0.5 * s.len_along - margin;
+    s.reach_across = 0.5 * s.len_across - margin;
+    s.eye_y = r.eye_y;
+    s.centre = glm::dvec3(0.5 * (r.min.x + r.max.x), r.eye_y, 0.5 * (r.min.z + r.max.z));
+    s.near = std::min({s.near, kInsideNear * (r.eye_y - r.min.y), kInsideNear * s.len_across});
+    s.stand = s.centre - s.reach_along * s.along;
+    s.opposite = s.centre + s.reach_along * s.along;
+    s.dolly = 0.1 * s.len_along;
 }
 
 Stage makeStage(const BuiltinContext& ctx, const std::string& name) {
@@ -70,7 +108,8 @@ Stage makeStage(const BuiltinContext& ctx, const std::string& name) {
 
     Stage s;
     s.centre = 0.5 * (b.min + b.max);
-    s.aisle = ctx.scene_name == "atrium";
+    const std::string_view placement = builtinPlacement(ctx);
+    s.aisle = placement == "aisle";
     const bool x_long = s.aisle || extent.x >= extent.z;
     s.along = x_long ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 0, 1);
     s.across = glm::cross(s.along, kUp);
@@ -90,6 +129,8 @@ Stage makeStage(const BuiltinContext& ctx, const std::string& name) {
         s.stand = s.centre - s.size * s.along;
         s.opposite = s.centre + s.size * s.along;
     }
+    s.dolly = 0.06 * s.size;
+    if (placement == "interior") insideStage(s, *ctx.interior, name);
     s.stand.y = s.eye_y;
     s.opposite.y = s.eye_y;
     return s;
@@ -128,6 +169,8 @@ glm::dquat yaw(double radians, const glm::dquat& q) { return glm::angleAxis(radi
 // Half a circle in 4 s, from above, looking at the centre: moderate motion with parallax
 // all round. Keys every 10 degrees keep the spline within 0.3% of the radius (the
 // reflected end tangents account for most of that).
+// Inside: half an ellipse through the region at eye height (its reach along both axes),
+// looking at its centre.
 CameraPath orbit(const Stage& s, const BuiltinContext&) {
     CameraPath path = makePath("orbit", Interpolation::CatmullRom);
     const double radius = 0.85 * s.size;
@@ -136,7 +179,8 @@ CameraPath orbit(const Stage& s, const BuiltinContext&) {
     for (int k = 0; k <= kSteps; ++k) {
         const double angle = glm::pi<double>() * k / kSteps;
         const glm::dvec3 position =
-            s.centre + radius * (-std::cos(angle) * s.along + std::sin(angle) * s.across) + height * kUp;
+            s.inside ? s.centre + s.reach_along * -std::cos(angle) * s.along + s.reach_across * std::sin(angle) * s.across
+                     : s.centre + radius * (-std::cos(angle) * s.along + std::sin(angle) * s.across) + height * kUp;
         path.keys.push_back(lookKey(s, 4.0 * k / kSteps, position, s.centre));
     }
     return path;
@@ -144,6 +188,7 @@ CameraPath orbit(const Stage& s, const BuiltinContext&) {
 
 // atrium: walks the aisle from one end to near the other at eye height, looking ahead, with
 // a lateral drift of 2% of the width (0.24 of the aisle's +-1) and a +-5 degree yaw sway.
+// Inside: the same walk along the region's length, drifting half its reach across.
 // Other scenes: a fly-by beside the bounds, 0.7 diagonals from the centre, watching the
 // centre line go past.
 CameraPath flythrough(const Stage& s, const BuiltinContext&) {
@@ -160,6 +205,11 @@ CameraPath flythrough(const Stage& s, const BuiltinContext&) {
                        0.02 * s.len_across * std::sin(two_pi * f) * s.across;
             position.y = s.eye_y;
             target = position + 0.15 * s.len_along * (std::cos(sway) * s.along + std::sin(sway) * s.across);
+        } else if (s.inside) {
+            const double sway = glm::radians(5.0) * std::sin(2 * two_pi * f);
+            position = s.centre + glm::mix(-1.0, 0.9, f) * s.reach_along * s.along +
+                       0.5 * s.reach_across * std::sin(two_pi * f) * s.across;
+            target = position + 0.3 * s.len_along * (std::cos(sway) * s.along + std::sin(sway) * s.across);
         } else {
             position = s.centre + glm::mix(-0.9, 0.9, f) * s.size * s.along - 0.7 * s.size * s.across +
                        (0.15 + 0.03 * std::sin(two_pi * f)) * s.size * kUp;
@@ -210,9 +260,18 @@ CameraPath fastTurn(const Stage& s, const BuiltinContext&) {
 // Strafes sideways for 3 s looking across the scene, so near geometry slides over far
 // geometry and uncovers it. atrium: from the aisle (z = -0.72) past the near pillar at
 // x = 0, z = 2 with the far wall at z = 6 behind it. Other scenes: one diagonal out,
-// the scene's centre region passing in front of whatever lies beyond.
+// the scene's centre region passing in front of whatever lies beyond. Inside: across the
+// region's near end, looking along its length, so what stands in the room slides over the
+// far wall.
 CameraPath strafeOccluder(const Stage& s, const BuiltinContext&) {
     CameraPath path = makePath("strafe-occluder", Interpolation::Linear);
+    if (s.inside) {
+        const glm::dvec3 from = s.stand - s.reach_across * s.across;
+        const glm::dvec3 to = s.stand + s.reach_across * s.across;
+        path.keys.push_back(lookKey(s, 0, from, from + s.size * s.along));
+        path.keys.push_back(lookKey(s, 3, to, to + s.size * s.along));
+        return path;
+    }
     glm::dvec3 base = s.aisle ? s.centre - 0.06 * s.len_across * s.across : s.centre - s.size * s.across;
     base.y = s.eye_y;
     const double sweep = (s.aisle ? 0.12 : 0.35) * s.len_along;
@@ -228,9 +287,8 @@ CameraPath strafeOccluder(const Stage& s, const BuiltinContext&) {
 // not be used.
 CameraPath cut(const Stage& s, const BuiltinContext&) {
     CameraPath path = makePath("cut", Interpolation::CatmullRom);
-    const double dolly = 0.06 * s.size;
-    const glm::dvec3 a_end = s.stand + dolly * s.along;
-    const glm::dvec3 b_end = s.opposite - dolly * s.along;
+    const glm::dvec3 a_end = s.stand + s.dolly * s.along;
+    const glm::dvec3 b_end = s.opposite - s.dolly * s.along;
     path.keys.push_back(lookKey(s, 0, s.stand, s.stand + s.size * s.along));
     path.keys.push_back(lookKey(s, (kCutFrame - 1) / kFps, a_end, a_end + s.size * s.along));
     path.keys.push_back(lookKey(s, kCutFrame / kFps, s.opposite, s.opposite - s.size * s.along, /*cut=*/true));
@@ -246,9 +304,10 @@ struct Builtin {
 
 // The one list: `cbrbench paths`, builtinPath and the tests all iterate it.
 constexpr Builtin kBuiltins[] = {
-    {"orbit", "half orbit (180 degrees, 4 s) around the scene centre from above, looking at it", orbit},
-    {"flythrough", "atrium: walk down the central aisle at eye height, gentle sway; other scenes: "
-                   "a fly-by beside the bounds (4 s)", flythrough},
+    {"orbit", "half orbit (180 degrees, 4 s) around the scene centre from above, looking at it "
+              "(interiors: around the free region's centre at eye height)", orbit},
+    {"flythrough", "atrium: walk down the central aisle at eye height, gentle sway; interiors: the same "
+                   "along the free region; other scenes: a fly-by beside the bounds (4 s)", flythrough},
     {"static", "fixed camera for 3 s: only jitter and animated objects change", staticPath},
     {"subpixel-pan", "slow yaw pan moving the screen centre 0.25 px per frame: shows edge crawl (4 s)",
      subpixelPan},
@@ -267,6 +326,10 @@ const std::vector<BuiltinPathInfo>& builtinPaths() {
         return list;
     }();
     return infos;
+}
+
+const char* builtinPlacement(const BuiltinContext& ctx) {
+    return ctx.scene_name == "atrium" ? "aisle" : ctx.interior ? "interior" : "outside";
 }
 
 CameraPath builtinPath(const std::string& name, const BuiltinContext& ctx) {

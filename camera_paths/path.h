@@ -53,14 +53,27 @@ struct Bounds {
     glm::dvec3 max{1};
 };
 
+// A free box inside the scene at eye height, found from its geometry (the harness asks
+// scene::findInterior): nothing in x, z between min and max from the floor up to the ceiling.
+struct InteriorRegion {
+    glm::dvec3 min{0};                       // x, z: the free box; y: the floor
+    glm::dvec3 max{0};                       // x, z: the free box; y: the ceiling (the bounds' top where open)
+    double eye_y = 0;                        // camera height, in (min.y, max.y)
+};
+
 // Everything a built-in path may depend on (subpixel-pan needs the resolution).
 struct BuiltinContext {
     Bounds bounds;
     int width = 960;
     int height = 540;
     std::string scene_name;                  // "atrium": cameras walk its central aisle;
-                                             // other scenes are viewed from outside the bounds
+    std::optional<InteriorRegion> interior;  // else, when set: cameras stay inside it;
+                                             // else they view the scene from outside the bounds
 };
+
+// How built-in paths are placed for ctx (docs/camera_paths.md): "aisle" (the scene named
+// atrium), "interior" (ctx.interior set) or "outside".
+const char* builtinPlacement(const BuiltinContext& ctx);
 
 // Parses a path document. `source` names the file in error messages. Bad input throws
 // std::invalid_argument with one line: "<source>: <JSON pointer>: <what is wrong>;

@@ -425,6 +425,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                  {"duration_s", rc.path.duration()},
                  {"frames", rc.poses.size()},
                  {"cuts", std::count_if(rc.poses.begin(), rc.poses.end(), [](const auto& p) { return p.cut; })}};
+    if (rc.placement) j["path"]["placement"] = placementJson(*rc.placement, rc.scene.placement);
     j["metrics"] = {{"on", "8-bit sRGB display image, as the saved PNGs, converted to [0,1]"},
                     {"reference", "full at the same frame, unjittered, one sample per pixel"},
                     {"psnr", "10 log10(1/MSE), MSE over all pixels and RGB channels; sequence PSNR from the mean MSE"},

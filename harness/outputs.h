@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "camera_paths/path.h"
+#include "harness/builtin_context.h"
 #include "harness/options.h"
 #include "harness/results.h"
 #include "renderer/scene/scene.h"
@@ -25,6 +26,7 @@ struct RunContext {
     const std::vector<paths::CameraPose>& poses;
     vk::Context& ctx;
     const RunResults& results;
+    const PathPlacement* placement = nullptr;  // run.json path.placement, when known
 };
 
 // One row per variant, computed from the frame rows (also used by the printed summary).

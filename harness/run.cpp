@@ -71,6 +71,7 @@ struct Prepared {
     paths::CameraPath path;
     std::vector<double> times;
     std::vector<paths::CameraPose> poses;
+    PathPlacement placement;  // how a built-in path was placed (run.json path.placement)
     std::vector<const variants::Variant*> order;
     // What runs, in order within each repetition: a variant with its settings (a plain
     // run: one per variant; a sweep: one per configuration).
@@ -192,11 +193,8 @@ Prepared prepare(const RunOptions& o) {
 
     p.scene = scene::loadScene(o.scene);
     for (const auto& w : p.scene.warnings) std::fprintf(stderr, "cbrbench: warning: %s: %s\n", o.scene.c_str(), w.c_str());
-    paths::BuiltinContext bctx;
-    bctx.bounds = {glm::dvec3(p.scene.bounds_min), glm::dvec3(p.scene.bounds_max)};
-    bctx.width = int(p.settings.width);
-    bctx.height = int(p.settings.height);
-    bctx.scene_name = p.scene.name;
+    const paths::BuiltinContext bctx =
+        builtinContext(p.scene, o.path, int(p.settings.width), int(p.settings.height), &p.placement);
     std::filesystem::path path_file(o.path);
     p.path = path_file.extension() == ".json" ? paths::loadPath(path_file) : paths::builtinPath(o.path, bctx);
     applyPlacement(o, p.scene, p.path);
@@ -535,7 +533,7 @@ int runBenchmark(const RunOptions& options) {
     if (!ctx.description.is_lavapipe) results.copy_bandwidth = vk::measureCopyBandwidth(ctx, 512);
     results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
-    RunContext rc{options, p.settings, p.scene, p.path, p.times, p.poses, ctx, results};
+    RunContext rc{options, p.settings, p.scene, p.path, p.times, p.poses, ctx, results, &p.placement};
     writeOutputs(out.path(), rc);
     if (!options.quiet) reports::writeReport(out.path());
     if (options.sweep) {

@@ -23,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "camera_paths/path.h"
+#include "harness/builtin_context.h"
 #include "harness/interrupt.h"
 #include "harness/options.h"
 #include "metrics/image_io.h"
@@ -113,9 +114,7 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
     (void)w;
     // Poses from the atrium flythrough's start: inside the scene, looking down the aisle.
     scene::Scene atrium = scene::buildProcedural("atrium");
-    paths::BuiltinContext bctx;
-    bctx.bounds = {glm::dvec3(atrium.bounds_min), glm::dvec3(atrium.bounds_max)};
-    bctx.scene_name = "atrium";
+    const paths::BuiltinContext bctx = builtinContext(atrium, "flythrough", int(w), int(h));
     paths::CameraPose p0 = paths::samplePose(paths::builtinPath("flythrough", bctx), 0.0);
     auto yaw = [](double rad) { return glm::angleAxis(rad, glm::dvec3(0, 1, 0)); };
     const glm::dquat q0 = p0.orientation;
