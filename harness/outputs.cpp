@@ -348,6 +348,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
     j["date"] = isoDate();
     j["command_line"] = rc.options.argv;
     j["wall_seconds"] = r.seconds;
+    j["first_frame_wall_seconds"] = r.first_frame_seconds;
     j["device"] = {{"index", d.index},
                    {"name", d.name},
                    {"type", d.device_type},
@@ -418,6 +419,7 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                   {"bounds_min", {rc.scene.bounds_min.x, rc.scene.bounds_min.y, rc.scene.bounds_min.z}},
                   {"bounds_max", {rc.scene.bounds_max.x, rc.scene.bounds_max.y, rc.scene.bounds_max.z}},
                   {"warnings", rc.scene.warnings}};
+    addSceneCost(j["scene"], rc.scene, r.scene_load);
     j["path"] = {{"name", rc.path.name},
                  {"source", rc.options.path},
                  {"hash", pathHash(rc.poses, rc.times)},

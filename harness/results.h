@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/scene_load.h"
 #include "harness/sweep.h"
 #include "renderer/settings.h"
 
@@ -70,9 +71,11 @@ struct RunResults {
     int frames = 0;
     int repeats = 0;
     double seconds = 0;         // wall time of the run
+    double first_frame_seconds = 0;  // wall time from the start (scene loading included) to the first timed frame's result
     std::vector<double> reference_ms;        // the ssaa reference's frame times (not a variant)
     std::vector<std::string> worst_files;    // worst/<variant>_<kind>_<what>.png
     vk::CopyBandwidth copy_bandwidth;        // measured after the variants, for the resolve's bandwidth
+    SceneLoad scene_load;
 };
 
 }  // namespace cbr::harness

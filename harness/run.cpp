@@ -83,6 +83,7 @@ struct Prepared {
     std::vector<Config> configs;
     std::vector<SweepParam> params;
     std::filesystem::path out;
+    SceneLoad load;
 };
 
 Prepared prepare(const RunOptions& o) {
@@ -191,7 +192,10 @@ Prepared prepare(const RunOptions& o) {
         p.configs.push_back(std::move(c));
     }
 
+    const auto load_start = std::chrono::steady_clock::now();
     p.scene = scene::loadScene(o.scene);
+    p.load.load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+    p.load.peak_rss_mib_loaded = peakRssMib();
     for (const auto& w : p.scene.warnings) std::fprintf(stderr, "cbrbench: warning: %s: %s\n", o.scene.c_str(), w.c_str());
     const paths::BuiltinContext bctx =
         builtinContext(p.scene, o.path, int(p.settings.width), int(p.settings.height), &p.placement);
@@ -321,7 +325,10 @@ int runBenchmark(const RunOptions& options) {
 
     reports::OutputDir out(p.out);
     if (options.save_frames) std::filesystem::create_directories(out.path() / "frames");
+    const auto upload_start = std::chrono::steady_clock::now();
     gpu::GpuScene gpu_scene = gpu::uploadScene(ctx, p.scene);
+    p.load.upload_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - upload_start).count();
+    if (!options.quiet) std::fprintf(stderr, "cbrbench: %s\n", sceneLoadLine(p.scene, p.load).c_str());
     // Released on every way out, an interrupt's exception included: destroying the device
     // with the scene's images and buffers alive leaks them (LeakSanitizer, validation).
     // Declared before the renderers, so it runs after theirs; destroyGpuScene is idempotent.
@@ -459,6 +466,9 @@ int runBenchmark(const RunOptions& options) {
             // configurations differ only in shading cost and are scored against it).
             bool is_reference = vi == 0 && full_is_reference;
             auto handle = [&](render::FrameResult&& fr) {
+                if (results.rows.empty())
+                    results.first_frame_seconds =
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
                 FrameRow& row = results.rows.emplace_back();
                 done[size_t(fr.index)] = true;
                 row.variant = name;
@@ -531,6 +541,8 @@ int runBenchmark(const RunOptions& options) {
     // Not on lavapipe: its timestamps around a lone dispatch or copy in a one-off submission
     // do not bracket the work (a 64 MiB compute copy read as 8 TB/s).
     if (!ctx.description.is_lavapipe) results.copy_bandwidth = vk::measureCopyBandwidth(ctx, 512);
+    results.scene_load = p.load;
+    results.scene_load.peak_rss_mib_end = peakRssMib();
     results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
     RunContext rc{options, p.settings, p.scene, p.path, p.times, p.poses, ctx, results, &p.placement};

@@ -27,6 +27,12 @@ std::string hexAt(const RunData& d, const std::string& pointer) {
     return buf;
 }
 
+// A number at `pointer` scaled and rounded ("12.3"), or a dash.
+std::string numberAt(const RunData& d, const std::string& pointer, double scale, int decimals) {
+    const auto* j = jsonAt(d.run, pointer);
+    return j && j->is_number() ? fmt(j->get<double>() * scale, decimals) : std::string(kDash);
+}
+
 std::string joined(const std::string& a, const std::string& b, const std::string& sep) {
     if (a == kDash) return b;
     if (b == kDash) return a;
@@ -75,6 +81,7 @@ std::string provenanceSection(const RunData& d) {
                                         {"date", at(d, "/date")},
                                         {"command line", cmd.empty() ? kDash : cmd},
                                         {"wall time (s)", at(d, "/wall_seconds")},
+                                        {"wall time to the first frame (s)", numberAt(d, "/first_frame_wall_seconds", 1, 3)},
                                         {"image I/O", at(d, "/metrics/image_io")},
                                     });
     out += kvTable("Benchmark", {
@@ -106,6 +113,18 @@ std::string provenanceSection(const RunData& d) {
                                 {"lights", at(d, "/scene/lights")},
                                 {"default light added", at(d, "/scene/default_light")},
                                 {"meshes moved to their own origin", at(d, "/scene/recentred_meshes")},
+                                {"draws", at(d, "/scene/draws")},
+                                {"materials", at(d, "/scene/materials")},
+                                {"textures", at(d, "/scene/textures")},
+                                {"texture MiB (RGBA8 / with mips)",
+                                 numberAt(d, "/scene/texture_bytes", 1.0 / 1048576, 1) + " / " +
+                                     numberAt(d, "/scene/texture_gpu_bytes", 1.0 / 1048576, 1)},
+                                {"load / upload (s)", numberAt(d, "/scene/load_s", 1, 3) + " / " +
+                                                          numberAt(d, "/scene/upload_s", 1, 3)},
+                                {"peak RSS loaded / at end (MiB)", numberAt(d, "/scene/peak_rss_mib_loaded", 1, 0) +
+                                                                       " / " +
+                                                                       numberAt(d, "/scene/peak_rss_mib_end", 1, 0)},
+                                {"cost note", at(d, "/scene/cost_note")},
                             });
     out += kvTable("Camera path", {
                                       {"name", at(d, "/path/name")},

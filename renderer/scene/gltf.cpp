@@ -469,7 +469,8 @@ Scene loadGltf(const std::filesystem::path& file) {
     const std::filesystem::path base_dir = file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
 
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(gltfLoadImage, const_cast<std::string*>(&label));
+    GltfImages images{label, {}};
+    loader.SetImageLoader(gltfLoadImage, &images);
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
@@ -488,6 +489,7 @@ Scene loadGltf(const std::filesystem::path& file) {
     } catch (const std::exception& e) {  // tinygltf and nlohmann throw on some malformed input
         gltfFail(label, "tinygltf", e.what(), accepted);
     }
+    if (ok && err.empty()) err = gltfDecodeImages(images, model);  // all cores, after the parse
     if (!ok || !err.empty())
         gltfFail(label, "tinygltf", oneLine(err.empty() ? "load failed " + warn : err + (warn.empty() ? "" : " " + warn)), accepted);
 

@@ -43,12 +43,28 @@ inline std::string gltfIndexRange(const char* array, size_t count) {
                  : "no reference: /" + std::string(array) + " is empty";
 }
 
-// tinygltf's image decoder (TinyGLTF::SetImageLoader; user data: the file name as a
-// const std::string*): PNG and JPEG only, the formats glTF 2.0 allows, and only when the
-// bytes can hold the pixels the header claims, so a truncated 150-byte JPEG that says
-// 16384x16384 is refused before the decoder allocates a gigabyte for it.
+// Images in two steps, so that decoding runs on every core (issue 16): tinygltf's image
+// callback (TinyGLTF::SetImageLoader; user data: a GltfImages*) checks each image's header
+// and keeps its encoded bytes; gltfDecodeImages decodes them all after the parse. PNG and
+// JPEG only, the formats glTF 2.0 allows, and only when the bytes can hold the pixels the
+// header claims, so a truncated 150-byte JPEG that says 16384x16384 is refused before the
+// decoder allocates a gigabyte for it.
+struct GltfImages {
+    struct Encoded {
+        int index = 0;                      // into model.images
+        int req_width = 0, req_height = 0;  // a buffer view image's declared size, else 0
+        std::vector<unsigned char> bytes;
+    };
+    std::string file;
+    std::vector<Encoded> encoded;
+};
 bool gltfLoadImage(tinygltf::Image* image, int image_index, std::string* err, std::string* warn, int req_width,
-                   int req_height, const unsigned char* bytes, int size, void* file);
+                   int req_height, const unsigned char* bytes, int size, void* images);
+// Decodes the recorded images into model.images with tinygltf's own decoder (RGBA, 8 or 16
+// bits), one image per task on up to hardware_concurrency threads (CBR_DECODE_THREADS=N
+// overrides, for measurements). Returns tinygltf's error text for the lowest-numbered image
+// that fails, empty when all decode.
+std::string gltfDecodeImages(GltfImages& images, tinygltf::Model& model);
 
 // Scene texture for a glTF texture index, decoded to RGBA8; sRGB for colour, linear for data.
 int gltfTexture(GltfContext& ctx, int index, bool srgb, const std::string& used_by);

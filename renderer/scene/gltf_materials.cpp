@@ -1,6 +1,11 @@
-// glTF materials and textures: metallic-roughness factors and maps, alpha modes, RGBA8 conversion.
+// glTF materials and textures: image checks and parallel decoding, metallic-roughness factors and maps, alpha modes, RGBA8 conversion.
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <stdexcept>
+#include <thread>
 
 #include "renderer/scene/gltf_internal.h"
 
@@ -65,9 +70,10 @@ ImageHeader readImageHeader(const unsigned char* bytes, size_t size) {
 
 }  // namespace
 
-bool gltfLoadImage(tinygltf::Image* image, int image_index, std::string* err, std::string* warn, int req_width,
-                   int req_height, const unsigned char* bytes, int size, void* file) {
-    const std::string& label = *static_cast<const std::string*>(file);
+bool gltfLoadImage(tinygltf::Image*, int image_index, std::string*, std::string*, int req_width, int req_height,
+                   const unsigned char* bytes, int size, void* images) {
+    GltfImages& batch = *static_cast<GltfImages*>(images);
+    const std::string& label = batch.file;
     const std::string where = gltfAt("images", size_t(image_index < 0 ? 0 : image_index));
     const ImageHeader h = readImageHeader(bytes, size_t(size < 0 ? 0 : size));
     if (!h.format) gltfFail(label, where, "data is neither PNG nor JPEG", "image/png or image/jpeg data (glTF 2.0 images)");
@@ -78,7 +84,52 @@ bool gltfLoadImage(tinygltf::Image* image, int image_index, std::string* err, st
         gltfFail(label, where, std::string(h.format) + " of " + std::to_string(size) + " bytes cannot hold the " + std::to_string(h.width) +
                                    "x" + std::to_string(h.height) + " pixels its header claims (truncated)",
                  "a complete image (at least " + std::to_string(uint64_t(std::ceil(h.min_bytes))) + " bytes)");
-    return tinygltf::LoadImageData(image, image_index, err, warn, req_width, req_height, bytes, size, nullptr);
+    // Kept, not decoded: tinygltf parses one image after another on one thread, and a
+    // scene's PNGs take seconds to inflate. The bytes of a uri image die with the call.
+    batch.encoded.push_back({image_index, req_width, req_height, std::vector<unsigned char>(bytes, bytes + size)});
+    return true;
+}
+
+std::string gltfDecodeImages(GltfImages& images, tinygltf::Model& model) {
+    const size_t count = images.encoded.size();
+    size_t threads = std::max(1u, std::thread::hardware_concurrency());
+    if (const char* env = std::getenv("CBR_DECODE_THREADS")) {
+        char* end = nullptr;
+        const long n = std::strtol(env, &end, 10);
+        if (!*env || *end || n < 1 || n > 256)
+            throw std::invalid_argument(std::string("CBR_DECODE_THREADS=") + env + ": expected 1 to 256 threads");
+        threads = size_t(n);
+    }
+    threads = std::min(threads, count);
+    std::vector<std::string> errors(count);
+    std::atomic<size_t> next{0};
+    auto work = [&] {
+        for (size_t i; (i = next.fetch_add(1)) < count;) {
+            GltfImages::Encoded& e = images.encoded[i];
+            try {
+                std::string warn;  // tinygltf's decoder never warns
+                if (e.index < 0 || size_t(e.index) >= model.images.size()) {
+                    errors[i] = "image[" + std::to_string(e.index) + "] is missing after the parse";
+                } else if (!tinygltf::LoadImageData(&model.images[size_t(e.index)], e.index, &errors[i], &warn, e.req_width,
+                                                    e.req_height, e.bytes.data(), int(e.bytes.size()), nullptr) &&
+                           errors[i].empty()) {
+                    errors[i] = "image[" + std::to_string(e.index) + "] could not be decoded";
+                }
+            } catch (const std::exception& e) {  // std::bad_alloc, as the parse's catch reported it
+                errors[i] = e.what();
+            }
+            e.bytes = {};
+        }
+    };
+    std::vector<std::thread> pool;
+    for (size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (auto& t : pool) t.join();
+    // The lowest image index, as the serial parse (which stopped there) reported it.
+    size_t first = count;
+    for (size_t i = 0; i < count; ++i)
+        if (!errors[i].empty() && (first == count || images.encoded[i].index < images.encoded[first].index)) first = i;
+    return first == count ? std::string() : errors[first];
 }
 
 // Decoded images may have 1-4 channels of 8 or 16 bits; the renderer takes RGBA8.
@@ -112,7 +163,6 @@ int gltfTexture(GltfContext& ctx, int index, bool srgb, const std::string& used_
     texture.width = w;
     texture.height = h;
     texture.srgb = srgb;
-    texture.rgba8.resize(pixels * 4);
     auto channel = [&](size_t pixel, int c) -> uint8_t {
         const uint8_t* p = image.image.data() + (pixel * size_t(channels) + size_t(c)) * bytes_per_channel;
         if (bits == 8) return *p;
@@ -120,7 +170,10 @@ int gltfTexture(GltfContext& ctx, int index, bool srgb, const std::string& used_
         std::memcpy(&v, p, 2);
         return uint8_t((uint32_t(v) * 255u + 32767u) / 65535u);
     };
-    for (size_t i = 0; i < pixels; ++i) {
+    const bool as_is = channels == 4 && bits == 8;  // what tinygltf's decoder gives for 8-bit files
+    if (as_is) texture.rgba8.assign(image.image.begin(), image.image.end());
+    else texture.rgba8.resize(pixels * 4);
+    for (size_t i = 0; i < pixels && !as_is; ++i) {
         uint8_t* out = &texture.rgba8[i * 4];
         if (channels <= 2) {  // grey (+ alpha)
             out[0] = out[1] = out[2] = channel(i, 0);

@@ -295,6 +295,21 @@ void finalizeScene(Scene& scene) {
             hi = glm::max(hi, w);
         }
     }
+    info.draws = info.opaque_draws + info.masked_draws + info.blend_draws;
+    info.materials = int(scene.materials.size());
+    info.textures = int(scene.textures.size());
+    info.texture_bytes = info.texture_gpu_bytes = 0;
+    for (const Texture& t : scene.textures) {
+        info.texture_bytes += t.rgba8.size();
+        // Every level down to 1x1, each side halved and floored (vk::uploadTexture).
+        uint64_t w = uint64_t(t.width), h = uint64_t(t.height);
+        info.texture_gpu_bytes += w * h * 4;
+        while (w > 1 || h > 1) {
+            w = std::max<uint64_t>(1, w / 2);
+            h = std::max<uint64_t>(1, h / 2);
+            info.texture_gpu_bytes += w * h * 4;
+        }
+    }
     if (scene.instances.empty()) lo = hi = glm::dvec3(0.0);
     // Double bounds may span more than a float holds; the GPU then sees infinities.
     if (!finite(lo) || !finite(hi) || !finite(glm::vec3(hi - lo)))

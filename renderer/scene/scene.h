@@ -135,6 +135,12 @@ struct SceneInfo {
     int animations = 0;          // glTF animations that target nodes (all, played or not)
     int skinned_instances = 0;   // rendered in the bind pose: skins are not animated
     int morphed_meshes = 0;      // rendered with base positions: morph targets are not applied
+    // What the scene costs to load and hold (run.json scene, cbrbench's load line).
+    int draws = 0;                   // opaque + masked + blend: one per instance
+    int materials = 0;
+    int textures = 0;                // an image used as colour and as data counts twice
+    uint64_t texture_bytes = 0;      // RGBA8 base levels: as decoded, and as copied to the GPU
+    uint64_t texture_gpu_bytes = 0;  // with the mip chain the upload generates (vk::uploadTexture)
 };
 
 // A glTF camera, for `--path gltf`. Perspective only is usable as a path; an orthographic

@@ -1,0 +1,64 @@
+// The largest scene the tests make (issue 16): 1M triangles and 50 PNG textures through
+// `cbrbench run` on lavapipe with the validation layer on; run.json's and the report's
+// load figures. CBR_BIG_SCENE_DIR=DIR writes the scene there for measurements (README).
+#include <cstdlib>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tests/render/bench_runner.h"
+#include "tests/support/big_scene.h"
+
+namespace cbr::test {
+namespace {
+
+// The README's "Loading large scenes" figures use this spec (texture size 512 and 1024).
+testsupport::BigSceneSpec bigSpec() {
+    testsupport::BigSceneSpec spec;  // 50 meshes of 100x100 quads: 1,000,000 triangles
+    spec.textures = 50;
+    spec.texture_size = 512;
+    if (const char* size = std::getenv("CBR_BIG_SCENE_TEXTURE_SIZE")) spec.texture_size = std::atoi(size);
+    return spec;
+}
+
+TEST(BigScene, LoadFiguresInRunJsonReportAndStderr) {
+    const auto work = scratchDir("big-scene-files");
+    const testsupport::BigSceneSpec spec = bigSpec();
+    const auto files = testsupport::writeBigScene(work, "big", spec);
+    ASSERT_EQ(files.triangles, 1000000);
+    auto r = runValidated("big-scene", {"--scene", files.gltf.string(), "--res", "96x54", "--frames", "2", "--variants",
+                                        "full", "--path", "orbit"});
+    ASSERT_EQ(r.result.exit_code, 0) << r.result.err;
+    const auto& s = r.run["scene"];
+    EXPECT_EQ(s["triangles"], 1000000);
+    EXPECT_EQ(s["draws"], 50);
+    EXPECT_EQ(s["materials"], 50);
+    EXPECT_EQ(s["textures"], 50);
+    const uint64_t texture_bytes = uint64_t(spec.textures) * uint64_t(spec.texture_size) * uint64_t(spec.texture_size) * 4;
+    EXPECT_EQ(s["texture_bytes"].get<uint64_t>(), texture_bytes);
+    EXPECT_GT(s["texture_gpu_bytes"].get<uint64_t>(), texture_bytes);
+    EXPECT_GT(s["load_s"].get<double>(), 0.0);
+    EXPECT_GT(s["upload_s"].get<double>(), 0.0);
+    // The decoded textures and the 32-byte vertices stay resident while loading.
+    const double held_mib = double(texture_bytes + 50ull * 101 * 101 * 32) / 1048576.0;
+    EXPECT_GT(s["peak_rss_mib_loaded"].get<double>(), held_mib);
+    EXPECT_GE(s["peak_rss_mib_end"].get<double>(), s["peak_rss_mib_loaded"].get<double>());
+    EXPECT_NE(r.result.err.find("scene big: 1000000 triangles, 50 draws, 50 materials, 50 textures"), std::string::npos)
+        << r.result.err;
+    const std::string report = slurp(r.dir / "report.html");
+    EXPECT_NE(report.find("texture MiB (RGBA8 / with mips)"), std::string::npos);
+    EXPECT_NE(report.find("peak RSS loaded / at end (MiB)"), std::string::npos);
+    std::filesystem::remove_all(work);
+}
+
+// Not a check: writes the scene for the README's measurements and skips otherwise.
+TEST(BigScene, WriteForMeasurement) {
+    const char* dir = std::getenv("CBR_BIG_SCENE_DIR");
+    if (!dir || !*dir) GTEST_SKIP() << "set CBR_BIG_SCENE_DIR=DIR (and CBR_BIG_SCENE_TEXTURE_SIZE) to write the scene";
+    const auto files = testsupport::writeBigScene(dir, "big", bigSpec());
+    std::printf("wrote %s: %d triangles, %d textures, %.1f MiB of files\n", files.gltf.c_str(), files.triangles,
+                files.textures, double(files.file_bytes) / 1048576.0);
+}
+
+}  // namespace
+}  // namespace cbr::test
