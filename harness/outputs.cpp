@@ -59,7 +59,22 @@ std::string sceneHash(const scene::Scene& s) {
     h = fnv1a(s.indices.data(), s.indices.size() * sizeof(uint32_t), h);
     for (const auto& t : s.textures) h = fnv1a(t.rgba8.data(), t.rgba8.size(), h);
     for (const auto& m : s.materials) h = fnv1a(&m.base_color_factor, sizeof(m.base_color_factor), h);
+    for (const auto& a : s.animations)  // what plays moves the geometry
+        if (a.played)
+            for (const auto& c : a.channels) {
+                h = fnv1a(c.times.data(), c.times.size() * sizeof(double), h);
+                h = fnv1a(c.values.data(), c.values.size() * sizeof(double), h);
+            }
     return hex(h);
+}
+
+// run.json scene.animations: every glTF animation that targets nodes, and whether it played.
+nlohmann::json animationsJson(const scene::Scene& s) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& a : s.animations)
+        list.push_back({{"name", a.name}, {"index", a.gltf_index}, {"length_s", a.length},
+                        {"channels", a.channels.size()}, {"played", a.played}});
+    return list;
 }
 
 std::string pathHash(const std::vector<paths::CameraPose>& poses, const std::vector<double>& times) {
@@ -428,6 +443,10 @@ void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
                  {"frames", rc.poses.size()},
                  {"cuts", std::count_if(rc.poses.begin(), rc.poses.end(), [](const auto& p) { return p.cut; })}};
     if (rc.placement) j["path"]["placement"] = placementJson(*rc.placement, rc.scene.placement);
+    j["scene"]["animations"] = animationsJson(rc.scene);
+    j["scene"]["cameras"] = nlohmann::json::array();
+    for (const auto& c : rc.scene.cameras)
+        j["scene"]["cameras"].push_back({{"name", c.name}, {"type", c.perspective ? "perspective" : "orthographic"}});
     j["metrics"] = {{"on", "8-bit sRGB display image, as the saved PNGs, converted to [0,1]"},
                     {"reference", "full at the same frame, unjittered, one sample per pixel"},
                     {"psnr", "10 log10(1/MSE), MSE over all pixels and RGB channels; sequence PSNR from the mean MSE"},

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "camera_paths/path.h"
+#include "harness/gltf_path.h"
 #include "harness/interrupt.h"
 #include "harness/outputs.h"
 #include "harness/placement.h"
@@ -200,10 +201,15 @@ Prepared prepare(const RunOptions& o) {
     const paths::BuiltinContext bctx =
         builtinContext(p.scene, o.path, int(p.settings.width), int(p.settings.height), &p.placement);
     std::filesystem::path path_file(o.path);
-    p.path = path_file.extension() == ".json" ? paths::loadPath(path_file) : paths::builtinPath(o.path, bctx);
+    scene::selectAnimations(p.scene, o.animation);
+    const bool gltf_path = isGltfPathSpec(o.path);
+    p.path = gltf_path                         ? gltfCameraPath(p.scene, o.path, o.fps)
+             : path_file.extension() == ".json" ? paths::loadPath(path_file)
+                                                : paths::builtinPath(o.path, bctx);
     applyPlacement(o, p.scene, p.path);
-    p.times = paths::frameTimes(p.path, o.frames);
-    p.poses = paths::sampleFrames(p.path, o.frames);
+    const int frames = gltf_path && !o.frames_set ? 0 : o.frames;
+    p.times = paths::frameTimes(p.path, frames);
+    p.poses = paths::sampleFrames(p.path, frames);
     p.out = o.out.empty() ? std::filesystem::path("out") / (specStem(o.scene) + "-" + specStem(o.path) + "-" + timestampForName())
                           : std::filesystem::path(o.out);
     if (o.sweep && o.out.empty())

@@ -16,17 +16,10 @@
 #include "renderer/scene/gltf_internal.h"
 
 namespace cbr::scene {
-namespace {
 
 // ---- accessors -------------------------------------------------------------------------
 
-struct View {
-    const uint8_t* data = nullptr;
-    size_t stride = 0, count = 0;
-    int components = 0, component_type = 0;
-    bool normalized = false;
-    std::string pointer, used_by;
-};
+namespace {
 
 int componentBytes(int type) {
     switch (type) {
@@ -58,6 +51,8 @@ std::string typeName(int type) {
         default: return "a matrix type";
     }
 }
+
+}  // namespace
 
 // Checks type, component type, and that every element lies inside its buffer view and
 // buffer, before anything is read.
@@ -135,6 +130,12 @@ std::vector<float> readFloats(const GltfContext& ctx, const View& view) {
                 std::memcpy(&value, element + 4 * c, 4);
             } else if (view.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
                 value = float(element[c]) / 255.0f;
+            } else if (view.component_type == TINYGLTF_COMPONENT_TYPE_BYTE) {  // glTF 2.0 3.11: max(c / 127, -1)
+                value = std::max(float(int8_t(element[c])) / 127.0f, -1.0f);
+            } else if (view.component_type == TINYGLTF_COMPONENT_TYPE_SHORT) {
+                int16_t v;
+                std::memcpy(&v, element + 2 * c, 2);
+                value = std::max(float(v) / 32767.0f, -1.0f);
             } else {
                 uint16_t v;
                 std::memcpy(&v, element + 2 * c, 2);
@@ -149,6 +150,9 @@ std::vector<float> readFloats(const GltfContext& ctx, const View& view) {
     }
     return out;
 }
+
+namespace {
+
 
 std::vector<uint32_t> readIndices(const View& view) {
     std::vector<uint32_t> out(view.count, 0);
@@ -266,6 +270,7 @@ int loadPrimitive(GltfContext& ctx, size_t mesh_index, size_t prim_index) {
     }
 
     Scene& scene = ctx.scene;
+    scene.info.morphed_meshes += !prim.targets.empty();
     if (zero_normals)
         scene.warnings.push_back(p + "/attributes/NORMAL: " + std::to_string(zero_normals) +
                                  " zero-length normal(s) replaced by area-weighted face normals");
@@ -405,14 +410,45 @@ void flattenNodes(GltfContext& ctx) {
         for (size_t i = 0; i < model.nodes.size(); ++i)
             if (parent[i] < 0) roots.push_back(int(i));
     }
+    // Files with animations or cameras keep their node tree (parents first) for per-frame
+    // transforms; instances under an animated node refer to it instead of being flattened.
+    const bool keep_nodes = !model.animations.empty() || !model.cameras.empty();
+    const std::vector<bool> animated = gltfAnimatedNodes(ctx);
+    std::vector<int> scene_node(model.nodes.size(), -1);
+    struct Visit {
+        int index;
+        glm::dmat4 parent_world;
+        int parent_node;      // Scene::nodes index of the parent, -1 at a root
+        bool under_animated;  // an ancestor is animated
+    };
     // Iterative, so a deep hierarchy cannot overflow the stack.
-    std::vector<std::pair<int, glm::dmat4>> stack;
-    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::dmat4(1.0));
+    std::vector<Visit> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1.0), -1, false});
     while (!stack.empty()) {
-        const auto [index, parent_world] = stack.back();
+        const Visit visit = stack.back();
         stack.pop_back();
+        const int index = visit.index;
         const tinygltf::Node& node = model.nodes[size_t(index)];
-        const glm::dmat4 world = parent_world * localTransform(ctx, node, size_t(index));
+        const glm::dmat4 local = localTransform(ctx, node, size_t(index));
+        const glm::dmat4 world = visit.parent_world * local;
+        const bool node_animated = visit.under_animated || animated[size_t(index)];
+        if (animated[size_t(index)] && node.matrix.size() == 16)
+            gltfError(ctx, gltfAt("nodes", size_t(index)) + "/matrix", "is the target of an animation channel",
+                      "translation, rotation and scale on an animated node (glTF 2.0 section 3.11)");
+        if (keep_nodes) {
+            Node n;
+            n.name = node.name;
+            n.parent = visit.parent_node;
+            n.gltf_index = index;
+            n.has_matrix = node.matrix.size() == 16;
+            n.matrix = local;
+            if (node.translation.size() == 3) n.translation = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
+            if (node.rotation.size() == 4)
+                n.rotation = glm::normalize(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
+            if (node.scale.size() == 3) n.scale = glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
+            scene_node[size_t(index)] = int(ctx.scene.nodes.size());
+            ctx.scene.nodes.push_back(std::move(n));
+        }
         // Each local transform fits a float, a product along the path need not (scale 1e30
         // under scale 1e30); the GPU reads the linear part as float.
         for (int c = 0; c < 3; ++c)
@@ -423,11 +459,18 @@ void flattenNodes(GltfContext& ctx) {
         if (node.mesh >= 0) {
             if (size_t(node.mesh) >= model.meshes.size())
                 gltfError(ctx, gltfAt("nodes", size_t(index)) + "/mesh", std::to_string(node.mesh) + " does not exist", gltfIndexRange("meshes", model.meshes.size()));
-            for (int mesh : sceneMeshes(ctx, size_t(node.mesh))) ctx.scene.instances.push_back({mesh, world, {}});
+            for (int mesh : sceneMeshes(ctx, size_t(node.mesh))) {
+                if (node_animated) ctx.scene.instances.push_back({mesh, glm::dmat4(1.0), {}, scene_node[size_t(index)]});
+                else ctx.scene.instances.push_back({mesh, world, {}, -1});
+                ctx.scene.info.skinned_instances += node.skin >= 0;
+            }
         }
         addLight(ctx, node, size_t(index), world);
-        for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.emplace_back(*c, world);
+        if (node.camera >= 0) gltfCamera(ctx, node, size_t(index), scene_node[size_t(index)]);
+        for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)
+            stack.push_back({*c, world, scene_node[size_t(index)], node_animated});
     }
+    if (keep_nodes) gltfAnimations(ctx, scene_node);
     if (ctx.scene.instances.empty())
         gltfError(ctx, roots_pointer, "no triangles to draw" +
                                      (ctx.skipped_primitives ? " (" + std::to_string(ctx.skipped_primitives) + " point/line primitives skipped)" : std::string()),
@@ -499,6 +542,14 @@ Scene loadGltf(const std::filesystem::path& file) {
     GltfContext ctx{label, model, scene, {}, std::vector<int>(model.materials.size(), -1), -1,
                 std::vector<std::optional<std::vector<int>>>(model.meshes.size()), 0};
     flattenNodes(ctx);
+    // Said once, here and in run.json's scene warnings (and the report's notes).
+    if (scene.info.skinned_instances)
+        scene.warnings.push_back("/skins: " + std::to_string(scene.info.skinned_instances) +
+                                 " skinned mesh instance(s) rendered in the bind pose (skins are not animated)");
+    if (scene.info.morphed_meshes)
+        scene.warnings.push_back("/meshes: " + std::to_string(scene.info.morphed_meshes) +
+                                 " primitive(s) with morph targets rendered with their base positions (morph targets and "
+                                 "weights animations are not applied)");
     finalizeScene(scene);
     return scene;
 }

@@ -43,6 +43,30 @@ inline std::string gltfIndexRange(const char* array, size_t count) {
                  : "no reference: /" + std::string(array) + " is empty";
 }
 
+// A checked accessor: every element lies inside its buffer view and buffer.
+struct View {
+    const uint8_t* data = nullptr;
+    size_t stride = 0, count = 0;
+    int components = 0, component_type = 0;
+    bool normalized = false;
+    std::string pointer, used_by;
+};
+
+// Checks type, component type (one of `component_types`) and bounds before anything is read.
+View viewAccessor(const GltfContext& ctx, int index, const std::string& used_by, int type,
+                  std::initializer_list<int> component_types);
+// Elements as floats: FLOAT as is, normalized integers per glTF 2.0; a NaN or infinity
+// throws naming the accessor, element and user.
+std::vector<float> readFloats(const GltfContext& ctx, const View& view);
+
+// Animations and cameras (gltf_animation.cpp). `scene_node[i]` is the Scene::nodes index of
+// glTF node i, -1 for nodes outside the scene. Channels on nodes outside the scene are
+// dropped; "weights" channels are counted (morph targets are not animated).
+void gltfAnimations(GltfContext& ctx, const std::vector<int>& scene_node);
+// Targets of translation/rotation/scale channels of any animation, per glTF node.
+std::vector<bool> gltfAnimatedNodes(const GltfContext& ctx);
+void gltfCamera(GltfContext& ctx, const tinygltf::Node& node, size_t node_index, int scene_node);
+
 // Images in two steps, so that decoding runs on every core (issue 16): tinygltf's image
 // callback (TinyGLTF::SetImageLoader; user data: a GltfImages*) checks each image's header
 // and keeps its encoded bytes; gltfDecodeImages decodes them all after the parse. PNG and

@@ -272,7 +272,8 @@ void finalizeScene(Scene& scene) {
     SceneInfo& info = scene.info;
     info.opaque_draws = info.masked_draws = info.blend_draws = info.animated_instances = info.triangles = 0;
     info.recentred_meshes += recentreMeshes(scene);
-    if (!scene.animations.empty()) selectAnimations(scene, "all");
+    if (!scene.animations.empty()) selectAnimations(scene, "all");  // Node::animated; counted below
+    info.animated_instances = 0;
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     const std::vector<glm::dmat4> models = instanceTransforms(scene, 0.0);
     for (size_t i = 0; i < scene.instances.size(); ++i) {
