@@ -95,6 +95,10 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_option("--exposure", o.exposure, "exposure multiplier before tone mapping")->capture_default_str();
     cmd->add_option("--cbr-route", o.cbr_route, "checkerboard route: auto, msaa-jitter, msaa-locations, multiview")
         ->capture_default_str();
+    cmd->add_option("--cbr-history", o.cbr_history,
+                    "checkerboard history: quarter (frame N-1's quarter-res samples, the paper's) or full (the "
+                    "previous resolved frame, clipped to the neighbourhood)")
+        ->capture_default_str();
     cmd->add_option("--cbr-lod-bias", o.cbr_lod_bias, "texture LOD bias of checkerboard scene passes")
         ->capture_default_str();
     cmd->add_option("--cso-tolerance", o.cso_tolerance, "cbr-cso depth tolerance (relative, or scene units)")

@@ -30,6 +30,7 @@ struct RunOptions {
     int shading_cost = 1;
     double exposure = 1.0;
     std::string cbr_route = "auto";
+    std::string cbr_history = "quarter";  // quarter | full: the checkerboard resolve's history
     double cbr_lod_bias = -1.0;      // chosen by a sweep over the built-in paths (README); -0.5 is the paper's
     double cso_tolerance = 0.05;
     std::string cso_mode = "relative";

@@ -44,6 +44,9 @@ struct Settings {
     bool deferred = false;           // --pipeline deferred: G-buffer, lighting resolve, forward transparency
     // Checkerboard rendering.
     std::string cbr_route = "auto";  // auto | msaa-jitter | msaa-locations | multiview
+    // History of the checkerboard resolve: false, frame N-1's quarter-res samples (the
+    // paper's); true, the previous resolved full-res frame, clipped (--cbr-history full).
+    bool cbr_full_history = false;
     float cbr_lod_bias = -1.0f;      // matches full-res derivatives (README: chosen by a sweep); the paper: -0.5
     double cso_tolerance = 0.05;
     bool cso_absolute = false;       // false: relative to the mean neighbour depth

@@ -71,6 +71,10 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
     r.group_pixels = uint32_t(desc.group) * 2;
     r.check_occlusion = desc.check_occlusion;
     r.out = out;
+    r.full_history = desc.full_history;
+    if (desc.full_history && desc.impl == ResolveImpl::Reference)
+        throw vk::Unsupported("--cbr-history full: the reference resolve keeps the quarter-res history; use "
+                              "--resolve-impl fused or separate");
     r.push.cso_tolerance = desc.cso_tolerance;
     r.push.exposure = desc.exposure;
     r.push.pass_through = desc.pass_through ? 1u : 0u;
@@ -81,13 +85,25 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
     const VkFormat stand_in_formats[3] = {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8_UINT, VK_FORMAT_R8G8B8A8_UNORM};
     for (int i = 0; i < 3; ++i)
         r.stand_ins[i] = vk::createImage(ctx, {"cbr_resolve_stand_in" + std::to_string(i), stand_in_formats[i], {1, 1},
-                                               VK_IMAGE_USAGE_STORAGE_BIT});
+                                               VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+    for (int i = 0; i < 2; ++i)
+        r.history_stand_ins[i] = vk::createImage(ctx, {"cbr_history_stand_in" + std::to_string(i),
+                                                       VK_FORMAT_R16G16B16A16_SFLOAT, {1, 1},
+                                                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+    if (desc.full_history) {
+        for (int i = 0; i < 2; ++i)
+            r.history[i] = vk::createImage(ctx, {"cbr_history" + std::to_string(i), VK_FORMAT_R16G16B16A16_SFLOAT,
+                                                 desc.full_extent,
+                                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+        r.history_sampler = vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 0.0f);
+    }
     constexpr auto kComp = VK_SHADER_STAGE_COMPUTE_BIT;
     constexpr auto kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     constexpr auto kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     std::vector<vk::Binding> binding_list = {{0, kSampled, kComp}, {1, kSampled, kComp}, {2, kSampled, kComp},
                                              {3, kSampled, kComp}, {4, kSampled, kComp}, {5, kStorage, kComp},
-                                             {6, kStorage, kComp},  {7, kStorage, kComp}};
+                                             {6, kStorage, kComp},  {7, kStorage, kComp},
+                                             {10, kSampled, kComp}, {11, kStorage, kComp}};
     if (desc.deferred) binding_list.insert(binding_list.end(), {{8, kSampled, kComp}, {9, kSampled, kComp}});
     bool has_cfb = desc.deferred && sets[0].cfb.image;
     bool tiled = desc.impl != ResolveImpl::Reference;
@@ -99,6 +115,7 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
         if (!tiled) return s;
         s.push_back({/* OUTPUT= */ 5, output});
         s.push_back({/* PARITY= */ 6, parity});
+        s.push_back({/* FULL_HISTORY= */ 7, desc.full_history ? 1 : 0});
         s.push_back({/* GROUP= */ 20, desc.group});
         for (uint32_t i = 0; i < 8; ++i) s.push_back({/* PATTERN_i= */ 10 + i, r.push.pattern[i]});
         return s;
@@ -140,6 +157,13 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
                 sampled(8, has_cfb ? n.cfb : n.depth);
                 sampled(9, has_cfb ? prev.cfb : prev.depth);
             }
+            // Frame N (parity cur) reads the history frame N-1 wrote.
+            if (r.full_history)
+                vk::writeImage(ctx, set, 10, kSampled, r.history[1 - cur].view, vk::sampledLayout(r.history[1 - cur]),
+                               r.history_sampler);
+            else
+                vk::writeImage(ctx, set, 10, kSampled, r.history_stand_ins[0].view,
+                               vk::sampledLayout(r.history_stand_ins[0]), r.sampler);
         };
         VkDescriptorSet set = vk::allocateSet(ctx, r.pool, r.kernel[0].set_layout);
         inputs(set);
@@ -147,6 +171,7 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
         bindStandIn(ctx, set, 5, fused ? nullptr : out.hdr, r.stand_ins[0]);
         bindStandIn(ctx, set, 6, tiled ? nullptr : out.classes, r.stand_ins[1]);
         bindStandIn(ctx, set, 7, fused ? out.display : nullptr, r.stand_ins[2]);
+        bindStandIn(ctx, set, 11, r.full_history ? &r.history[cur] : nullptr, r.history_stand_ins[1]);
         r.sets[cur] = set;
         if (!tiled) continue;
         VkDescriptorSet class_set = vk::allocateSet(ctx, r.pool, r.class_kernel[0].set_layout);
@@ -154,6 +179,7 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
         bindStandIn(ctx, class_set, 5, nullptr, r.stand_ins[0]);
         bindStandIn(ctx, class_set, 6, out.classes, r.stand_ins[1]);
         bindStandIn(ctx, class_set, 7, nullptr, r.stand_ins[2]);
+        bindStandIn(ctx, class_set, 11, nullptr, r.history_stand_ins[1]);
         r.class_sets[cur] = class_set;
     }
     return r;
@@ -168,13 +194,16 @@ void destroyCbrResolve(vk::Context& ctx, CbrResolve& r) {
     if (r.pool) vkDestroyDescriptorPool(ctx.device, r.pool, nullptr);
     if (r.sampler) vkDestroySampler(ctx.device, r.sampler, nullptr);
     for (auto& img : r.stand_ins) vk::destroyImage(ctx, img);
+    for (auto& img : r.history) vk::destroyImage(ctx, img);
+    for (auto& img : r.history_stand_ins) vk::destroyImage(ctx, img);
+    if (r.history_sampler) vkDestroySampler(ctx.device, r.history_sampler, nullptr);
     r = {};
 }
 
 namespace {
 
 void addDispatch(graph::Graph& graph, std::string name, bool timed, const vk::ComputeKernel& kernel,
-                 VkDescriptorSet frame_set, VkDescriptorSet set, CheckerboardSet (&sets)[2], int current,
+                 VkDescriptorSet frame_set, VkDescriptorSet set, CheckerboardSet (&sets)[2], CbrResolve& r, int current,
                  std::vector<std::pair<vk::Image*, graph::Use>> writes, const CbrResolvePush& push, uint32_t group,
                  VkExtent2D extent) {
     graph::Pass pass;
@@ -186,6 +215,10 @@ void addDispatch(graph::Graph& graph, std::string name, bool timed, const vk::Co
     pass.uses = {{&n.depth, graph::Use::Sampled}, {&prev.depth, graph::Use::Sampled}};
     for (vk::Image* img : {&n.color, &prev.color, &n.srt, &prev.srt, &n.cfb, &prev.cfb, &n.motion})
         if (img->image) pass.uses.push_back({img, graph::Use::Sampled});
+    // The history bindings: real images with the full history, else their stand-ins (a
+    // binding the shader references statically is an access to the synchronisation layer).
+    pass.uses.push_back({r.full_history ? &r.history[1 - current] : &r.history_stand_ins[0], graph::Use::Sampled});
+    if (!r.full_history || !timed) pass.uses.push_back({&r.history_stand_ins[1], graph::Use::StorageWrite});
     pass.uses.insert(pass.uses.end(), writes.begin(), writes.end());
     pass.record = [&kernel, frame_set, set, extent, &push, group](VkCommandBuffer cmd) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline);
@@ -217,11 +250,12 @@ void addCbrResolvePass(graph::Graph& graph, CbrResolve& r, VkDescriptorSet frame
                       {&r.stand_ins[2], Use::StorageWrite}};
             break;
     }
+    if (r.full_history) writes.push_back({&r.history[current], Use::StorageWrite});
     bool fused = r.impl == ResolveImpl::Fused;
     vk::Image* target = fused ? r.out.display : r.out.hdr;
     // The renderer writes frame N into the set of its parity: `current` is the parity.
     addDispatch(graph, fused ? "cbr_resolve_tonemap" : "cbr_resolve", true, r.kernel[current], frame_set, r.sets[current], sets,
-                current, std::move(writes), r.push, r.impl == ResolveImpl::Reference ? kReferenceGroup : r.group_pixels,
+                r, current, std::move(writes), r.push, r.impl == ResolveImpl::Reference ? kReferenceGroup : r.group_pixels,
                 target->extent);
 }
 
@@ -229,7 +263,7 @@ void addCbrClassMapPass(graph::Graph& graph, CbrResolve& r, VkDescriptorSet fram
                         int current) {
     if (r.impl == ResolveImpl::Reference) return;  // its timed pass writes the class map
     using graph::Use;
-    addDispatch(graph, "cbr_class_map", false, r.class_kernel[current], frame_set, r.class_sets[current], sets, current,
+    addDispatch(graph, "cbr_class_map", false, r.class_kernel[current], frame_set, r.class_sets[current], sets, r, current,
                 {{r.out.classes, Use::StorageWrite}, {&r.stand_ins[0], Use::StorageWrite},
                  {&r.stand_ins[2], Use::StorageWrite}},
                 r.push, r.group_pixels, r.out.classes->extent);
@@ -244,6 +278,9 @@ double cbrResolveBytes(const CbrResolve& r, const CheckerboardSet& set, uint32_t
     double previous = imageBytes(set.color) + imageBytes(set.srt) + imageBytes(set.cfb) +
                       (r.check_occlusion ? imageBytes(set.depth) : 0.0);
     double written = double(width) * height * (r.impl == ResolveImpl::Fused ? 4 : 8);
+    // Full history: frame N-1's resolved colour read once per unshaded pixel (half the
+    // image, RGBA16F) and frame N's written for every pixel.
+    if (r.full_history) written += double(width) * height * 8 + double(width) * height * 0.5 * 8;
     if (r.impl == ResolveImpl::Reference) written += double(width) * height;  // the class map, every frame
     return current + previous + written;
 }

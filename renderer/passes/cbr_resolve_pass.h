@@ -36,6 +36,10 @@ struct CbrResolveDesc {
     float exposure = 1.0f;          // fused tone map
     bool pass_through = false;      // fused tone map, debug pixel-id mode
     int group = 16;                 // tiled: invocations per group axis, each resolving 2x2 pixels
+    // The previous resolved full-res frame (linear) as the history, clipped (tiled only);
+    // else frame N-1's quarter-res samples.
+    bool full_history = false;
+    VkExtent2D full_extent{};       // output size, for the full history images
 };
 
 // Push constants of the reconstruction: the route's pattern rows, the CSO tolerance and
@@ -70,6 +74,13 @@ struct CbrResolve {
     CbrResolveOutputs out;
     // 1x1 stand-ins bound to the outputs a kernel does not write: hdr, classes, display.
     vk::Image stand_ins[3];
+    // Full history: [parity] frame N writes history[parity] and reads history[1 - parity]
+    // (linear RGBA16F, output size); absent with the quarter-res history.
+    bool full_history = false;
+    vk::Image history[2];
+    VkSampler history_sampler = VK_NULL_HANDLE;  // bilinear, clamped
+    // 1x1 stand-ins for the history bindings (read, written) with the quarter-res history.
+    vk::Image history_stand_ins[2];
 };
 
 CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDescriptorSetLayout frame_layout,
@@ -77,7 +88,8 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
 void destroyCbrResolve(vk::Context& ctx, CbrResolve& r);
 
 // The timed reconstruction, `cbr_resolve_tonemap` (fused) or `cbr_resolve`; counts classes
-// into the frame set's stats buffer (kShaded..kReset, 6 uints).
+// into the frame set's stats buffer (kShaded..kReset, 6 uints; kClipped the 7th with the
+// full history).
 void addCbrResolvePass(graph::Graph& graph, CbrResolve& r, VkDescriptorSet frame_set, CheckerboardSet (&sets)[2],
                        int current);
 // The untimed `cbr_class_map` pass (tiled implementations; quality frames only): the same

@@ -33,6 +33,10 @@ layout(constant_id = 5) const int OUTPUT = 1;
 // invocation branches on it. (A dynamically indexed constant array would become per-
 // invocation scratch memory on some compilers, llvmpipe: 30x slower; hence no array.)
 layout(constant_id = 6) const int PARITY = 0;
+// 0: frame N-1's quarter-res samples are the history (the paper's); 1: the previous resolved
+// full-res frame in linear colour (history_prev, bilinear), clipped to this frame's shaded
+// neighbourhood in YCoCg (issue 17, --cbr-history full).
+layout(constant_id = 7) const int FULL_HISTORY = 0;
 layout(constant_id = 10) const int PATTERN_0 = 0;
 layout(constant_id = 11) const int PATTERN_1 = 0;
 layout(constant_id = 12) const int PATTERN_2 = 0;
@@ -49,6 +53,10 @@ layout(std430, set = 0, binding = 2) buffer Stats { uint class_counts[8]; };
 layout(set = 1, binding = 5, rgba16f) uniform writeonly image2D out_color;
 layout(set = 1, binding = 6, r8ui) uniform writeonly uimage2D out_class;
 layout(set = 1, binding = 7, rgba8) uniform writeonly image2D out_display;
+// Full history: frame N-1's resolved linear colour (read), frame N's (written); 1x1
+// stand-ins with the quarter-res history.
+layout(set = 1, binding = 10) uniform sampler2D history_prev;
+layout(set = 1, binding = 11, rgba16f) uniform writeonly image2D history_out;
 
 // The layout the reference shader reads (cbr_resolve_reference.glsl); pattern unused here.
 layout(push_constant) uniform Params {
@@ -60,6 +68,7 @@ layout(push_constant) uniform Params {
 
 // Pixel classes, also the class map's values and the px_* columns.
 const uint kShaded = 0u, kReused = 1u, kMissingParity = 2u, kOccluded = 3u, kOffscreen = 4u, kReset = 5u;
+const uint kClipped = 6u;  // full history: reused, moved by the neighbourhood clip
 
 // The tile: quarter pixels [origin, origin + TILE) of frame N, two samples each. A group
 // covers GROUP quarter pixels; neighbours reach one further each way and the jitter
@@ -69,7 +78,7 @@ const int SLOTS = TILE * TILE * 2;
 shared vec4 tile_sample[SLOTS];    // rgb colour, a device depth; a = -1: no such sample
 shared vec4 tile_weighted[SLOTS];  // fill terms: rgb max(colour, 0) * w, a w = 1 / (1 + luma)
 shared vec2 tile_motion[SLOTS];
-shared uint group_counts[3];       // class counts, two 16-bit fields each
+shared uint group_counts[4];       // class counts, two 16-bit fields each
 
 ivec3 unpackEntry(int packed) { return ivec3(packed & 15, (packed >> 4) & 15, (packed >> 8) & 15) - 1; }
 
@@ -125,7 +134,13 @@ struct Fill {
     ivec2 nearest_pixel;  // its full-res pixel
     float depth_sum;   // view depths of the cardinal neighbours, for CSO
     int depth_count;
+    vec3 lo, hi;       // YCoCg bounds of the shaded neighbours (full history's clip box)
 };
+
+vec3 toYCoCg(vec3 c) {
+    return vec3(0.25 * c.r + 0.5 * c.g + 0.25 * c.b, 0.5 * c.r - 0.5 * c.b, -0.25 * c.r + 0.5 * c.g - 0.25 * c.b);
+}
+vec3 fromYCoCg(vec3 c) { return vec3(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z); }
 
 void addNeighbour(inout Fill f, ivec2 n, ivec2 quadrant, ivec2 origin, ivec2 size) {
     bool shaded;
@@ -138,6 +153,26 @@ void addNeighbour(inout Fill f, ivec2 n, ivec2 quadrant, ivec2 origin, ivec2 siz
     f.nearest_pixel = closer ? n : f.nearest_pixel;
     f.depth_sum += shaded ? viewDepth(depth, frame.depth_params.xy) : 0.0;
     f.depth_count += shaded ? 1 : 0;
+    if (FULL_HISTORY != 0) {
+        vec3 y = toYCoCg(tile_sample[slot].rgb);
+        f.lo = shaded ? min(f.lo, y) : f.lo;
+        f.hi = shaded ? max(f.hi, y) : f.hi;
+    }
+}
+
+// Clips `history` towards the centre of the box [lo, hi] (YCoCg) until it lies inside
+// (Playdead, "Temporal Reprojection Anti-Aliasing in INSIDE", GDC 2016); `moved` when it
+// had to. An empty box (no shaded neighbour) leaves the history as it is.
+vec3 clipToBox(vec3 history, vec3 lo, vec3 hi, out bool moved) {
+    vec3 y = toYCoCg(history);
+    vec3 centre = 0.5 * (hi + lo);
+    vec3 extent = max(0.5 * (hi - lo), vec3(1e-4));
+    vec3 v = y - centre;
+    vec3 a = abs(v / extent);
+    float m = max(a.x, max(a.y, a.z));
+    bool valid = all(lessThanEqual(lo, hi));
+    moved = valid && m > 1.0;
+    return moved ? fromYCoCg(centre + v / m) : history;
 }
 
 vec3 fillColour(Fill f) { return f.sum.a > 0.0 ? f.sum.rgb / f.sum.a : vec3(0.0); }
@@ -145,7 +180,7 @@ vec3 fillColour(Fill f) { return f.sum.a > 0.0 ? f.sum.rgb / f.sum.a : vec3(0.0)
 // A pixel of a quadrant frame N did not shade: reused from frame N-1, or filled.
 vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls) {
     ivec2 qx = ivec2(quadrant.x ^ 1, quadrant.y), qy = ivec2(quadrant.x, quadrant.y ^ 1);
-    Fill f = Fill(vec4(0.0), -1.0, -1, ivec2(0), 0.0, 0);
+    Fill f = Fill(vec4(0.0), -1.0, -1, ivec2(0), 0.0, 0, vec3(1e30), vec3(-1e30));
     addNeighbour(f, p + ivec2(-1, 0), qx, origin, size);
     addNeighbour(f, p + ivec2(1, 0), qx, origin, size);
     addNeighbour(f, p + ivec2(0, -1), qy, origin, size);
@@ -183,10 +218,25 @@ vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls
         // CSO: view-space depths, so the test does not depend on where the camera looks.
         float d_prev = viewDepth(FETCH(prev_depth, prev_qc, prev_s).r, frame.depth_params.zw);
         float d_avg = f.depth_sum / float(max(f.depth_count, 1));
+        // Full history: the neighbours' point as frame N-1's camera saw it (its depth moves
+        // with the camera), so a static surface keeps its history on a moving camera.
+        if (FULL_HISTORY != 0 && prev.w > 0.0 && f.nearest_slot >= 0)
+            d_avg = viewDepth(prev.z / prev.w, frame.depth_params.zw);
         float tolerance = CSO_ABSOLUTE != 0 ? params.cso_tolerance : params.cso_tolerance * d_avg;
         occluded = occluded && (f.depth_count == 0 || abs(d_prev - d_avg) >= tolerance);
     }
 
+    if (FULL_HISTORY != 0) {
+        // Every pixel of frame N-1 was resolved: no missing parity, no lost column. The
+        // history is clipped to this frame's shaded neighbours; ASO/CSO decide as above.
+        bool moved;
+        vec3 history = textureLod(history_prev, prev_pos / vec2(size), 0.0).rgb;
+        vec3 clipped = clipToBox(history, f.lo, f.hi, moved);
+        cls = occluded ? kOccluded : moved ? kClipped : kReused;
+        cls = on_screen ? cls : kOffscreen;
+        cls = frame.frame_info.y == 1u ? kReset : cls;
+        return cls == kReused || cls == kClipped ? clipped : fillColour(f);
+    }
     // The class, the first rule that applies last (method/cbr.md, reconstruction steps 2-5).
     cls = occluded ? kOccluded : kReused;
     cls = prev_exists ? cls : kOffscreen;
@@ -205,7 +255,7 @@ vec3 shadedPixel(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, bool edge_gr
     vec3 colour = tile_sample[slot].rgb;
     if (edge_group) {
         ivec2 d = quadrant ^ 1;
-        Fill f = Fill(vec4(0.0), -1.0, -1, ivec2(0), 0.0, 0);
+        Fill f = Fill(vec4(0.0), -1.0, -1, ivec2(0), 0.0, 0, vec3(1e30), vec3(-1e30));
         addNeighbour(f, p + ivec2(-1, -1), d, origin, size);
         addNeighbour(f, p + ivec2(1, -1), d, origin, size);
         addNeighbour(f, p + ivec2(-1, 1), d, origin, size);
@@ -215,14 +265,15 @@ vec3 shadedPixel(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, bool edge_gr
     return colour;
 }
 
-// Per class c < 6, one count in a 16-bit field.
-uvec3 classBit(uint cls, bool counted) {
+// Per class c < 8, one count in a 16-bit field.
+uvec4 classBit(uint cls, bool counted) {
     uint bit = counted ? 1u << ((cls & 1u) * 16u) : 0u;
-    return uvec3(cls >> 1 == 0u ? bit : 0u, cls >> 1 == 1u ? bit : 0u, cls >> 1 == 2u ? bit : 0u);
+    return uvec4(cls >> 1 == 0u ? bit : 0u, cls >> 1 == 1u ? bit : 0u, cls >> 1 == 2u ? bit : 0u,
+                 cls >> 1 == 3u ? bit : 0u);
 }
 
 void resolvePixel(ivec2 block, ivec2 quadrant, ivec2 origin, ivec2 size, bool edge_group,
-                  inout uvec3 counts) {
+                  inout uvec4 counts) {
     ivec2 p = block * 2 + quadrant;
     uint cls;
     vec3 colour = patternEntry(PARITY, quadrant).x >= 0  // a constant: no invocation branches
@@ -231,6 +282,7 @@ void resolvePixel(ivec2 block, ivec2 quadrant, ivec2 origin, ivec2 size, bool ed
     bool inside = all(lessThan(p, size));
     counts += classBit(cls, inside);
     if (!inside) return;
+    if (FULL_HISTORY != 0 && OUTPUT != 2) imageStore(history_out, p, vec4(colour, 1.0));
     if (OUTPUT == 2)
         imageStore(out_class, p, uvec4(cls));
     else if (OUTPUT == 0)
@@ -244,11 +296,11 @@ void main() {
     ivec2 size = ivec2(frame.frame_info.zw);
     ivec2 origin = ivec2(gl_WorkGroupID.xy) * GROUP - 1;
     bool edge_group = (int(gl_WorkGroupID.x) + 1) * GROUP * 2 >= size.x;
-    if (gl_LocalInvocationIndex < 3u) group_counts[gl_LocalInvocationIndex] = 0u;
+    if (gl_LocalInvocationIndex < 4u) group_counts[gl_LocalInvocationIndex] = 0u;
     loadTile(origin);
     barrier();
 
-    uvec3 counts = uvec3(0u);
+    uvec4 counts = uvec4(0u);
     resolvePixel(block, ivec2(0, 0), origin, size, edge_group, counts);
     resolvePixel(block, ivec2(1, 0), origin, size, edge_group, counts);
     resolvePixel(block, ivec2(0, 1), origin, size, edge_group, counts);
@@ -256,16 +308,17 @@ void main() {
     if (OUTPUT == 2) return;
 
     // Class counts: one subgroup sum of packed fields, one shared add per subgroup, at most
-    // six global adds per group (per-invocation atomics cost llvmpipe a third of the pass).
+    // seven global adds per group (per-invocation atomics cost llvmpipe a third of the pass).
     counts = subgroupAdd(counts);
     if (subgroupElect()) {
         atomicAdd(group_counts[0], counts.x);
         atomicAdd(group_counts[1], counts.y);
         atomicAdd(group_counts[2], counts.z);
+        if (FULL_HISTORY != 0) atomicAdd(group_counts[3], counts.w);
     }
     barrier();
     uint c = gl_LocalInvocationIndex;
-    if (c < 6u) {
+    if (c < (FULL_HISTORY != 0 ? 7u : 6u)) {
         uint n = (group_counts[c >> 1] >> ((c & 1u) * 16u)) & 0xffffu;
         if (n > 0u) atomicAdd(class_counts[c], n);
     }

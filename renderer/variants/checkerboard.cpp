@@ -115,6 +115,8 @@ public:
         rdesc.exposure = s.exposure;
         rdesc.pass_through = s.debug_pixel_id;
         rdesc.group = resolveGroup(ctx);
+        rdesc.full_history = s.cbr_full_history;
+        rdesc.full_extent = full;
         resolve_ = passes::createCbrResolve(ctx, rdesc, scene.frame_layout, sets_, {&hdr_, &display_, &class_});
         if (!fused_) tonemap_ = passes::createTonemap(ctx, hdr_, display_);
         if (desc.sample_locations)
@@ -199,7 +201,9 @@ public:
     vk::Image* diagnosticImage() override { return &class_; }
 
     std::vector<std::string> statNames() const override {
-        return {"px_shaded", "px_reused", "px_missing_parity", "px_occluded", "px_offscreen", "px_reset"};
+        if (!settings_.cbr_full_history)
+            return {"px_shaded", "px_reused", "px_missing_parity", "px_occluded", "px_offscreen", "px_reset"};
+        return {"px_shaded", "px_reused", "px_missing_parity", "px_occluded", "px_offscreen", "px_reset", "px_clipped"};
     }
 
     std::vector<std::pair<std::string, std::string>> describe() const override {
@@ -215,6 +219,11 @@ public:
                            : "motion vectors written by moving instances only (drawn last); elsewhere camera "
                              "motion from depth reprojection in the resolve"},
             {"fill", "tone-mapped average of frame N's cardinal neighbours, weights 1/(1+luma)"},
+            {"history", settings_.cbr_full_history
+                            ? "full: the previous resolved frame (linear RGBA16F, output size), bilinear at the "
+                              "reprojected position, clipped towards the centre of the YCoCg box of this frame's "
+                              "shaded cardinal neighbours; CSO compares frame N-1's quarter-res depth there"
+                            : "quarter: frame N-1's quarter-res samples (the paper's)"},
             {"pipeline_detail", deferred_ ? "deferred: checkerboard G-buffer, per-sample lighting into the SRT, "
                                      "transparency in the CFB"
                                    : "forward"},
