@@ -1,0 +1,98 @@
+// The run's steps, shared by run.cpp, run_prepare.cpp and run_loop.cpp (not for other commands).
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include "camera_paths/path.h"
+#include "harness/builtin_context.h"
+#include "harness/options.h"
+#include "harness/quality.h"
+#include "harness/results.h"
+#include "harness/scene_load.h"
+#include "harness/sweep.h"
+#include "harness/worker_pool.h"
+#include "renderer/gpu/gpu_scene.h"
+#include "renderer/renderer.h"
+#include "renderer/scene/scene.h"
+#include "renderer/variants/variants.h"
+#include "renderer/vk/context.h"
+
+namespace cbr::harness {
+
+// Everything checked before the first output exists.
+struct Prepared {
+    RunOptions options;
+    render::Settings settings;
+    scene::Scene scene;
+    paths::CameraPath path;
+    std::vector<double> times;
+    std::vector<paths::CameraPose> poses;
+    PathPlacement placement;  // how a built-in path was placed (run.json path.placement)
+    std::vector<const variants::Variant*> order;
+    // What runs, in order within each repetition: a variant with its settings (a plain
+    // run: one per variant; a sweep: one per configuration).
+    struct Config {
+        const variants::Variant* variant = nullptr;
+        render::Settings settings;
+        SweepConfig sweep;
+    };
+    std::vector<Config> configs;
+    std::vector<SweepParam> params;
+    std::filesystem::path out;
+    SceneLoad load;
+};
+
+// Options to settings, configurations, scene and path, output directory (run_prepare.cpp).
+Prepared prepare(const RunOptions& o);
+
+// Prints the ETA of a run on a terminal; silent otherwise.
+class Progress {
+public:
+    explicit Progress(int total);
+    void step(const std::string& what);
+    ~Progress();
+
+private:
+    int total_;
+    int done_ = 0;
+    bool tty_;
+    std::chrono::steady_clock::time_point start_;
+};
+
+// The state the render loop's steps share, from the uploaded scene to the scored frames.
+// Members are destroyed in reverse: renderers, then the scorer, then the workers (which
+// finish their PNG writes into `out` before the output directory goes).
+struct RunState {
+    RunState(const Prepared& p, vk::Context& ctx, gpu::GpuScene& gpu_scene, const std::filesystem::path& out,
+             std::chrono::steady_clock::time_point wall_start);
+
+    const Prepared& p;
+    const RunOptions& options;
+    vk::Context& ctx;
+    gpu::GpuScene& gpu_scene;
+    const std::filesystem::path out;  // the temporary output directory
+    const std::chrono::steady_clock::time_point wall_start;
+    const int w, h;
+    RunResults results;
+    WorkerPool workers;
+    QualityScorer scorer;
+    // The alignment check looks at the middle frame of a path of at least 3 frames.
+    const size_t mid;
+    std::vector<Bytes> mid_images;
+    std::vector<Bytes> reference_frames;
+    Progress progress;
+    // One renderer per variant for the whole run: pipelines and targets are built once.
+    std::vector<std::unique_ptr<render::Renderer>> renderers;
+};
+
+// The loop's steps in the order runBenchmark calls them (run_loop.cpp).
+void renderSsaaReference(RunState& s);
+void makeRenderers(RunState& s);
+void calibrateSlowdown(RunState& s);
+void renderRepetitions(RunState& s);
+void scoreFrames(RunState& s);
+
+}  // namespace cbr::harness

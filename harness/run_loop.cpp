@@ -1,0 +1,327 @@
+// The run loop: reference first, variants interleaved per repetition, metrics on workers.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <thread>
+#include <unistd.h>
+
+#include "harness/interrupt.h"
+#include "harness/run_internal.h"
+#include "metrics/image_io.h"
+#include "metrics/metrics.h"
+#include "renderer/vk/check.h"
+
+namespace cbr::harness {
+
+Progress::Progress(int total) : total_(total), tty_(::isatty(2)), start_(std::chrono::steady_clock::now()) {}
+
+void Progress::step(const std::string& what) {
+    ++done_;
+    if (!tty_) return;
+    double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    double eta = done_ > 0 ? elapsed / done_ * (total_ - done_) : 0;
+    std::fprintf(stderr, "\r\033[K%s  %d/%d frames  ETA %.0f s", what.c_str(), done_, total_, eta);
+}
+
+Progress::~Progress() {
+    if (tty_) std::fprintf(stderr, "\r\033[K");
+}
+
+namespace {
+
+// One row set per configuration, in run order, before any frame renders.
+RunResults startResults(const Prepared& p) {
+    RunResults results;
+    results.frames = int(p.poses.size());
+    results.repeats = p.options.repeat;
+    for (const auto& c : p.configs) {
+        results.order.push_back(c.sweep.label);
+        VariantRun vr;
+        vr.name = c.sweep.label;
+        vr.variant = c.sweep.variant;
+        vr.baseline = c.sweep.baseline;
+        vr.settings = c.sweep.settings;
+        results.variants.push_back(std::move(vr));
+    }
+    return results;
+}
+
+}  // namespace
+
+RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene& scene,
+                   const std::filesystem::path& out_dir, std::chrono::steady_clock::time_point start)
+    : p(prepared),
+      options(prepared.options),
+      ctx(context),
+      gpu_scene(scene),
+      out(out_dir),
+      wall_start(start),
+      w(int(prepared.settings.width)),
+      h(int(prepared.settings.height)),
+      results(startResults(prepared)),
+      workers(std::max(1u, std::thread::hardware_concurrency() / 2)),
+      scorer(w, h, prepared.poses.size(), workers),
+      mid(prepared.poses.size() / 2),
+      mid_images(prepared.configs.size()),
+      reference_frames(prepared.poses.size()),
+      progress(int(prepared.configs.size() * prepared.poses.size()) * prepared.options.repeat +
+               (prepared.options.reference == "ssaa" ? int(prepared.poses.size()) : 0)),
+      renderers(prepared.configs.size()) {}
+
+namespace {
+
+render::Camera toCamera(const paths::CameraPose& pose) {
+    render::Camera c;
+    c.position = pose.position;
+    c.view = pose.view();
+    c.fov_y_rad = pose.fov_y_rad;
+    c.near = pose.near;
+    c.far = pose.far;
+    return c;
+}
+
+render::FrameRequest request(const Prepared& p, size_t i, bool readback) {
+    render::FrameRequest req;
+    req.index = int(i);
+    req.time = p.times[i];
+    req.camera = toCamera(p.poses[i]);
+    req.history_reset = i == 0 || p.poses[i].cut;
+    req.prev_time = i == 0 ? p.times[i] : p.times[i - 1];
+    req.prev_camera = i == 0 ? req.camera : toCamera(p.poses[i - 1]);
+    req.readback = readback;
+    return req;
+}
+
+// `count` untimed frames of the path's first frames, each with its history reset.
+void untimedFrames(const Prepared& p, render::Renderer& renderer, int count, bool interruptible) {
+    for (int i = 0; i < count; ++i) {
+        render::FrameRequest req = request(p, size_t(i) % p.poses.size(), false);
+        req.index = -1;
+        req.history_reset = true;
+        if (interruptible) throwIfInterrupted();
+        renderer.submit(req);
+    }
+    renderer.finish();
+}
+
+// Warm-up: the path's first frames, untimed, excluded (timing.md).
+void warmUp(const RunState& s, render::Renderer& renderer) { untimedFrames(s.p, renderer, s.options.warmup, true); }
+
+// Saves a display image (and a class map) as frames/<name>_<frame>.png on a worker.
+void savePng(const std::filesystem::path& out, const std::string& name, int frame, Bytes image, Bytes classes, int w,
+             int h, WorkerPool& workers) {
+    char file[128];
+    std::snprintf(file, sizeof file, "%s_%04d.png", name.c_str(), frame);
+    auto dest = out / "frames" / file;
+    std::snprintf(file, sizeof file, "%s_%04d_class.png", name.c_str(), frame);
+    auto class_dest = out / "frames" / file;
+    workers.submit([dest, class_dest, image, classes, w, h] {
+        try {
+            metrics::writePng(dest, {w, h, *image});
+            if (classes && !classes->empty()) metrics::writePng(class_dest, {w, h, classMapRgba(*classes)});
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "cbrbench: PNG not saved: %s\n", e.what());
+        }
+    });
+}
+
+bool moving(const std::vector<paths::CameraPose>& poses, size_t mid) {
+    auto differs = [](const paths::CameraPose& a, const paths::CameraPose& b) {
+        return a.position != b.position || a.orientation != b.orientation || a.fov_y_rad != b.fov_y_rad;
+    };
+    return differs(poses[mid - 1], poses[mid]) && differs(poses[mid], poses[mid + 1]);
+}
+
+AlignmentCheck checkAlignment(const std::vector<uint8_t>& variant, const std::vector<uint8_t>& ref_prev,
+                              const std::vector<uint8_t>& ref_same, const std::vector<uint8_t>& ref_next, int w, int h,
+                              int frame) {
+    auto image = [&](const std::vector<uint8_t>& rgba) { return metrics::fromRgba8(rgba.data(), w, h, size_t(w) * 4); };
+    auto v = image(variant);
+    AlignmentCheck a;
+    a.frame = frame;
+    a.psnr_same = metrics::psnr(image(ref_same), v);
+    a.psnr_prev = metrics::psnr(image(ref_prev), v);
+    a.psnr_next = metrics::psnr(image(ref_next), v);
+    a.ok = a.psnr_same > a.psnr_prev && a.psnr_same > a.psnr_next;
+    return a;
+}
+
+// The first configuration is full: the reference, unless `--reference ssaa` (a sweep's
+// other full configurations differ only in shading cost and are scored against it).
+bool isReference(const RunState& s, size_t vi) { return vi == 0 && s.options.reference != "ssaa"; }
+
+// One configuration's repetition: its frames in path order, each kept as a row, the
+// repetition-0 frames scored; an error becomes rows that say so.
+class ConfigPass {
+public:
+    ConfigPass(RunState& s, int rep, size_t vi)
+        : s_(s), rep_(rep), vi_(vi), vr_(s.results.variants[vi]), done_(s.p.poses.size(), false) {}
+
+    void run() {
+        if (vr_.status != "ok") return failRemaining();
+        render::Renderer& renderer = *s_.renderers[vi_];
+        const bool quality = rep_ == 0;
+        try {
+            warmUp(s_, renderer);
+            for (size_t i = 0; i < s_.p.poses.size(); ++i) {
+                throwIfInterrupted();
+                for (auto& fr : renderer.submit(request(s_.p, i, quality))) keep(std::move(fr));
+            }
+            for (auto& fr : renderer.finish()) keep(std::move(fr));
+        } catch (const vk::Unsupported& e) {
+            vr_.status = "skipped";
+            vr_.note = e.what();
+            failRemaining();
+        } catch (const vk::Error& e) {
+            vr_.status = "failed";
+            vr_.note = e.what();
+            failRemaining();
+        }
+    }
+
+private:
+    // A failed variant becomes rows that say so, not a crash of the run.
+    void failRemaining() {
+        for (size_t i = 0; i < s_.p.poses.size(); ++i) {
+            if (done_[i]) continue;
+            FrameRow& row = s_.results.rows.emplace_back();
+            row.variant = vr_.name;
+            row.repeat = rep_;
+            row.frame = int(i);
+            row.time_s = s_.p.times[i];
+            row.status = vr_.status;
+            row.note = vr_.note;
+        }
+    }
+
+    void keep(render::FrameResult&& fr) {
+        RunResults& results = s_.results;
+        if (results.rows.empty())
+            results.first_frame_seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - s_.wall_start).count();
+        FrameRow& row = results.rows.emplace_back();
+        done_[size_t(fr.index)] = true;
+        row.variant = vr_.name;
+        row.repeat = rep_;
+        row.frame = fr.index;
+        row.time_s = s_.p.times[size_t(fr.index)];
+        row.render_width = fr.render_width;
+        row.render_height = fr.render_height;
+        row.render_scale = fr.render_scale;
+        row.gpu_ms = fr.gpu_ms;
+        row.timing_ok = fr.timing_consistent;
+        if (!fr.timing_consistent) row.note = "pass times do not sum to the frame time";
+        row.passes = fr.passes;
+        row.stats = fr.stats;
+        if (rep_ == 0 && fr.index == 0) {
+            for (const auto& pt : fr.passes) vr_.passes_ran.push_back(pt.name);
+            vr_.left_out = fr.left_out;
+        }
+        s_.progress.step("repeat " + std::to_string(rep_ + 1) + "/" + std::to_string(s_.options.repeat) + " " + vr_.name);
+        if (!fr.rgba.empty()) score(row, std::move(fr));
+    }
+
+    // Hands a read-back frame to the scorer (and to the reference, when it is one).
+    void score(FrameRow& row, render::FrameResult&& fr) {
+        const bool is_reference = isReference(s_, vi_);
+        size_t i = size_t(fr.index);
+        auto image = std::make_shared<const std::vector<uint8_t>>(std::move(fr.rgba));
+        Bytes classes =
+            fr.diagnostic.empty() ? nullptr : std::make_shared<const std::vector<uint8_t>>(std::move(fr.diagnostic));
+        if (i == s_.mid) s_.mid_images[vi_] = image;
+        if (is_reference) {
+            s_.reference_frames[i] = image;
+            s_.scorer.setReference(i, image);
+        }
+        QualityFrame qf{fr.index, image, classes,
+                        fr.analysis.empty() ? nullptr : std::make_shared<const std::vector<float>>(std::move(fr.analysis)),
+                        i == 0 || s_.p.poses[i].cut};
+        s_.scorer.score(vr_.name, is_reference, row, std::move(qf));
+        if (s_.options.save_frames) savePng(s_.out, vr_.name, fr.index, image, classes, s_.w, s_.h, s_.workers);
+    }
+
+    RunState& s_;
+    const int rep_;
+    const size_t vi_;
+    VariantRun& vr_;
+    std::vector<bool> done_;
+};
+
+}  // namespace
+
+// `--reference ssaa`: a supersampled render is the reference, and `full` is scored too.
+void renderSsaaReference(RunState& s) {
+    if (s.options.reference != "ssaa") return;
+    render::Settings ref_settings = s.p.settings;
+    ref_settings.supersample = s.options.ssaa;
+    ref_settings.analysis = false;
+    render::Renderer reference(s.ctx, s.gpu_scene, variants::supersampledReference(), ref_settings);
+    warmUp(s, reference);
+    auto keep = [&](render::FrameResult&& fr) {
+        s.progress.step("reference (ssaa " + std::to_string(s.options.ssaa) + "x" + std::to_string(s.options.ssaa) + ")");
+        s.results.reference_ms.push_back(fr.gpu_ms);
+        auto image = std::make_shared<const std::vector<uint8_t>>(std::move(fr.rgba));
+        s.reference_frames[size_t(fr.index)] = image;
+        s.scorer.setReference(size_t(fr.index), image);
+        if (s.options.save_frames) savePng(s.out, "reference", fr.index, image, nullptr, s.w, s.h, s.workers);
+    };
+    for (size_t i = 0; i < s.p.poses.size(); ++i) {
+        throwIfInterrupted();
+        for (auto& fr : reference.submit(request(s.p, i, true))) keep(std::move(fr));
+    }
+    for (auto& fr : reference.finish()) keep(std::move(fr));
+}
+
+// One renderer per configuration; one the device cannot build is skipped or failed.
+void makeRenderers(RunState& s) {
+    for (size_t vi = 0; vi < s.p.configs.size(); ++vi) {
+        VariantRun& vr = s.results.variants[vi];
+        try {
+            s.renderers[vi] = std::make_unique<render::Renderer>(s.ctx, s.gpu_scene, *s.p.configs[vi].variant,
+                                                                 s.p.configs[vi].settings);
+            vr.description = s.renderers[vi]->describe();
+        } catch (const vk::Unsupported& e) {
+            vr.status = "skipped";
+            vr.note = e.what();
+        } catch (const vk::Error& e) {
+            vr.status = "failed";
+            vr.note = e.what();
+        }
+    }
+}
+
+// A debug slowdown calibrates on its first warm-up frames: give each renderer enough
+// of them before the first repetition, so every repetition applies the same amount.
+void calibrateSlowdown(RunState& s) {
+    if (s.p.settings.debug_slowdown_pass.empty() || !(s.p.settings.debug_slowdown_pct > 0)) return;
+    for (auto& r : s.renderers)
+        if (r) try {
+                untimedFrames(s.p, *r, 12, false);
+            } catch (const vk::Error&) {
+                // The repetitions meet the same error and record the variant as failed.
+            }
+}
+
+// The repetitions, variants interleaved within each so drift touches all alike.
+void renderRepetitions(RunState& s) {
+    for (int rep = 0; rep < s.options.repeat; ++rep)
+        for (size_t vi = 0; vi < s.p.configs.size(); ++vi) ConfigPass(s, rep, vi).run();
+}
+
+// Waits for the scores, writes the worst frames, and checks each variant's middle frame
+// lines up with the reference's (not one frame early or late).
+void scoreFrames(RunState& s) {
+    s.results.worst_files = s.scorer.finish(s.out);
+    // Descriptions again: some (the calibrated debug slowdown) are known only after warm-up.
+    for (size_t vi = 0; vi < s.p.configs.size(); ++vi)
+        if (s.renderers[vi]) s.results.variants[vi].description = s.renderers[vi]->describe();
+    const size_t mid = s.mid;
+    const auto& ref = s.reference_frames;
+    if (s.p.poses.size() >= 3 && moving(s.p.poses, mid))
+        for (size_t vi = 0; vi < s.p.configs.size(); ++vi)
+            if (!isReference(s, vi) && s.mid_images[vi] && ref[mid - 1] && ref[mid] && ref[mid + 1])
+                s.results.variants[vi].alignment =
+                    checkAlignment(*s.mid_images[vi], *ref[mid - 1], *ref[mid], *ref[mid + 1], s.w, s.h, int(mid));
+}
+
+}  // namespace cbr::harness
