@@ -1,0 +1,524 @@
+// LDR-FLIP on display images: P. Andersson, J. Nilsson, T. Akenine-Moller, M. Oskarsson,
+// K. Astrom, M. D. Fairchild, "FLIP: A Difference Evaluator for Alternating Images", Proc.
+// ACM Comput. Graph. Interact. Tech. 3(2), 2020 (HPG 2020). Constants and conventions as NVIDIA
+// documents them for its tool (github.com/NVlabs/flip, v1.6): single precision, sRGB decoded
+// as v / 255, CSF filtering in YCxCz with the two blue-yellow Gaussians separated, clamp-to-edge
+// borders, gamut clamp in linear RGB, Hunt-adjusted L*a*b*, HyAB, and weighted quartiles read
+// off the sorted error values.
+#include "metrics/flip.h"
+
+#include <opencv2/core.hpp>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "metrics/simd.h"
+
+namespace cbr::metrics {
+
+namespace {
+
+// Section 4 of the paper: colour error exponent qc, re-mapping knee pc (a fraction of the
+// largest error cmax) mapped to pt, feature detector width w in degrees; the feature error
+// exponent qf = 0.5 is the square root in finalRow().
+constexpr float kQc = 0.7f;
+constexpr float kPc = 0.4f;
+constexpr float kPt = 0.95f;
+constexpr double kFeatureWidthDeg = 0.082;
+
+// Contrast sensitivity of each YCxCz channel as the paper's sum of Gaussians in the spatial
+// domain, x in degrees: S(x) = a1 sqrt(pi/b1) exp(-pi^2 x^2/b1) + a2 sqrt(pi/b2) exp(-pi^2 x^2/b2).
+struct Csf {
+    double a1, b1, a2, b2;
+};
+constexpr Csf kCsfAchromatic{1.0, 0.0047, 0.0, 1e-5};
+constexpr Csf kCsfRedGreen{1.0, 0.0053, 0.0, 1e-5};
+constexpr Csf kCsfBlueYellow{34.1, 0.04, 13.5, 0.025};
+
+// Linear sRGB <-> CIE XYZ with the D65 white, in the tool's single-precision values.
+constexpr float kWhite[3] = {0.950428545f, 1.0f, 1.088900371f};
+constexpr float kInvWhite[3] = {1.052156925f, 1.0f, 0.918357670f};
+constexpr float kRgbToXyz[3][3] = {
+    {10135552.0f / 24577794.0f, 8788810.0f / 24577794.0f, 4435075.0f / 24577794.0f},
+    {2613072.0f / 12288897.0f, 8788810.0f / 12288897.0f, 887015.0f / 12288897.0f},
+    {1425312.0f / 73733382.0f, 8788810.0f / 73733382.0f, 70074185.0f / 73733382.0f}};
+constexpr float kXyzToRgb[3][3] = {{3.241003275f, -1.537398934f, -0.498615861f},
+                                   {-0.969224334f, 1.875930071f, 0.041554224f},
+                                   {0.055639423f, -0.204011202f, 1.057148933f}};
+// CIE L*a*b*'s f(t): cube root above (6/29)^3, a line below.
+constexpr float kLabDelta = 6.0f / 29.0f;
+constexpr float kLabDeltaCube = kLabDelta * kLabDelta * kLabDelta;
+constexpr float kLabSlope = 1.0f / (3.0f * kLabDelta * kLabDelta);
+constexpr float kLabOffset = 4.0f / 29.0f;
+
+// Output tile: its input lines (plus the filter halo) and a ring of 2 * halo + 1 filtered
+// rows stay in a core's L2 cache; tiles are also the unit of parallel work.
+constexpr int kTileCols = 128;
+constexpr int kTileRows = 128;
+
+// Rows after the horizontal pass, per image: the three CSF-filtered colour channels (the
+// blue-yellow Gaussians apart, as its 2D kernel is a sum of two separable ones) and the
+// luminance through the feature Gaussian, its first and its second derivative.
+enum HorizontalPlane { kHY, kHCx, kHCz1, kHCz2, kHG, kHD, kHDD, kHorizontalPlanes };
+// Rows after the vertical pass, per image: filtered Y, Cx, Cz, then the edge (d) and point
+// (dd) responses along x and along y.
+enum VerticalPlane { kVY, kVCx, kVCz, kVDx, kVDDx, kVDy, kVDDy, kVerticalPlanes };
+
+struct Kernels {
+    int colour_radius = 0;
+    int feature_radius = 0;
+    int halo = 0;                        // max of the two
+    std::vector<float> y, cx, cz1, cz2;  // 2 * colour_radius + 1 taps each
+    std::vector<float> g, d, dd;         // 2 * feature_radius + 1 taps each
+};
+
+void normalise(std::vector<double>& w, double divisor) {
+    for (double& v : w) v /= divisor;
+}
+
+std::vector<float> toFloat(const std::vector<double>& w) { return {w.begin(), w.end()}; }
+
+Kernels makeKernels(double ppd) {
+    constexpr double pi = std::numbers::pi;
+    Kernels k;
+    // One radius for the three CSFs, from the widest Gaussian (largest b): 3 standard
+    // deviations, sigma = sqrt(b / (2 pi^2)) degrees.
+    const double max_b = std::max({kCsfAchromatic.b1, kCsfRedGreen.b1, kCsfBlueYellow.b1,
+                                   kCsfAchromatic.b2, kCsfRedGreen.b2, kCsfBlueYellow.b2});
+    k.colour_radius = int(std::ceil(3.0 * std::sqrt(max_b / (2.0 * pi * pi)) * ppd));
+    const int cw = 2 * k.colour_radius + 1;
+    const size_t ctaps = static_cast<size_t>(cw);
+    std::vector<double> y(ctaps), cx(ctaps), cz1(ctaps), cz2(ctaps);
+    auto gaussian = [](double x2, double a, double b) { return a * std::sqrt(pi / b) * std::exp(-pi * pi * x2 / b); };
+    for (int i = 0; i < cw; ++i) {
+        const double x = (i - k.colour_radius) / ppd;
+        y[size_t(i)] = gaussian(x * x, kCsfAchromatic.a1, kCsfAchromatic.b1);
+        cx[size_t(i)] = gaussian(x * x, kCsfRedGreen.a1, kCsfRedGreen.b1);
+        // a sqrt(pi/b) exp(-pi^2 (x^2 + y^2)/b) = u(x) u(y), u = sqrt(a sqrt(pi/b)) exp(-pi^2 x^2/b).
+        cz1[size_t(i)] = std::sqrt(kCsfBlueYellow.a1 * std::sqrt(pi / kCsfBlueYellow.b1)) *
+                         std::exp(-pi * pi * x * x / kCsfBlueYellow.b1);
+        cz2[size_t(i)] = std::sqrt(kCsfBlueYellow.a2 * std::sqrt(pi / kCsfBlueYellow.b2)) *
+                         std::exp(-pi * pi * x * x / kCsfBlueYellow.b2);
+    }
+    double sy = 0, scx = 0, s1 = 0, s2 = 0;
+    for (int i = 0; i < cw; ++i) {
+        sy += y[size_t(i)];
+        scx += cx[size_t(i)];
+        s1 += cz1[size_t(i)];
+        s2 += cz2[size_t(i)];
+    }
+    normalise(y, sy);
+    normalise(cx, scx);
+    // The 2D blue-yellow kernel sums to s1^2 + s2^2: scale both 1D pairs to make it 1.
+    const double sz = std::sqrt(s1 * s1 + s2 * s2);
+    normalise(cz1, sz);
+    normalise(cz2, sz);
+    k.y = toFloat(y);
+    k.cx = toFloat(cx);
+    k.cz1 = toFloat(cz1);
+    k.cz2 = toFloat(cz2);
+
+    // Edge and point detectors: first and second derivatives of a Gaussian of standard
+    // deviation w/2 degrees over 3 sigma. The Gaussian sums to 1; the derivatives' positive
+    // weights to 1 and their negative ones to -1.
+    const double sigma = 0.5 * kFeatureWidthDeg * ppd;
+    k.feature_radius = int(std::ceil(3.0 * sigma));
+    const int fw = 2 * k.feature_radius + 1;
+    const size_t ftaps = static_cast<size_t>(fw);
+    std::vector<double> g(ftaps), d(ftaps), dd(ftaps);
+    double sg = 0, dpos = 0, dneg = 0, ddpos = 0, ddneg = 0;
+    for (int i = 0; i < fw; ++i) {
+        const double x = i - k.feature_radius;
+        g[size_t(i)] = std::exp(-x * x / (2.0 * sigma * sigma));
+        d[size_t(i)] = -x * g[size_t(i)];
+        dd[size_t(i)] = (x * x / (sigma * sigma) - 1.0) * g[size_t(i)];
+        sg += g[size_t(i)];
+        (d[size_t(i)] > 0 ? dpos : dneg) += std::abs(d[size_t(i)]);
+        (dd[size_t(i)] > 0 ? ddpos : ddneg) += std::abs(dd[size_t(i)]);
+    }
+    for (int i = 0; i < fw; ++i) {
+        g[size_t(i)] /= sg;
+        // A ppd so small that the Gaussian vanishes at +-1 pixel leaves a sum of 0: no feature.
+        const double dn = d[size_t(i)] > 0 ? dpos : dneg, ddn = dd[size_t(i)] > 0 ? ddpos : ddneg;
+        d[size_t(i)] = dn > 0 ? d[size_t(i)] / dn : 0.0;
+        dd[size_t(i)] = ddn > 0 ? dd[size_t(i)] / ddn : 0.0;
+    }
+    k.g = toFloat(g);
+    k.d = toFloat(d);
+    k.dd = toFloat(dd);
+    k.halo = std::max(k.colour_radius, k.feature_radius);
+    return k;
+}
+
+// sRGB transfer, decoded in single precision as the tool does.
+float srgbToLinear(float s) { return s <= 0.04045f ? s / 12.92f : std::pow((s + 0.055f) / 1.055f, 2.4f); }
+
+// Display images hold 8-bit code values v / 255: a table lookup replaces the power.
+struct DecodeTable {
+    std::array<double, 256> code{};   // k / 255, as fromRgba8 writes it
+    std::array<float, 256> linear{};  // srgbToLinear(float(k) / 255)
+    DecodeTable() {
+        for (int k = 0; k < 256; ++k) {
+            code[size_t(k)] = k / 255.0;
+            linear[size_t(k)] = srgbToLinear(float(k) / 255.0f);
+        }
+    }
+};
+
+// One display value to linear RGB. Values outside [0,1] are clamped (as the tool clamps the
+// decoded image); NaN and infinities set `bad`.
+inline float decode(const DecodeTable& t, double v, bool& bad) {
+    if (!(v >= 0.0 && v <= 1.0)) {
+        if (!std::isfinite(v)) {
+            bad = true;
+            return 0.0f;
+        }
+        v = v < 0.0 ? 0.0 : 1.0;
+    }
+    const int k = int(v * 255.0 + 0.5);
+    return t.code[size_t(k)] == v ? t.linear[size_t(k)] : srgbToLinear(float(v));
+}
+
+// Row yy of an sRGB image, columns first .. first + count - 1 clamped to the image (the
+// paper's filters see the border pixels repeated), to YCxCz: Y = 116 Y/Yn - 16,
+// Cx = 500 (X/Xn - Y/Yn), Cz = 200 (Y/Yn - Z/Zn). Returns false for a NaN or infinite value.
+bool toYCxCz(const DecodeTable& table, const Image& image, int yy, int first, int count, float* py, float* pcx,
+             float* pcz) {
+    bool bad = false;
+    const int c = image.channels;
+    const double* row = image.data.data() + size_t(yy) * image.width * c;
+    for (int i = 0; i < count; ++i) {
+        const double* p = row + size_t(std::clamp(first + i, 0, image.width - 1)) * c;
+        const float r = decode(table, p[0], bad);
+        const float g = c == 3 ? decode(table, p[1], bad) : r;
+        const float b = c == 3 ? decode(table, p[2], bad) : r;
+        const float X = (kRgbToXyz[0][0] * r + kRgbToXyz[0][1] * g + kRgbToXyz[0][2] * b) * kInvWhite[0];
+        const float Y = (kRgbToXyz[1][0] * r + kRgbToXyz[1][1] * g + kRgbToXyz[1][2] * b) * kInvWhite[1];
+        const float Z = (kRgbToXyz[2][0] * r + kRgbToXyz[2][1] * g + kRgbToXyz[2][2] * b) * kInvWhite[2];
+        py[i] = 116.0f * Y - 16.0f;
+        pcx[i] = 500.0f * (X - Y);
+        pcz[i] = 200.0f * (Y - Z);
+    }
+    return !bad;
+}
+
+// t^(1/3) for t > 0: a first guess from the float's bits (the exponent divided by 3, within
+// a few per cent) and two Halley steps (cubic convergence), all of it vectorisable.
+inline float cubeRoot(float t) {
+    const int32_t bits = std::bit_cast<int32_t>(t);
+    float y = std::bit_cast<float>(int32_t(float(bits) * (1.0f / 3.0f)) + 0x2A555555);
+    for (int i = 0; i < 2; ++i) {
+        const float y3 = y * y * y;
+        y = y * (y3 + 2.0f * t) / (2.0f * y3 + t);
+    }
+    return y;
+}
+
+// Both sides computed, then selected: the loops around it stay branch-free vector code.
+inline float labF(float t) {
+    const float root = cubeRoot(t), line = kLabSlope * t + kLabOffset;
+    return t > kLabDeltaCube ? root : line;
+}
+
+inline float unitClamp(float v) { return std::min(std::max(v, 0.0f), 1.0f); }
+
+// Filtered YCxCz -> linear RGB clamped to [0,1] -> L*a*b* with the Hunt adjustment
+// (a* and b* scaled by 0.01 L*: colours fade in the dark).
+inline void huntLab(float fy, float fcx, float fcz, float& L, float& A, float& B) {
+    const float yn = (fy + 16.0f) / 116.0f;
+    const float X = (yn + fcx / 500.0f) * kWhite[0];
+    const float Y = yn * kWhite[1];
+    const float Z = (yn - fcz / 200.0f) * kWhite[2];
+    const float r = unitClamp(kXyzToRgb[0][0] * X + kXyzToRgb[0][1] * Y + kXyzToRgb[0][2] * Z);
+    const float g = unitClamp(kXyzToRgb[1][0] * X + kXyzToRgb[1][1] * Y + kXyzToRgb[1][2] * Z);
+    const float b = unitClamp(kXyzToRgb[2][0] * X + kXyzToRgb[2][1] * Y + kXyzToRgb[2][2] * Z);
+    const float x = (kRgbToXyz[0][0] * r + kRgbToXyz[0][1] * g + kRgbToXyz[0][2] * b) * kInvWhite[0];
+    const float y = (kRgbToXyz[1][0] * r + kRgbToXyz[1][1] * g + kRgbToXyz[1][2] * b) * kInvWhite[1];
+    const float z = (kRgbToXyz[2][0] * r + kRgbToXyz[2][1] * g + kRgbToXyz[2][2] * b) * kInvWhite[2];
+    const float fx = labF(x), fyy = labF(y), fz = labF(z);
+    L = 116.0f * fyy - 16.0f;
+    A = 0.01f * L * (500.0f * (fx - fyy));
+    B = 0.01f * L * (200.0f * (fyy - fz));
+}
+
+// HyAB (Abasi et al. 2020): city-block in lightness, Euclidean in chroma.
+inline float hyab(float l1, float a1, float b1, float l2, float a2, float b2) {
+    return std::abs(l1 - l2) + std::sqrt((a1 - a2) * (a1 - a2) + (b1 - b2) * (b1 - b2));
+}
+
+// The largest colour error cmax: HyAB between Hunt-adjusted green and blue, to the power qc.
+float maxColourError() {
+    float lab[2][3];
+    const float rgb[2][3] = {{0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};
+    for (int i = 0; i < 2; ++i) {
+        float xyz[3];
+        for (int j = 0; j < 3; ++j)
+            xyz[j] = (kRgbToXyz[j][0] * rgb[i][0] + kRgbToXyz[j][1] * rgb[i][1] + kRgbToXyz[j][2] * rgb[i][2]) *
+                     kInvWhite[j];
+        const float fx = labF(xyz[0]), fy = labF(xyz[1]), fz = labF(xyz[2]);
+        lab[i][0] = 116.0f * fy - 16.0f;
+        lab[i][1] = 0.01f * lab[i][0] * (500.0f * (fx - fy));
+        lab[i][2] = 0.01f * lab[i][0] * (200.0f * (fy - fz));
+    }
+    return std::pow(hyab(lab[0][0], lab[0][1], lab[0][2], lab[1][0], lab[1][1], lab[1][2]), kQc);
+}
+
+// The filters' building blocks; restrict on parameters (not on locals) is what lets the
+// compiler vectorise them without run-time alias checks.
+inline void scaled(float* __restrict out, const float* __restrict in, float w, int n) {
+    for (int x = 0; x < n; ++x) out[x] = w * in[x];
+}
+inline void addScaled(float* __restrict out, const float* __restrict in, float w, int n) {
+    for (int x = 0; x < n; ++x) out[x] += w * in[x];
+}
+
+// out[x] = sum_t w[t] in[x + t], x < n: a correlation, as the tool applies the filters.
+inline void rowFilter(const float* in, int n, const std::vector<float>& w, float* out) {
+    scaled(out, in, w[0], n);
+    for (size_t t = 1; t < w.size(); ++t) addScaled(out, in + t, w[t], n);
+}
+
+// out[x] = sum_t w[t] rows[first + t][plane + x]: the vertical pass over the ring of rows.
+inline void columnFilter(const float* const* rows, int first, size_t plane, int n, const std::vector<float>& w,
+                         float* out) {
+    scaled(out, rows[first] + plane, w[0], n);
+    for (size_t t = 1; t < w.size(); ++t) addScaled(out, rows[size_t(first) + t] + plane, w[t], n);
+}
+
+struct Constants {
+    float cmax = 0;
+    float pccmax = 0;
+};
+
+// Colour and feature differences and the final error of one output row of n pixels, from
+// the vertical pass of the reference and the test: error = colour^(1 - feature).
+inline void finalRow(const float* ref, const float* test, int n, const Constants& k, float* __restrict colour,
+                     float* __restrict exponent, float* __restrict out) {
+    constexpr size_t C = kTileCols;
+    for (int x = 0; x < n; ++x) {
+        const size_t i = size_t(x);
+        float l1, a1, b1, l2, a2, b2;
+        huntLab(ref[kVY * C + i], ref[kVCx * C + i], ref[kVCz * C + i], l1, a1, b1);
+        huntLab(test[kVY * C + i], test[kVCx * C + i], test[kVCz * C + i], l2, a2, b2);
+        colour[x] = hyab(l1, a1, b1, l2, a2, b2);
+    }
+    for (int x = 0; x < n; ++x) colour[x] = std::pow(colour[x], kQc);
+    // Re-mapping: [0, pc cmax] -> [0, pt] and (pc cmax, cmax] -> (pt, 1].
+    const float below = kPt / k.pccmax, above = (1.0f - kPt) / (k.cmax - k.pccmax);
+    for (int x = 0; x < n; ++x) {
+        const float e = colour[x];
+        const float low = e * below, high = kPt + (e - k.pccmax) * above;
+        colour[x] = e < k.pccmax ? low : high;
+    }
+    // Features on luminance Y/Yn = (Y + 16) / 116: the derivative filters sum to 0, so
+    // filtering Y and dividing by 116 gives the same responses without the offset.
+    constexpr float kScale = float(1.0 / (116.0 * std::numbers::sqrt2));
+    for (int x = 0; x < n; ++x) {
+        const size_t i = size_t(x);
+        const float e1 = std::sqrt(ref[kVDx * C + i] * ref[kVDx * C + i] + ref[kVDy * C + i] * ref[kVDy * C + i]);
+        const float e2 = std::sqrt(test[kVDx * C + i] * test[kVDx * C + i] + test[kVDy * C + i] * test[kVDy * C + i]);
+        const float p1 = std::sqrt(ref[kVDDx * C + i] * ref[kVDDx * C + i] + ref[kVDDy * C + i] * ref[kVDDy * C + i]);
+        const float p2 = std::sqrt(test[kVDDx * C + i] * test[kVDDx * C + i] + test[kVDDy * C + i] * test[kVDDy * C + i]);
+        // qf = 0.5: the square root of the larger difference, normalised by 1/sqrt(2).
+        exponent[x] = 1.0f - std::sqrt(kScale * std::max(std::abs(e1 - e2), std::abs(p1 - p2)));
+    }
+    for (int x = 0; x < n; ++x) out[x] = std::pow(colour[x], exponent[x]);
+}
+
+// One thread's buffers, kept across calls so that no tile touches fresh pages.
+struct TileScratch {
+    std::vector<float> lines;        // 6 input lines: Y, Cx, Cz of reference and test
+    std::vector<float> ring;         // (2 halo + 1) rows x 2 images x kHorizontalPlanes
+    std::vector<float> vertical;     // 2 images x kVerticalPlanes rows
+    std::vector<float> work;         // 4 rows for the final step
+    std::vector<const float*> rows;  // the ring rows of one output row, top to bottom
+};
+
+constexpr size_t kImagePlanes = size_t(kHorizontalPlanes) * kTileCols;
+constexpr size_t kRingRow = 2 * kImagePlanes;
+
+// FLIP of output columns [x0, x0 + n) and rows [y0, y1) into map (row-major doubles);
+// returns the sum of those errors, or NaN when an input value is NaN or infinite.
+CBR_SIMD_CLONES
+double flipTile(const Kernels& k, const Constants& constants, const DecodeTable& table, const Image& reference,
+                const Image& test, int x0, int n, int y0, int y1, TileScratch& s, double* map) {
+    const int width = reference.width, height = reference.height;
+    const int halo = k.halo, window = 2 * halo + 1;
+    const size_t line = size_t(kTileCols + 2 * halo);
+    s.lines.resize(6 * line);
+    s.ring.resize(size_t(window) * kRingRow);
+    s.vertical.resize(2 * size_t(kVerticalPlanes) * kTileCols);
+    s.work.resize(4 * size_t(kTileCols));
+    s.rows.resize(size_t(window));
+    // The narrower kernel starts this many taps into the shared halo.
+    const int colour_skip = halo - k.colour_radius, feature_skip = halo - k.feature_radius;
+    float* colour = s.work.data();
+    float* exponent = colour + kTileCols;
+    float* error = exponent + kTileCols;
+    float* cz2 = error + kTileCols;
+    double sum = 0;
+    bool ok = true;
+    for (int i = 0; i < (y1 - y0) + 2 * halo; ++i) {
+        const int yy = std::clamp(y0 - halo + i, 0, height - 1);
+        float* l = s.lines.data();
+        ok &= toYCxCz(table, reference, yy, x0 - halo, n + 2 * halo, l, l + line, l + 2 * line);
+        ok &= toYCxCz(table, test, yy, x0 - halo, n + 2 * halo, l + 3 * line, l + 4 * line, l + 5 * line);
+        float* ring = s.ring.data() + size_t(i % window) * kRingRow;
+        for (int img = 0; img < 2; ++img) {
+            const float* ly = l + size_t(3 * img) * line;
+            const float* lcx = ly + line;
+            const float* lcz = lcx + line;
+            float* h = ring + size_t(img) * kImagePlanes;
+            rowFilter(ly + colour_skip, n, k.y, h + kHY * kTileCols);
+            rowFilter(lcx + colour_skip, n, k.cx, h + kHCx * kTileCols);
+            rowFilter(lcz + colour_skip, n, k.cz1, h + kHCz1 * kTileCols);
+            rowFilter(lcz + colour_skip, n, k.cz2, h + kHCz2 * kTileCols);
+            rowFilter(ly + feature_skip, n, k.g, h + kHG * kTileCols);
+            rowFilter(ly + feature_skip, n, k.d, h + kHD * kTileCols);
+            rowFilter(ly + feature_skip, n, k.dd, h + kHDD * kTileCols);
+        }
+        if (i < 2 * halo) continue;
+        // Output row y0 + r: its window is the ring rows r .. r + 2 halo.
+        const int r = i - 2 * halo;
+        for (int t = 0; t < window; ++t) s.rows[size_t(t)] = s.ring.data() + size_t((r + t) % window) * kRingRow;
+        const float* const* rows = s.rows.data();
+        for (int img = 0; img < 2; ++img) {
+            const size_t base = size_t(img) * kImagePlanes;
+            float* v = s.vertical.data() + size_t(img) * kVerticalPlanes * kTileCols;
+            columnFilter(rows, colour_skip, base + kHY * kTileCols, n, k.y, v + kVY * kTileCols);
+            columnFilter(rows, colour_skip, base + kHCx * kTileCols, n, k.cx, v + kVCx * kTileCols);
+            columnFilter(rows, colour_skip, base + kHCz1 * kTileCols, n, k.cz1, v + kVCz * kTileCols);
+            columnFilter(rows, colour_skip, base + kHCz2 * kTileCols, n, k.cz2, cz2);
+            addScaled(v + kVCz * kTileCols, cz2, 1.0f, n);
+            columnFilter(rows, feature_skip, base + kHD * kTileCols, n, k.g, v + kVDx * kTileCols);
+            columnFilter(rows, feature_skip, base + kHDD * kTileCols, n, k.g, v + kVDDx * kTileCols);
+            columnFilter(rows, feature_skip, base + kHG * kTileCols, n, k.d, v + kVDy * kTileCols);
+            columnFilter(rows, feature_skip, base + kHG * kTileCols, n, k.dd, v + kVDDy * kTileCols);
+        }
+        finalRow(s.vertical.data(), s.vertical.data() + size_t(kVerticalPlanes) * kTileCols, n, constants, colour,
+                 exponent, error);
+        double* dst = map + size_t(y0 + r) * width + x0;
+        for (int x = 0; x < n; ++x) {
+            dst[x] = error[x];
+            sum += error[x];
+        }
+    }
+    return ok ? sum : std::numeric_limits<double>::quiet_NaN();
+}
+
+// The tool's weighted percentile: pixels sorted by error, the first error at which the
+// running sum exceeds p times the total (0 when no error is above 0). Found without a
+// full sort: buckets by value give the crossing bucket, and only that bucket is sorted.
+std::array<double, 3> weightedQuartiles(const std::vector<double>& values, double total) {
+    constexpr int kBuckets = 4096;
+    std::vector<double> bucket_sum(kBuckets, 0.0);
+    auto bucketOf = [](double v) { return std::min(int(v * kBuckets), kBuckets - 1); };
+    for (double v : values) bucket_sum[size_t(bucketOf(v))] += v;
+    constexpr double kPercents[3] = {0.25, 0.5, 0.75};
+    std::array<int, 3> bucket{-1, -1, -1};
+    std::array<double, 3> before{};
+    for (int q = 0; q < 3; ++q) {
+        double running = 0;
+        for (int b = 0; b < kBuckets; ++b) {
+            if (running + bucket_sum[size_t(b)] > kPercents[q] * total) {
+                bucket[size_t(q)] = b;
+                before[size_t(q)] = running;
+                break;
+            }
+            running += bucket_sum[size_t(b)];
+        }
+    }
+    std::array<std::vector<double>, 3> members;
+    for (double v : values) {
+        const int b = bucketOf(v);
+        for (int q = 0; q < 3; ++q)
+            if (b == bucket[size_t(q)]) members[size_t(q)].push_back(v);
+    }
+    std::array<double, 3> result{};
+    for (int q = 0; q < 3; ++q) {
+        if (bucket[size_t(q)] < 0) continue;
+        std::vector<double>& m = members[size_t(q)];
+        std::sort(m.begin(), m.end());
+        double running = before[size_t(q)];
+        result[size_t(q)] = m.back();  // should rounding leave the running sum a hair short
+        for (double v : m) {
+            running += v;
+            if (running > kPercents[q] * total) {
+                result[size_t(q)] = v;
+                break;
+            }
+        }
+    }
+    return result;
+}
+
+std::string shapeText(const Image& image) {
+    return std::to_string(image.width) + "x" + std::to_string(image.height) + "x" + std::to_string(image.channels);
+}
+
+void checkImage(const Image& image) {
+    if (image.channels != 1 && image.channels != 3)
+        throw std::invalid_argument("flip: expected 1 or 3 channels, got " + std::to_string(image.channels));
+    if (image.width <= 0 || image.height <= 0)
+        throw std::invalid_argument("flip: empty image (" + shapeText(image) + ")");
+    if (image.data.size() != size_t(image.width) * image.height * image.channels)
+        throw std::invalid_argument("flip: image data holds " + std::to_string(image.data.size()) + " values, " +
+                                    shapeText(image) + " needs " +
+                                    std::to_string(size_t(image.width) * image.height * image.channels));
+}
+
+}  // namespace
+
+FlipResult flip(const Image& reference, const Image& test, double ppd) {
+    if (!reference.sameShape(test))
+        throw std::invalid_argument("flip: image shapes differ (" + shapeText(reference) + " vs " + shapeText(test) +
+                                    ")");
+    checkImage(reference);
+    checkImage(test);
+    if (!(ppd > 0.0) || !std::isfinite(ppd))
+        throw std::invalid_argument("flip: pixels per degree must be finite and > 0, got " + std::to_string(ppd));
+    static const DecodeTable table;
+    const Kernels kernels = makeKernels(ppd);
+    Constants constants;
+    constants.cmax = maxColourError();
+    constants.pccmax = kPc * constants.cmax;
+
+    const int width = reference.width, height = reference.height;
+    FlipResult result;
+    result.map = Image{width, height, 1, std::vector<double>(size_t(width) * height)};
+    const int tile_cols = (width + kTileCols - 1) / kTileCols;
+    const int tile_rows = (height + kTileRows - 1) / kTileRows;
+    const int tiles = tile_cols * tile_rows;
+    // One slot per tile, summed in order afterwards: the mean does not depend on scheduling.
+    std::vector<double> tile_sums(size_t(tiles), 0.0);
+    cv::parallel_for_(cv::Range(0, tiles), [&](const cv::Range& range) {
+        thread_local TileScratch scratch;
+        for (int t = range.start; t < range.end; ++t) {
+            const int x0 = (t % tile_cols) * kTileCols, y0 = (t / tile_cols) * kTileRows;
+            tile_sums[size_t(t)] = flipTile(kernels, constants, table, reference, test, x0,
+                                            std::min(kTileCols, width - x0), y0, std::min(y0 + kTileRows, height),
+                                            scratch, result.map.data.data());
+        }
+    });
+    double total = 0;
+    for (double s : tile_sums) total += s;
+    // A NaN pixel would silently turn every score into NaN; refuse it at the door.
+    if (std::isnan(total)) throw std::invalid_argument("flip: image contains a NaN or infinite value");
+    result.mean = total / double(result.map.data.size());
+    const auto quartiles = weightedQuartiles(result.map.data, total);
+    result.q1 = quartiles[0];
+    result.median = quartiles[1];
+    result.q3 = quartiles[2];
+    return result;
+}
+
+}  // namespace cbr::metrics
