@@ -160,6 +160,27 @@ void addNeighbour(inout Fill f, ivec2 n, ivec2 quadrant, ivec2 origin, ivec2 siz
     }
 }
 
+// Catmull-Rom history read with 5 bilinear taps (the corners' weights are dropped), so
+// repeated resampling does not blur the history frame after frame as bilinear does.
+vec3 sampleHistory(vec2 pos, vec2 size) {
+    vec2 centre = floor(pos - 0.5) + 0.5;
+    vec2 f = pos - centre;
+    vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
+    vec2 w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
+    vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f));
+    vec2 w3 = f * f * (-0.5 + 0.5 * f);
+    vec2 w12 = w1 + w2;
+    vec2 t0 = (centre - 1.0) / size, t3 = (centre + 2.0) / size;
+    vec2 t12 = (centre + w2 / w12) / size;
+    vec3 c = textureLod(history_prev, vec2(t12.x, t0.y), 0.0).rgb * (w12.x * w0.y) +
+             textureLod(history_prev, vec2(t0.x, t12.y), 0.0).rgb * (w0.x * w12.y) +
+             textureLod(history_prev, t12, 0.0).rgb * (w12.x * w12.y) +
+             textureLod(history_prev, vec2(t3.x, t12.y), 0.0).rgb * (w3.x * w12.y) +
+             textureLod(history_prev, vec2(t12.x, t3.y), 0.0).rgb * (w12.x * w3.y);
+    float w = w12.x * w0.y + w0.x * w12.y + w12.x * w12.y + w3.x * w12.y + w12.x * w3.y;
+    return max(c / w, vec3(0.0));
+}
+
 // Clips `history` towards the centre of the box [lo, hi] (YCoCg) until it lies inside
 // (Playdead, "Temporal Reprojection Anti-Aliasing in INSIDE", GDC 2016); `moved` when it
 // had to. An empty box (no shaded neighbour) leaves the history as it is.
@@ -230,7 +251,7 @@ vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls
         // Every pixel of frame N-1 was resolved: no missing parity, no lost column. The
         // history is clipped to this frame's shaded neighbours; ASO/CSO decide as above.
         bool moved;
-        vec3 history = textureLod(history_prev, prev_pos / vec2(size), 0.0).rgb;
+        vec3 history = sampleHistory(prev_pos, vec2(size));
         vec3 clipped = clipToBox(history, f.lo, f.hi, moved);
         cls = occluded ? kOccluded : moved ? kClipped : kReused;
         cls = on_screen ? cls : kOffscreen;
