@@ -126,6 +126,7 @@ json settingsJson(const RunContext& rc) {
             {"exposure", s.exposure},
             {"cbr_route", s.cbr_route},
             {"cbr_lod_bias", s.cbr_lod_bias},
+            {"cbr_history", s.cbr_full_history ? "full" : "quarter"},
             {"cso_tolerance", s.cso_tolerance},
             {"cso_mode", s.cso_absolute ? "absolute" : "relative"},
             {"resolve_impl", render::resolveImplName(s.resolve_impl)},

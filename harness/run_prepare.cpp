@@ -75,6 +75,9 @@ render::Settings settingsFromOptions(const RunOptions& o) {
     s.analysis = true;  // quality frames carry motion and depth for the edge-crawl metric
     s.cbr_route = o.cbr_route;
     s.cbr_lod_bias = float(o.cbr_lod_bias);
+    if (o.cbr_history != "quarter" && o.cbr_history != "full")
+        throw std::invalid_argument("--cbr-history " + o.cbr_history + ": expected quarter or full");
+    s.cbr_full_history = o.cbr_history == "full";
     s.cso_tolerance = o.cso_tolerance;
     s.cso_absolute = o.cso_mode == "absolute";
     if (o.resolve_impl == "fused")
