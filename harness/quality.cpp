@@ -161,11 +161,11 @@ namespace {
 
 // Colours of the checkerboard classes (also the saved class maps and the report legend).
 std::vector<uint8_t> classColours(const std::vector<uint8_t>& classes) {
-    static const uint8_t kColours[6][3] = {{96, 96, 96},  {40, 200, 60}, {240, 220, 40},
-                                           {230, 40, 40}, {40, 90, 240}, {220, 60, 220}};
+    static const uint8_t kColours[7][3] = {{96, 96, 96},  {40, 200, 60}, {240, 220, 40}, {230, 40, 40},
+                                           {40, 90, 240}, {220, 60, 220}, {40, 200, 200}};
     std::vector<uint8_t> out(classes.size() * 4, 255);
     for (size_t i = 0; i < classes.size(); ++i) {
-        const uint8_t* c = kColours[classes[i] < 6 ? classes[i] : 0];
+        const uint8_t* c = kColours[classes[i] < 7 ? classes[i] : 0];
         std::copy(c, c + 3, out.begin() + std::ptrdiff_t(i * 4));
     }
     return out;

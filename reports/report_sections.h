@@ -62,5 +62,6 @@ inline constexpr PixelClass kPixelClasses[] = {
     {"px_occluded", "occluded", "#e62828"},
     {"px_offscreen", "off-screen", "#285af0"},
     {"px_reset", "reset", "#dc3cdc"},
+    {"px_clipped", "reused, clipped (full history)", "#28c8c8"},
 };
 }  // namespace cbr::reports
