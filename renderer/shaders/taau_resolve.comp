@@ -1,0 +1,145 @@
+#version 460
+// Temporal anti-aliased upsampling (`taau_resolve`): the scaled, jittered render (Halton 2,3
+// sub-pixel offsets) accumulated into a full-res history. Per output pixel: the 3x3 render
+// samples around it, weighted by their distance to the pixel centre (Gaussian fit to
+// Blackman-Harris, as UE4's TAA: Karis, "High Quality Temporal Supersampling", SIGGRAPH
+// 2014); the history reprojected (motion target for moving objects, else depth + the
+// previous view-projection) and read with Catmull-Rom, clipped towards the centre of the
+// samples' YCoCg box (Playdead, "Temporal Reprojection Anti-Aliasing in INSIDE", GDC 2016),
+// blended exponentially. Reset on cuts and where the reprojection leaves the frame.
+// Method notes: Yang, Liu, Salvi, "A Survey of Temporal Antialiasing Techniques" (2020), 5.
+#extension GL_GOOGLE_include_directive : require
+#include "display.glsl"
+#include "shared.h"
+
+layout(local_size_x = 16, local_size_y = 16) in;
+
+layout(constant_id = 0) const int HAS_MOTION = 0;  // 0: camera motion from depth only
+layout(constant_id = 1) const int FUSED = 1;       // 1: the display image (tone map folded in), 0: linear colour
+const float kMotionFromDepth = -1.0e30;  // motion target: no moving object here (scene_pass.h)
+
+layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
+
+layout(set = 1, binding = 0) uniform sampler2D cur_color;   // render-res region at the top-left
+layout(set = 1, binding = 1) uniform sampler2D cur_depth;
+layout(set = 1, binding = 2) uniform sampler2D cur_motion;  // a stand-in (the depth) without moving objects
+layout(set = 1, binding = 3) uniform sampler2D history_prev;  // linear rgb, a: accumulated weight
+layout(set = 1, binding = 4, rgba16f) uniform writeonly image2D history_out;
+layout(set = 1, binding = 5, rgba8) uniform writeonly image2D out_display;  // FUSED
+layout(set = 1, binding = 6, rgba16f) uniform writeonly image2D out_color;  // !FUSED
+
+layout(push_constant) uniform Params {
+    ivec2 render_size;
+    vec2 jitter;        // this frame's sample offset from the render pixel centre, in render pixels
+    float blend;        // steady-state weight of a sample on the pixel centre (--taau-blend)
+    float exposure;     // FUSED
+    uint pass_through;  // FUSED, debug pixel-id mode
+} params;
+
+vec3 toYCoCg(vec3 c) {
+    return vec3(0.25 * c.r + 0.5 * c.g + 0.25 * c.b, 0.5 * c.r - 0.5 * c.b, -0.25 * c.r + 0.5 * c.g - 0.25 * c.b);
+}
+vec3 fromYCoCg(vec3 c) { return vec3(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z); }
+
+// Catmull-Rom history read with 5 bilinear taps (corners dropped), as cbr_resolve.glsl.
+vec4 sampleHistory(vec2 pos, vec2 size) {
+    vec2 centre = floor(pos - 0.5) + 0.5;
+    vec2 f = pos - centre;
+    vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
+    vec2 w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
+    vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f));
+    vec2 w3 = f * f * (-0.5 + 0.5 * f);
+    vec2 w12 = w1 + w2;
+    vec2 t0 = (centre - 1.0) / size, t3 = (centre + 2.0) / size;
+    vec2 t12 = (centre + w2 / w12) / size;
+    vec4 middle = textureLod(history_prev, t12, 0.0);
+    vec3 c = textureLod(history_prev, vec2(t12.x, t0.y), 0.0).rgb * (w12.x * w0.y) +
+             textureLod(history_prev, vec2(t0.x, t12.y), 0.0).rgb * (w0.x * w12.y) + middle.rgb * (w12.x * w12.y) +
+             textureLod(history_prev, vec2(t3.x, t12.y), 0.0).rgb * (w3.x * w12.y) +
+             textureLod(history_prev, vec2(t12.x, t3.y), 0.0).rgb * (w12.x * w3.y);
+    float w = w12.x * w0.y + w0.x * w12.y + w12.x * w12.y + w3.x * w12.y + w12.x * w3.y;
+    // The accumulated weight from the bilinear middle tap: never overshoots.
+    return vec4(max(c / w, vec3(0.0)), middle.a);
+}
+
+// Clips towards the centre of the box [lo, hi] (YCoCg) until inside (Playdead).
+vec3 clipToBox(vec3 history, vec3 lo, vec3 hi) {
+    vec3 y = toYCoCg(history);
+    vec3 centre = 0.5 * (hi + lo);
+    vec3 extent = max(0.5 * (hi - lo), vec3(1e-4));
+    vec3 v = y - centre;
+    vec3 a = abs(v / extent);
+    float m = max(a.x, max(a.y, a.z));
+    return m > 1.0 ? fromYCoCg(centre + v / m) : history;
+}
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = ivec2(frame.frame_info.zw);
+    if (any(greaterThanEqual(p, size))) return;
+    vec2 out_to_render = vec2(params.render_size) / vec2(size);
+    // The pixel centre in render pixels; sample i sits at i + 0.5 + jitter (unjittered).
+    vec2 r = (vec2(p) + 0.5) * out_to_render;
+    ivec2 base = ivec2(floor(r - 0.5 - params.jitter + 0.5));  // the nearest sample
+
+    vec3 sum = vec3(0.0);
+    float weight_sum = 0.0, nearest_weight = 0.0, nearest_depth = -1.0;
+    ivec2 nearest_sample = base;
+    vec3 lo = vec3(1e30), hi = vec3(-1e30);
+    for (int y = -1; y <= 1; ++y) {
+        for (int x = -1; x <= 1; ++x) {
+            ivec2 i = clamp(base + ivec2(x, y), ivec2(0), params.render_size - 1);
+            vec3 c = texelFetch(cur_color, i, 0).rgb;
+            // Distance in output pixels from the sample to this pixel's centre.
+            vec2 d = (vec2(i) + 0.5 + params.jitter - r) / out_to_render;
+            float w = exp(-2.29 * dot(d, d));
+            sum += c * w;
+            weight_sum += w;
+            nearest_weight = max(nearest_weight, w);
+            // The clip box: the samples inside this pixel's 3x3 output neighbourhood (at
+            // least 2x2 of them at any scale >= 2/3), not the whole 3x3 of render pixels,
+            // which spans up to 4.5 output pixels and would keep stale history.
+            vec3 ycocg = toYCoCg(c);
+            bool in_box = max(abs(d.x), abs(d.y)) <= 1.5 || (x == 0 && y == 0);
+            lo = in_box ? min(lo, ycocg) : lo;
+            hi = in_box ? max(hi, ycocg) : hi;
+            // Motion of the nearest surface among the samples within one output pixel
+            // (reversed Z: larger is nearer), so edges of a moving foreground carry their
+            // motion; further out a foreground's motion would drag the background along.
+            float depth = texelFetch(cur_depth, i, 0).r;
+            bool nearer = depth > nearest_depth;
+            nearest_depth = nearer ? depth : nearest_depth;
+            nearest_sample = nearer ? i : nearest_sample;
+        }
+    }
+    vec3 current = sum / weight_sum;
+
+    vec2 at = vec2(p) + 0.5;
+    vec2 ndc = at / vec2(size) * 2.0 - 1.0;  // unjittered: the jitter never enters motion
+    vec4 prev = frame.reproject * vec4(ndc, nearest_depth, 1.0);
+    vec2 motion = prev.w > 0.0 ? (prev.xy / prev.w * 0.5 + 0.5) * vec2(size) - at : vec2(1e9);
+    if (HAS_MOTION != 0) {
+        vec2 stored = texelFetch(cur_motion, nearest_sample, 0).xy;
+        motion = stored.x == kMotionFromDepth ? motion : stored;
+    }
+    motion = frame.frame_info.y == 2u ? vec2(0.0) : motion;  // nothing moved
+    vec2 prev_pos = at + motion;
+    bool on_screen = all(greaterThanEqual(prev_pos, vec2(0.0))) && all(lessThan(prev_pos, vec2(size)));
+    bool reset = frame.frame_info.y == 1u || !on_screen;
+
+    vec4 history = sampleHistory(on_screen ? prev_pos : at, vec2(size));
+    vec3 clipped = clipToBox(history.rgb, lo, hi);
+    // Exponential blend with the per-pixel weight of this frame's nearest sample; the
+    // accumulated weight (alpha) makes the first frames after a reset a running mean
+    // instead of a slow fade from the spatial upsample, capped at 1 / blend.
+    float accumulated = reset ? 0.0 : clamp(history.a, 0.0, 1.0 / params.blend);
+    float total = min(accumulated + nearest_weight, 1.0 / params.blend);
+    float alpha = reset ? 1.0 : clamp(nearest_weight / max(total, 1e-6), 0.0, 1.0);
+    // A select, not a mix: the history is undefined after a reset (NaN * 0 is NaN).
+    vec3 colour = reset ? current : clipped + (current - clipped) * alpha;
+    imageStore(history_out, p, vec4(colour, reset ? nearest_weight : total));
+    if (FUSED != 0)
+        imageStore(out_display, p, displayValue(asStoredHalf(colour), params.exposure, params.pass_through != 0u));
+    else
+        imageStore(out_color, p, vec4(colour, 1.0));
+}
