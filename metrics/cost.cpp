@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "metrics/flip.h"
 #include "metrics/metrics.h"
 #include "metrics/temporal.h"
 
@@ -73,13 +74,16 @@ double msSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-MetricCost measureMetricCost(int width, int height, int frames) {
+MetricCost measureMetricCost(int width, int height, int frames, double flip_ppd) {
     if (width < 11 || height < 11)
         throw std::invalid_argument("measureMetricCost: size " + std::to_string(width) + "x" +
                                     std::to_string(height) + " is below SSIM's 11x11 window");
     if (frames < 1)
         throw std::invalid_argument("measureMetricCost: frames must be >= 1, got " +
                                     std::to_string(frames));
+    if (!(flip_ppd > 0) || !std::isfinite(flip_ppd))
+        throw std::invalid_argument("measureMetricCost: flip_ppd must be finite and > 0, got " +
+                                    std::to_string(flip_ppd));
     MotionField motion;
     motion.width = width;
     motion.height = height;
@@ -93,7 +97,7 @@ MetricCost measureMetricCost(int width, int height, int frames) {
     motion.prev_depth_expected.assign(pixels, 1.0f);
 
     CrawlTracker tracker;
-    std::vector<double> psnr_ms, ssim_ms, eci_ms;
+    std::vector<double> psnr_ms, ssim_ms, eci_ms, flip_ms;
     // Frame 0 is untimed: first touch of the allocations, and the tracker's first frame.
     for (int t = 0; t <= frames; ++t) {
         const Image reference = sceneFrame(width, height, t);
@@ -107,13 +111,17 @@ MetricCost measureMetricCost(int width, int height, int frames) {
         start = std::chrono::steady_clock::now();
         sink = tracker.add(reference, variant, motion, /*cut=*/false, /*want_map=*/true).eci;
         const double e = msSince(start);
+        start = std::chrono::steady_clock::now();
+        sink = flip(reference, variant, flip_ppd).mean;
+        const double f = msSince(start);
         (void)sink;
         if (t == 0) continue;
         psnr_ms.push_back(p);
         ssim_ms.push_back(s);
         eci_ms.push_back(e);
+        flip_ms.push_back(f);
     }
-    return {median(psnr_ms), median(ssim_ms), median(eci_ms), cv::getNumThreads()};
+    return {median(psnr_ms), median(ssim_ms), median(eci_ms), median(flip_ms), cv::getNumThreads()};
 }
 
 }  // namespace cbr::metrics

@@ -1,6 +1,8 @@
-// Cost of the per-frame quality metrics (PSNR, SSIM, edge crawl) on synthetic frames, for
+// Cost of the per-frame quality metrics (PSNR, SSIM, edge crawl, FLIP) on synthetic frames, for
 // the harness's benchmark command: timing is measured here, never asserted in tests.
 #pragma once
+
+#include "metrics/flip.h"
 
 namespace cbr::metrics {
 
@@ -8,13 +10,14 @@ struct MetricCost {
     double psnr_ms = 0;  // psnr(reference, variant), including its input checks
     double ssim_ms = 0;  // ssim(reference, variant): RGB and luma in one pass
     double eci_ms = 0;   // CrawlTracker::add with a crawl map, as the harness calls it
+    double flip_ms = 0;  // flip(reference, variant, flip_ppd): error map, mean and quartiles
     int threads = 0;     // OpenCV's thread count during the measurement
 };
 
 // Median milliseconds per frame over `frames` timed frames (at least 1) of a panning,
 // textured RGB scene at width x height, with a noisy 8-bit variant. One untimed frame
 // warms caches and gives the crawl tracker its first frame. Throws std::invalid_argument
-// for sizes below 11x11 (SSIM's window) or frames < 1.
-MetricCost measureMetricCost(int width, int height, int frames);
+// for sizes below 11x11 (SSIM's window), frames < 1 or a flip_ppd that is not finite and > 0.
+MetricCost measureMetricCost(int width, int height, int frames, double flip_ppd = kFlipDefaultPpd);
 
 }  // namespace cbr::metrics

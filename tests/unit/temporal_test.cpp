@@ -500,13 +500,14 @@ TEST(EdgeCrawl, MatchesStepByStepDefinition) {
 // asserted (STYLE.md), only that it produces them.
 TEST(MetricCost, MeasuresEveryMetric) {
     const MetricCost cost = measureMetricCost(64, 48, 2);
-    for (double ms : {cost.psnr_ms, cost.ssim_ms, cost.eci_ms}) {
+    for (double ms : {cost.psnr_ms, cost.ssim_ms, cost.eci_ms, cost.flip_ms}) {
         EXPECT_TRUE(std::isfinite(ms));
         EXPECT_GE(ms, 0.0);
     }
     EXPECT_GE(cost.threads, 1);
     EXPECT_THROW(measureMetricCost(10, 48, 2), std::invalid_argument);
     EXPECT_THROW(measureMetricCost(64, 48, 0), std::invalid_argument);
+    EXPECT_THROW(measureMetricCost(64, 48, 2, 0.0), std::invalid_argument);
 }
 
 TEST(EdgeCrawl, RejectsBadInput) {
