@@ -13,6 +13,7 @@
 #include "metrics/image_io.h"
 #include "reports/report.h"
 #include "reports/sweep.h"
+#include "metrics/flip.h"
 #include "metrics/metrics.h"
 #include "harness/calibrate.h"
 #include "harness/compare.h"
@@ -29,6 +30,8 @@
 namespace {
 
 constexpr int kExitBadInput = 2;
+constexpr const char* kFlipPpdHelp =
+    "FLIP's pixels per degree of visual angle (default 67.02: 0.7 m from a 0.7 m wide, 3840-pixel monitor)";
 
 int listDevices() {
     auto devices = cbr::vk::listDevices();
@@ -41,7 +44,8 @@ int listDevices() {
 }
 
 // `cbrbench score`: the suite's metrics on saved images, so any number can be recomputed.
-int scoreImages(const std::string& ref_file, const std::string& img_file, const std::string& crop) {
+int scoreImages(const std::string& ref_file, const std::string& img_file, const std::string& crop, double flip_ppd) {
+    cbr::harness::checkFlipPpd(flip_ppd);
     auto ref = cbr::metrics::readPng(ref_file);
     auto img = cbr::metrics::readPng(img_file);
     if (ref.width != img.width || ref.height != img.height)
@@ -57,8 +61,10 @@ int scoreImages(const std::string& ref_file, const std::string& img_file, const 
     auto b = cbr::metrics::fromRgba8(img.pixels.data() + offset, w, h, stride);
     double psnr = cbr::metrics::psnr(a, b);
     auto s = cbr::metrics::ssim(a, b);
-    std::printf("psnr_db %s\nssim %.6f\nssim_luma %.6f\n", std::isinf(psnr) ? "inf" : std::to_string(psnr).c_str(), s.ssim,
-                s.luma_ssim);
+    auto f = cbr::metrics::flip(a, b, flip_ppd);
+    std::printf("psnr_db %s\nssim %.6f\nssim_luma %.6f\nflip_mean %.6f\nflip_q1 %.6f\nflip_median %.6f\nflip_q3 %.6f\n",
+                std::isinf(psnr) ? "inf" : std::to_string(psnr).c_str(), s.ssim, s.luma_ssim, f.mean, f.q1, f.median,
+                f.q3);
     return 0;
 }
 
@@ -120,6 +126,7 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_option("--scene-offset", o.scene_offset, "X,Y,Z: move the scene and the camera path by this (e.g. 1e6,1e6,1e6)");
     cmd->add_option("--scene-scale", o.scene_scale, "scale the scene and the camera path about the origin (0.001: mm)")
         ->capture_default_str();
+    cmd->add_option("--flip-ppd", o.flip_ppd, kFlipPpdHelp);
     cmd->add_option("--near", o.near, "near plane of every keyframe, scene units (after placement)");
     cmd->add_option("--far", o.far, "far plane of every keyframe, scene units (after placement)");
 }
@@ -164,16 +171,20 @@ int main(int argc, char** argv) {
     calibrate->add_option("--alpha", cal.alpha, "compare's --alpha")->capture_default_str();
     calibrate->add_option("--from", cal.from, "an earlier calibration's directory: judge its runs again (other "
                                               "--threshold, --alpha or --repeats) without rendering");
-    auto* metric_cost = app.add_subcommand("metric-cost", "benchmark: PSNR, SSIM and ECI milliseconds per frame");
+    auto* metric_cost = app.add_subcommand("metric-cost", "benchmark: PSNR, SSIM, ECI and FLIP milliseconds per frame");
     std::string cost_res = "1920x1080";
     int cost_frames = 10;
+    double cost_flip_ppd = cbr::metrics::kFlipDefaultPpd;
     metric_cost->add_option("--res", cost_res, "frame size WIDTHxHEIGHT")->capture_default_str();
     metric_cost->add_option("--frames", cost_frames, "timed frames (median reported)")->capture_default_str();
-    auto* score = app.add_subcommand("score", "PSNR and SSIM of an image against a reference (PNG files)");
+    metric_cost->add_option("--flip-ppd", cost_flip_ppd, kFlipPpdHelp);
+    auto* score = app.add_subcommand("score", "PSNR, SSIM and FLIP of an image against a reference (PNG files)");
     std::string score_ref, score_img, score_crop;
     score->add_option("REFERENCE", score_ref, "reference PNG")->required();
     score->add_option("IMAGE", score_img, "PNG to score")->required();
     score->add_option("--crop", score_crop, "score only X,Y,W,H (e.g. to leave out a border column)");
+    double score_flip_ppd = cbr::metrics::kFlipDefaultPpd;
+    score->add_option("--flip-ppd", score_flip_ppd, kFlipPpdHelp);
 
     addRunOptions(run, o, variant_list);
     std::string shard_flag;
@@ -253,7 +264,7 @@ int main(int argc, char** argv) {
             cal.out = cal.run.out;
             return cbr::harness::runCalibrate(cal);
         }
-        if (*score) return scoreImages(score_ref, score_img, score_crop);
+        if (*score) return scoreImages(score_ref, score_img, score_crop, score_flip_ppd);
         if (*report) {
             if (!std::filesystem::is_directory(report_dir))
                 throw std::invalid_argument("report " + report_dir + ": not a directory; expected a run's output directory");
@@ -273,10 +284,12 @@ int main(int argc, char** argv) {
         if (*metric_cost) {
             uint32_t w = 0, h = 0;
             cbr::harness::parseResolution(cost_res, w, h);
-            auto c = cbr::metrics::measureMetricCost(int(w), int(h), cost_frames);
+            cbr::harness::checkFlipPpd(cost_flip_ppd);
+            auto c = cbr::metrics::measureMetricCost(int(w), int(h), cost_frames, cost_flip_ppd);
             std::printf("metric cost per %ux%u frame (median of %d, %d threads): psnr %.1f ms, ssim %.1f ms, eci %.1f ms, "
-                        "total %.1f ms\n",
-                        w, h, cost_frames, c.threads, c.psnr_ms, c.ssim_ms, c.eci_ms, c.psnr_ms + c.ssim_ms + c.eci_ms);
+                        "flip %.1f ms, total %.1f ms\n",
+                        w, h, cost_frames, c.threads, c.psnr_ms, c.ssim_ms, c.eci_ms, c.flip_ms,
+                        c.psnr_ms + c.ssim_ms + c.eci_ms + c.flip_ms);
             return 0;
         }
         o.variants = cbr::harness::splitList(variant_list);

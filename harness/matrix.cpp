@@ -174,6 +174,8 @@ std::string planHash(const RunOptions& o) {
               {"ssaa", o.ssaa},                {"scene_offset", o.scene_offset},
               {"scene_scale", o.scene_scale},  {"near", o.near ? json(*o.near) : json()},
               {"far", o.far ? json(*o.far) : json()}};
+    // Only when set: plans made before --flip-ppd existed keep their hash.
+    if (o.flip_ppd != metrics::kFlipDefaultPpd) j["flip_ppd"] = o.flip_ppd;
     // The jobs, not the lists' spelling: "a,b" and "b,a" are one plan.
     json ids = json::array();
     for (const auto& job : planJobs(o)) ids.push_back(job.id);

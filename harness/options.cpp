@@ -4,12 +4,22 @@
 #include "camera_paths/text.h"
 
 #include <charconv>
+#include <cmath>
 #include <ctime>
 #include <filesystem>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 
 namespace cbr::harness {
+
+void checkFlipPpd(double ppd) {
+    if (!(ppd > 0) || !std::isfinite(ppd))
+        throw std::invalid_argument("--flip-ppd " + std::to_string(ppd) +
+                                    ": expected pixels per degree > 0 (default 67.02: 0.7 m from a 0.7 m wide, "
+                                    "3840-pixel monitor)");
+}
+
 // Digits only: sscanf's %lu took leading blanks, signs and wrapped "-18446744073709551615"
 // round to 1; from_chars reports overflow instead of leaving it undefined.
 void parseResolution(const std::string& text, uint32_t& width, uint32_t& height) {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "metrics/flip.h"
 #include "renderer/settings.h"
 
 namespace cbr::harness {
@@ -40,6 +41,7 @@ struct RunOptions {
     std::string debug_slowdown;          // PASS=PCT: a known slowdown for testing regression detection
     std::string reference = "full";      // full | ssaa: what variants are scored against
     int ssaa = 4;                        // k x k samples per pixel of the ssaa reference
+    double flip_ppd = metrics::kFlipDefaultPpd;  // FLIP's observer: pixels per degree of visual angle
     // Placement (harness/placement.h): world' = offset + scale * world, scene and path together.
     std::string scene_offset;            // "X,Y,Z" ("": none)
     double scene_scale = 1.0;
@@ -53,6 +55,10 @@ struct RunOptions {
 
 // Parsed "WxH"; throws std::invalid_argument for anything else or a 0 dimension.
 void parseResolution(const std::string& text, uint32_t& width, uint32_t& height);
+
+// --flip-ppd (of run, sweep, score and metric-cost): throws std::invalid_argument with one
+// line unless it is finite and > 0.
+void checkFlipPpd(double ppd);
 
 // "a,b,,c" -> {"a", "b", "c"}: a comma list from the command line, empty items dropped.
 std::vector<std::string> splitList(const std::string& s);

@@ -16,7 +16,7 @@ namespace {
 
 // One variant's ok frames, gathered for its summary row.
 struct Samples {
-    std::vector<double> ms, psnr, ssim, ssim_luma, mse, fs, eci, flicker;
+    std::vector<double> ms, psnr, ssim, ssim_luma, mse, fs, eci, flicker, flip;
     double crawl_num = 0, crawl_den = 0;
     std::vector<std::vector<double>> per_rep, ratios;  // per repetition: times, baseline / time
     std::map<std::string, std::vector<double>> pass_ms, stat_values;
@@ -56,6 +56,7 @@ Samples collect(const RunResults& r, const VariantRun& vr, const std::map<std::p
         if (row.quality.psnr_db) c.psnr.push_back(*row.quality.psnr_db);
         if (row.quality.ssim) c.ssim.push_back(*row.quality.ssim);
         if (row.quality.ssim_luma) c.ssim_luma.push_back(*row.quality.ssim_luma);
+        if (row.quality.flip_mean) c.flip.push_back(*row.quality.flip_mean);
         if (row.quality.eci) {
             c.eci.push_back(*row.quality.eci);
             c.crawl_num += row.quality.crawl_numerator;
@@ -122,6 +123,7 @@ void qualityStats(VariantSummary& s, Samples& c) {
         s.ssim_min = *std::min_element(ssim.begin(), ssim.end());
     }
     if (!c.ssim_luma.empty()) s.ssim_luma_mean = mean(c.ssim_luma);
+    if (!c.flip.empty()) s.flip_mean = mean(c.flip);
     if (!eci.empty()) {
         // Sequence ECI pools numerators and denominators (metrics.md); crawl comes in
         // bursts, so p95 and max besides.
@@ -180,8 +182,8 @@ void printSummary(std::ostream& out, const std::filesystem::path& dir, const Run
     char line[512];
     int name_width = 10;  // a sweep's configuration labels are longer than variant names
     for (const auto& s : summaries) name_width = std::max(name_width, int(std::min<size_t>(s.variant.size(), 60)));
-    std::snprintf(line, sizeof line, "%-*s %-8s %10s %10s %9s %10s %8s %8s\n", name_width, "variant", "status",
-                  "render", "gpu_ms", "speedup", "psnr_db", "ssim", "eci");
+    std::snprintf(line, sizeof line, "%-*s %-8s %10s %10s %9s %10s %8s %8s %8s\n", name_width, "variant", "status",
+                  "render", "gpu_ms", "speedup", "psnr_db", "ssim", "flip", "eci");
     out << "cbrbench: " << rc.scene.name << " / " << rc.path.name << " at " << rc.settings.width << "x"
         << rc.settings.height << ", " << rc.results.frames << " frames x " << rc.results.repeats << " repeats on "
         << rc.ctx.description.name << "\n" << line;
@@ -194,11 +196,12 @@ void printSummary(std::ostream& out, const std::filesystem::path& dir, const Run
     };
     for (const auto& s : summaries) {
         std::string render = std::to_string(s.render_width) + "x" + std::to_string(s.render_height);
-        std::snprintf(line, sizeof line, "%-*s %-8s %10s %10s %9s %10s %8s %8s\n", name_width, s.variant.c_str(),
+        std::snprintf(line, sizeof line, "%-*s %-8s %10s %10s %9s %10s %8s %8s %8s\n", name_width, s.variant.c_str(),
                       s.status.c_str(),
                       s.frames ? render.c_str() : "-",
                       s.frames ? fmt(s.gpu_ms_median, "%.3f").c_str() : "-", fmt(s.speedup, "%.3fx").c_str(),
-                      fmt(s.psnr_db, "%.2f").c_str(), fmt(s.ssim_mean, "%.4f").c_str(), fmt(s.eci, "%.4f").c_str());
+                      fmt(s.psnr_db, "%.2f").c_str(), fmt(s.ssim_mean, "%.4f").c_str(),
+                      fmt(s.flip_mean, "%.4f").c_str(), fmt(s.eci, "%.4f").c_str());
         out << line;
     }
     auto& val = rc.ctx.validation;

@@ -42,7 +42,8 @@ size_t writeFramesCsv(const std::filesystem::path& file, const RunResults& r, ui
                                      "width",        "height",        "render_width", "render_height",
                                      "render_scale", "gpu_ms",        "timing_ok",    "psnr_db",
                                      "ssim",         "ssim_luma",     "mse",          "eci",
-                                     "flicker_ratio", "crawl_valid_fraction", "fs_invocations",
+                                     "flicker_ratio", "crawl_valid_fraction", "flip_mean",
+                                     "flip_q1",      "flip_median",   "flip_q3",      "fs_invocations",
                                      "status",       "note"};
     std::vector<std::string> stats = statColumns(r);
     cols.insert(cols.end(), stats.begin(), stats.end());
@@ -82,6 +83,10 @@ size_t writeFramesCsv(const std::filesystem::path& file, const RunResults& r, ui
             m["eci"] = optional(row.quality.eci);
             m["flicker_ratio"] = optional(row.quality.flicker_ratio);
             m["crawl_valid_fraction"] = optional(row.quality.crawl_valid_fraction);
+            m["flip_mean"] = optional(row.quality.flip_mean);
+            m["flip_q1"] = optional(row.quality.flip_q1);
+            m["flip_median"] = optional(row.quality.flip_median);
+            m["flip_q3"] = optional(row.quality.flip_q3);
             for (const auto& [name, value] : row.stats) m[name] = value;
             long long fs = 0;
             bool any = false;
@@ -109,7 +114,8 @@ size_t writeSummaryCsv(const std::filesystem::path& file, const RunResults& r,
                                      "gpu_ms_p95",     "gpu_ms_p99",     "gpu_ms_mean",     "gpu_ms_cv",
                                      "speedup_vs_full", "speedup_ci_low", "speedup_ci_high", "psnr_db_mean",
                                      "psnr_db_min",    "psnr_db_p5",     "ssim_mean",       "ssim_min",
-                                     "ssim_luma_mean", "eci",            "eci_p95",         "eci_max",
+                                     "ssim_luma_mean", "flip_mean",      "eci",             "eci_p95",
+                                     "eci_max",
                                      "flicker_ratio_mean", "fs_invocations_median", "note"};
     for (const auto& p : passes) cols.push_back("gpu_ms_" + p + "_median");
     for (const auto& st : statColumns(r)) cols.push_back(st + "_mean");
@@ -139,6 +145,7 @@ size_t writeSummaryCsv(const std::filesystem::path& file, const RunResults& r,
             m["ssim_mean"] = optional(s.ssim_mean);
             m["ssim_min"] = optional(s.ssim_min);
             m["ssim_luma_mean"] = optional(s.ssim_luma_mean);
+            m["flip_mean"] = optional(s.flip_mean);
             m["eci"] = optional(s.eci);
             m["eci_p95"] = optional(s.eci_p95);
             m["eci_max"] = optional(s.eci_max);

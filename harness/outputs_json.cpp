@@ -195,6 +195,10 @@ json metricsJson(const RunContext& rc) {
                         "warped with the renderer's motion vectors (bilinear), on reference edges (Sobel of blurred "
                         "reference luma > 0.02, dilated 1 px), 4 px margin, disocclusions (5% view-depth mismatch) "
                         "and pairs across cuts excluded; sequence ECI pools numerators and denominators"},
+                {"flip", "LDR-FLIP (Andersson et al. 2020) as NVIDIA's tool v1.6 computes it: mean of the error "
+                         "map and weighted quartiles (pixels weighted by their error); summary flip_mean is the mean "
+                         "of the per-frame means"},
+                {"flip_ppd", rc.options.flip_ppd},
                 {"reference_kind", rc.options.reference == "ssaa"
                                        ? "ssaa: " + std::to_string(rc.options.ssaa) + "x" +
                                              std::to_string(rc.options.ssaa) + " samples per pixel, box filter in HDR"
@@ -238,6 +242,7 @@ json variantJson(const RunContext& rc, const VariantRun& vr, const VariantSummar
         v["psnr_db"] = number(sm.psnr_db);
         v["psnr_db_is_inf"] = sm.psnr_db && std::isinf(*sm.psnr_db);
         v["ssim_mean"] = number(sm.ssim_mean);
+        v["flip_mean"] = number(sm.flip_mean);
         v["eci"] = number(sm.eci);
         v["render_width"] = sm.render_width;
         v["render_height"] = sm.render_height;

@@ -1,9 +1,10 @@
-// Quality scoring on worker threads: PSNR/SSIM per frame, ECI in order, worst frames.
+// Quality scoring on worker threads: PSNR/SSIM/FLIP per frame, ECI in order, worst frames.
 #include "harness/quality.h"
 
 #include <algorithm>
 #include <cmath>
 
+#include "metrics/flip.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
 
@@ -26,8 +27,8 @@ struct QualityScorer::Chain {
     Worst worst_ssim, worst_eci;
 };
 
-QualityScorer::QualityScorer(int width, int height, size_t frames, WorkerPool& workers)
-    : width_(width), height_(height), workers_(workers), reference_(frames) {}
+QualityScorer::QualityScorer(int width, int height, size_t frames, double flip_ppd, WorkerPool& workers)
+    : width_(width), height_(height), flip_ppd_(flip_ppd), workers_(workers), reference_(frames) {}
 
 QualityScorer::~QualityScorer() { workers_.wait(); }
 
@@ -57,6 +58,7 @@ void QualityScorer::score(const std::string& variant, bool is_reference, FrameRo
         row.quality.ssim_luma = 1.0;
         row.quality.eci = 0.0;
         row.quality.flicker_ratio = 1.0;
+        row.quality.flip_mean = row.quality.flip_q1 = row.quality.flip_median = row.quality.flip_q3 = 0.0;
         return;
     }
     Bytes ref;
@@ -81,6 +83,11 @@ void QualityScorer::score(const std::string& variant, bool is_reference, FrameRo
             if (std::isfinite(s.ssim)) row.quality.ssim = s.ssim;
             else row.quality.note += "ssim not finite; ";
             if (std::isfinite(s.luma_ssim)) row.quality.ssim_luma = s.luma_ssim;
+            const metrics::FlipResult f = metrics::flip(a, b, flip_ppd_);
+            row.quality.flip_mean = f.mean;
+            row.quality.flip_q1 = f.q1;
+            row.quality.flip_median = f.median;
+            row.quality.flip_q3 = f.q3;
             std::lock_guard lock(c.mutex);
             if (row.quality.ssim && (c.worst_ssim.frame < 0 || *row.quality.ssim < c.worst_ssim.value))
                 c.worst_ssim = {frame.index, *row.quality.ssim, ref, frame.rgba, frame.classes, std::nullopt};
@@ -201,6 +208,8 @@ std::vector<std::string> QualityScorer::finish(const std::filesystem::path& dir)
             save(base + "variant.png", *worst->image);
             save(base + "error.png", heatMap(error, 4.0));
             save(base + "ssim_map.png", heatMap(ssim, 2.0));
+            // FLIP's error is already in perceptual units on [0,1]: unscaled.
+            save(base + "flip_map.png", heatMap(metrics::flip(ref, img, flip_ppd_).map, 1.0));
             if (worst->crawl_map) save(base + "crawl_map.png", heatMap(*worst->crawl_map, 8.0));
             if (worst->classes && !worst->classes->empty()) save(base + "class_map.png", classColours(*worst->classes));
         }

@@ -1,5 +1,5 @@
-// Scoring of quality frames on worker threads: PSNR and SSIM per frame, edge crawl in
-// frame order per variant, and the worst frames kept for the report (method/metrics.md).
+// Scoring of quality frames on worker threads: PSNR, SSIM and FLIP per frame, edge crawl
+// in frame order per variant, and the worst frames kept for the report (method/metrics.md).
 #pragma once
 
 #include <filesystem>
@@ -30,16 +30,18 @@ struct QualityFrame {
 
 class QualityScorer {
 public:
-    QualityScorer(int width, int height, size_t frames, WorkerPool& workers);
+    // flip_ppd: FLIP's pixels per degree (--flip-ppd).
+    QualityScorer(int width, int height, size_t frames, double flip_ppd, WorkerPool& workers);
     ~QualityScorer();
 
     void setReference(size_t frame, Bytes rgba);
     bool hasReference(size_t frame) const;
     // Scores `frame` of `variant` into `row` (which must outlive finish()). `is_reference`:
-    // the variant is the reference itself (PSNR inf, SSIM 1, ECI 0 without computing).
+    // the variant is the reference itself (PSNR inf, SSIM 1, ECI 0, FLIP 0 without computing).
     void score(const std::string& variant, bool is_reference, FrameRow& row, QualityFrame frame);
     // Waits for every job; writes the worst frames (by SSIM and by ECI) of each variant
-    // as PNGs under dir/worst/. Returns the files written.
+    // as PNGs under dir/worst/, with their error, SSIM, FLIP and crawl maps. Returns the
+    // files written.
     std::vector<std::string> finish(const std::filesystem::path& dir);
 
 private:
@@ -49,6 +51,7 @@ private:
     Chain& chain(const std::string& variant);
 
     int width_, height_;
+    double flip_ppd_;
     WorkerPool& workers_;
     mutable std::mutex mutex_;
     std::vector<Bytes> reference_;

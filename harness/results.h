@@ -23,6 +23,8 @@ struct Quality {
     std::optional<double> flicker_ratio;
     std::optional<double> crawl_valid_fraction;
     double crawl_numerator = 0, crawl_denominator = 0;  // for the pooled sequence ECI
+    // LDR-FLIP (metrics/flip.h): mean of the error map and its weighted quartiles.
+    std::optional<double> flip_mean, flip_q1, flip_median, flip_q3;
     std::string note;               // why a metric is missing
 };
 

@@ -60,7 +60,7 @@ RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene
       h(int(prepared.settings.height)),
       results(startResults(prepared)),
       workers(std::max(1u, std::thread::hardware_concurrency() / 2)),
-      scorer(w, h, prepared.poses.size(), workers),
+      scorer(w, h, prepared.poses.size(), prepared.options.flip_ppd, workers),
       mid(prepared.poses.size() / 2),
       mid_images(prepared.configs.size()),
       reference_frames(prepared.poses.size()),

@@ -38,6 +38,7 @@ void checkOptions(const RunOptions& o) {
                                     ": unknown route; expected auto, msaa-jitter, msaa-locations, multiview or layers");
     if (o.debug_shading != "none" && o.debug_shading != "pixel-id")
         throw std::invalid_argument("--debug-shading " + o.debug_shading + ": expected none or pixel-id");
+    checkFlipPpd(o.flip_ppd);
 }
 
 // --debug-slowdown PASS=PCT into the settings.

@@ -60,7 +60,7 @@ std::optional<double> parseNumberCell(const std::string& cell, bool& ok) {
 }
 
 bool isReportNumericColumn(const std::string& name) {
-    static const char* kPrefixes[] = {"gpu_ms", "psnr", "ssim", "eci", "flicker", "crawl", "px_", "speedup",
+    static const char* kPrefixes[] = {"gpu_ms", "psnr", "ssim", "flip", "eci", "flicker", "crawl", "px_", "speedup",
                                       "mse", "fs_invocations", "render_", "time_s", "width", "height"};
     for (const char* p : kPrefixes)
         if (name.rfind(p, 0) == 0) return true;

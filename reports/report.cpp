@@ -119,6 +119,7 @@ std::string speedupCell(const RunData& d, const std::string& v) {
 std::string summarySection(const RunData& d) {
     std::string out = "<section id=\"summary\"><h2>Summary per variant</h2>";
     const bool eci = d.summary.has("eci");
+    const bool flip = d.summary.has("flip_mean");  // runs before FLIP have no column
     bool any_cbr = false;
     for (const auto& v : d.variants) any_cbr |= isCheckerboard(d, v);
 
@@ -126,6 +127,7 @@ std::string summarySection(const RunData& d) {
            "<th class=\"num\">GPU median (ms)</th><th class=\"num\">GPU p95 (ms)</th><th class=\"num\">noise CV</th>"
            "<th class=\"num\">speedup vs full (x) [95% CI]</th><th class=\"num\">PSNR (dB)</th>"
            "<th class=\"num\">PSNR min (dB)</th><th class=\"num\">SSIM mean</th><th class=\"num\">SSIM min</th>";
+    if (flip) out += "<th class=\"num\">FLIP mean</th>";
     if (eci) out += "<th class=\"num\">ECI</th>";
     out += "</tr>";
 
@@ -141,6 +143,7 @@ std::string summarySection(const RunData& d) {
         out += speedupCell(d, v);
         out += td(fmt(n("psnr_db_mean"), 2)) + td(fmt(n("psnr_db_min"), 2)) + td(fmt(n("ssim_mean"), 4)) +
                td(fmt(n("ssim_min"), 4));
+        if (flip) out += td(fmt(n("flip_mean"), 4));
         if (eci) out += td(fmt(n("eci"), 4));
         out += "</tr>";
     }
@@ -159,7 +162,8 @@ std::string summarySection(const RunData& d) {
            " repetition" + (repeats == 1 ? "" : "s") + ". Speedup: median of paired per-frame ratios full/variant at the same camera pose; the 95% "
            "percentile-bootstrap interval resamples whole repetitions" +
            std::string(repeats < 2 ? " (none with one repetition)" : "") +
-           ". PSNR: sequence PSNR from the mean per-frame MSE; \u221e means identical to the reference. Pixel-class "
+           ". PSNR: sequence PSNR from the mean per-frame MSE; \u221e means identical to the reference. FLIP: mean "
+           "of the per-frame LDR-FLIP means (0: no visible difference, 1: the largest). Pixel-class "
            "shares: mean over frames, checkerboard variants only. \u2013: no value.</p>";
     if (any_cbr) {
         out += "<h3>Checkerboard pixel classes (mean share of the frame's pixels, %)</h3><table><tr><th>variant</th>";

@@ -121,6 +121,7 @@ std::string qualitySection(const RunData& d) {
     const Metric metrics[] = {
         {"psnr_db", "PSNR", "PSNR (dB)"},
         {"ssim", "SSIM", "SSIM (unitless)"},
+        {"flip_mean", "FLIP, mean of the error map (lower is better)", "FLIP (unitless, [0,1])"},
         {"eci", "Edge crawl index (ECI), lower is better", "ECI (luma, [0,1] units)"},
         {"flicker_ratio", "Flicker ratio (1: changes like the reference)", "flicker ratio (x)"},
         {"crawl_valid_fraction", "Share of pixels scored by ECI", "valid fraction (unitless)"},

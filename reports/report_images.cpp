@@ -1,4 +1,4 @@
-// Report section with the worst frames: reference/variant wipe, error, SSIM, crawl and class maps.
+// Report section with the worst frames: reference/variant wipe, error, SSIM, FLIP, crawl and class maps.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -126,6 +126,7 @@ std::string fromWorstDir(const RunData& d, const std::string& v) {
         const fs::path dir = d.dir / "worst";
         Embedded ref = embed(dir / file("reference")), var = embed(dir / file("variant"));
         Embedded err = embed(dir / file("error")), ssim = embed(dir / file("ssim_map"));
+        Embedded flip = embed(dir / file("flip_map"));  // absent in runs before FLIP
         Embedded crawl = embed(dir / file("crawl_map"));
         Embedded cls = cbr ? embed(dir / file("class_map")) : Embedded{};
         bool any = !ref.uri.empty() || !var.uri.empty() || !err.uri.empty() || !ssim.uri.empty() ||
@@ -146,6 +147,7 @@ std::string fromWorstDir(const RunData& d, const std::string& v) {
         out += "<div class=\"maps\">";
         out += mapFigure(err, "error |variant \u2212 reference|", file("error"));
         out += mapFigure(ssim, "1 \u2212 SSIM map", file("ssim_map"));
+        if (!flip.uri.empty()) out += mapFigure(flip, "FLIP error map", file("flip_map"));
         if (eci_kind || !crawl.uri.empty())
             out += mapFigure(crawl, "edge crawl |e\u209c \u2212 warp(e\u209c\u208b\u2081)|", file("crawl_map"));
         if (cbr) out += mapFigure(cls, "pixel classes", file("class_map")) + classLegend();

@@ -116,6 +116,8 @@ std::vector<Case> cases() {
         {"bad_shading_cost", {"--shading-cost", "0"}, {"--shading-cost"}},
         {"bad_drr_scale", {"--drr-scale", "1.5"}, {"--drr-scale"}},
         {"bad_drr_filter", {"--drr-filter", "lanczos9"}, {"--drr-filter", "bilinear"}},
+        {"bad_flip_ppd", {"--flip-ppd", "0"}, {"--flip-ppd", "67.02"}},
+        {"nan_flip_ppd", {"--flip-ppd", "nan"}, {"--flip-ppd"}},
         {"unknown_option", {"--frobnicate"}, {"--frobnicate"}},
     };
 }

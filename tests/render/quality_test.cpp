@@ -66,6 +66,17 @@ TEST(Quality, StaticPathGivesFiniteCrawlAndReferenceIsExact) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     auto frames = readCsv(out / "frames.csv");
     for (size_t i = 0; i < frames.rows.size(); ++i) {
+        // FLIP on every frame: 0 exactly where the frame equals the reference (the reference's
+        // own rows, and cbr-cso once its history has converged on the static path).
+        const double flip = std::stod(frames.at(i, "flip_mean"));
+        const double q1 = std::stod(frames.at(i, "flip_q1")), median = std::stod(frames.at(i, "flip_median")),
+                     q3 = std::stod(frames.at(i, "flip_q3"));
+        EXPECT_EQ(flip == 0.0, frames.at(i, "psnr_db") == "inf") << i;
+        EXPECT_GE(flip, 0.0) << i;
+        EXPECT_LT(flip, 1.0) << i;
+        EXPECT_LE(q1, median) << i;
+        EXPECT_LE(median, q3) << i;
+        if (frames.at(i, "variant") == "full") EXPECT_EQ(q3, 0.0) << i;
         if (frames.at(i, "frame") == "0") continue;
         double eci = std::stod(frames.at(i, "eci"));
         EXPECT_TRUE(std::isfinite(eci));
@@ -73,6 +84,35 @@ TEST(Quality, StaticPathGivesFiniteCrawlAndReferenceIsExact) {
             EXPECT_EQ(eci, 0.0);
         }
     }
+    auto summary = readCsv(out / "summary.csv");
+    for (size_t i = 0; i < summary.rows.size(); ++i)
+        EXPECT_EQ(std::stod(summary.at(i, "flip_mean")) == 0.0, summary.at(i, "variant") == "full") << i;
+    auto run = readJson(out / "run.json");
+    EXPECT_NEAR(run["metrics"]["flip_ppd"].get<double>(), 67.0206, 1e-4);
+    EXPECT_TRUE(std::filesystem::exists(out / "worst" / "cbr-cso_ssim_flip_map.png"));
+    EXPECT_NE(slurp(out / "report.html").find("FLIP error map"), std::string::npos);
+}
+
+TEST(Quality, FlipPpdIsRecordedAndChangesTheScore) {
+    // The observer changes FLIP's filters (wider at more pixels per degree): the score moves,
+    // though not always one way (the feature detectors widen too).
+    auto work = scratchDir("quality-flip-ppd");
+    std::map<std::string, double> flip;
+    for (const char* ppd : {"20", "200"}) {
+        auto out = work / (std::string("out-") + ppd);
+        auto r = runBench({"run", "--scene", "blocks", "--path", "orbit", "--res", "96x64", "--frames", "3", "--repeat",
+                           "1", "--warmup", "0", "--variants", "full,cbr-aso", "--flip-ppd", ppd, "--out",
+                           out.string()},
+                          work);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_EQ(readJson(out / "run.json")["metrics"]["flip_ppd"].get<double>(), std::stod(ppd));
+        auto summary = readCsv(out / "summary.csv");
+        for (size_t i = 0; i < summary.rows.size(); ++i)
+            if (summary.at(i, "variant") == "cbr-aso") flip[ppd] = std::stod(summary.at(i, "flip_mean"));
+    }
+    EXPECT_GT(flip["20"], 0.0);
+    EXPECT_GT(flip["200"], 0.0);
+    EXPECT_GT(std::abs(flip["20"] - flip["200"]), 1e-4);
 }
 
 TEST(Quality, ReportCommandRebuildsAndRejectsBadInput) {

@@ -335,3 +335,44 @@ TEST_F(ReportBadInput, JsonOfTheWrongShape) {
     spit(dir_ / "run.json", "[1, 2]");
     EXPECT_NE(expectRefused().find("accepted: an object"), std::string::npos);
 }
+
+namespace {
+
+// Appends one column to every line of a CSV: `header` on the first, then `cells` in order.
+std::string withColumn(const std::string& csv, const std::string& header, const std::vector<std::string>& cells) {
+    std::istringstream in(csv);
+    std::string line, out;
+    size_t i = 0;
+    while (std::getline(in, line)) out += line + "," + (i++ == 0 ? header : cells.at(i - 2)) + "\n";
+    return out;
+}
+
+}  // namespace
+
+// FLIP (issue 17): a column of its own in the summary, a chart per frame and the worst frame's
+// error map; runs from before FLIP have none of them and still make a report.
+TEST(Report, ShowsFlipWhereTheRunHasIt) {
+    fs::path old_run = makeRun("no-flip");
+    writeReport(old_run);
+    const std::string old_html = withoutPayloads(slurp(old_run / "report.html"));
+    EXPECT_EQ(old_html.find("FLIP mean</th>"), std::string::npos);
+    EXPECT_EQ(old_html.find("FLIP error map"), std::string::npos);
+
+    fs::path dir = makeRun("flip");
+    spit(dir / "summary.csv", withColumn(summaryCsv(), "flip_mean", {"0", "0.1234", "0.0567", ""}));
+    std::vector<std::string> frame_cells;
+    for (int rep = 0; rep < 2; ++rep)
+        for (int f = 0; f < 3; ++f)
+            for (const char* v : {"0", "0.12", "0.05"}) frame_cells.push_back(rep ? "" : v);
+    frame_cells.push_back("");  // the skipped cbr-aso row
+    spit(dir / "frames.csv", withColumn(framesCsv(), "flip_mean", frame_cells));
+    cbr::metrics::Rgba8Image img{4, 2, std::vector<uint8_t>(4 * 2 * 4, 90)};
+    cbr::metrics::writePng(dir / "worst" / "cbr-cso_ssim_flip_map.png", img);
+    writeReport(dir);
+    const std::string html = withoutPayloads(slurp(dir / "report.html"));
+    EXPECT_NE(html.find("FLIP mean</th>"), std::string::npos);
+    EXPECT_NE(html.find(">0.1234<"), std::string::npos);
+    EXPECT_NE(html.find("FLIP, mean of the error map"), std::string::npos);
+    EXPECT_NE(html.find("FLIP error map</figcaption>"), std::string::npos);
+    EXPECT_EQ(html.find("flip_map.png absent"), std::string::npos);
+}
