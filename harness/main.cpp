@@ -94,6 +94,10 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_option("--out", o.out, "output directory (default out/<scene>-<path>-<date-time>)");
     cmd->add_option("--drr-scale", o.drr_scale, "drr per-axis render scale in (0, 1]")->capture_default_str();
     cmd->add_option("--drr-filter", o.drr_filter, "drr upscale filter: bilinear or catmull-rom")->capture_default_str();
+    cmd->add_option("--taau-scale", o.taau_scale, "taau per-axis render scale in (0, 1]")->capture_default_str();
+    cmd->add_option("--taau-phases", o.taau_phases, "taau Halton(2,3) jitter phases: 8 or 16")->capture_default_str();
+    cmd->add_option("--taau-blend", o.taau_blend, "taau history blend weight of a sample on the pixel centre, (0, 1]")
+        ->capture_default_str();
     cmd->add_option("--drr-target-ms", o.drr_target_ms, "dynamic drr: target GPU frame time in ms (0: fixed scale)")
         ->capture_default_str();
     cmd->add_option("--shading-cost", o.shading_cost, "fragment shading about K times more expensive, same image")
@@ -104,6 +108,9 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_option("--cbr-history", o.cbr_history,
                     "checkerboard history: quarter (frame N-1's quarter-res samples, the paper's) or full (the "
                     "previous resolved frame, clipped to the neighbourhood)")
+        ->capture_default_str();
+    cmd->add_option("--history-filter", o.history_filter,
+                    "how --cbr-history full reads the history: catmull-rom or bilinear (blurs frame after frame)")
         ->capture_default_str();
     cmd->add_option("--cbr-lod-bias", o.cbr_lod_bias, "texture LOD bias of checkerboard scene passes")
         ->capture_default_str();

@@ -28,10 +28,14 @@ struct RunOptions {
     std::string drr_filter = "catmull-rom";
     double drr_scale = 0.7071;
     double drr_target_ms = 0;
+    double taau_scale = 0.7071;       // taau per-axis render scale
+    int taau_phases = 8;              // taau Halton(2,3) jitter phases: 8 or 16
+    double taau_blend = 0.1;          // taau history blend weight of a sample on the pixel centre
     int shading_cost = 1;
     double exposure = 1.0;
     std::string cbr_route = "auto";
     std::string cbr_history = "quarter";  // quarter | full: the checkerboard resolve's history
+    std::string history_filter = "catmull-rom";  // full history's read: catmull-rom | bilinear
     double cbr_lod_bias = -1.0;      // chosen by a sweep over the built-in paths (README); -0.5 is the paper's
     double cso_tolerance = 0.05;
     std::string cso_mode = "relative";

@@ -169,6 +169,10 @@ void sweepSettingCells(std::map<std::string, Cell>& row, const VariantRun& vr, c
         row["drr_scale"] = s.drr_scale;
         row["drr_filter"] = rc.options.drr_filter;
     }
+    if (vr.variant == "taau") {
+        row["taau_scale"] = s.taau_scale;
+        row["taau_blend"] = s.taau_blend;
+    }
     if (vr.variant == "cbr-cso") {
         row["cso_tolerance"] = s.cso_tolerance;
         row["cso_mode"] = rc.options.cso_mode;
@@ -176,6 +180,7 @@ void sweepSettingCells(std::map<std::string, Cell>& row, const VariantRun& vr, c
     if (vr.variant == "cbr-aso" || vr.variant == "cbr-cso") {
         row["cbr_lod_bias"] = rc.options.cbr_lod_bias;
         row["cbr_route"] = rc.options.cbr_route;
+        row["cbr_history"] = rc.options.cbr_history;
     }
     for (const auto& st : vr.settings) {
         std::string column = st.name;

@@ -22,6 +22,12 @@ void checkOptions(const RunOptions& o) {
         throw std::invalid_argument("--shading-cost " + std::to_string(o.shading_cost) + ": expected an integer >= 1");
     if (!(o.drr_scale > 0.0 && o.drr_scale <= 1.0))
         throw std::invalid_argument("--drr-scale " + std::to_string(o.drr_scale) + ": expected a per-axis scale in (0, 1]");
+    if (!(o.taau_scale > 0.0 && o.taau_scale <= 1.0))
+        throw std::invalid_argument("--taau-scale " + std::to_string(o.taau_scale) + ": expected a per-axis scale in (0, 1]");
+    if (o.taau_phases != 8 && o.taau_phases != 16)
+        throw std::invalid_argument("--taau-phases " + std::to_string(o.taau_phases) + ": expected 8 or 16");
+    if (!(o.taau_blend > 0.0 && o.taau_blend <= 1.0))
+        throw std::invalid_argument("--taau-blend " + std::to_string(o.taau_blend) + ": expected a weight in (0, 1]");
     if (o.drr_target_ms < 0 || !std::isfinite(o.drr_target_ms))
         throw std::invalid_argument("--drr-target-ms: expected a positive number of milliseconds (or 0: fixed scale)");
     if (!(o.exposure > 0 && std::isfinite(o.exposure)))
@@ -79,6 +85,9 @@ render::Settings settingsFromOptions(const RunOptions& o) {
     if (o.cbr_history != "quarter" && o.cbr_history != "full")
         throw std::invalid_argument("--cbr-history " + o.cbr_history + ": expected quarter or full");
     s.cbr_full_history = o.cbr_history == "full";
+    if (o.history_filter != "catmull-rom" && o.history_filter != "bilinear")
+        throw std::invalid_argument("--history-filter " + o.history_filter + ": expected catmull-rom or bilinear");
+    s.cbr_history_catmull_rom = o.history_filter == "catmull-rom";
     s.cso_tolerance = o.cso_tolerance;
     s.cso_absolute = o.cso_mode == "absolute";
     if (o.resolve_impl == "fused")
@@ -97,6 +106,9 @@ render::Settings settingsFromOptions(const RunOptions& o) {
         throw std::invalid_argument("--drr-filter " + o.drr_filter + ": expected bilinear or catmull-rom");
     s.drr_scale = o.drr_scale;
     s.drr_control.target_ms = o.drr_target_ms;
+    s.taau_scale = o.taau_scale;
+    s.taau_phases = o.taau_phases;
+    s.taau_blend = o.taau_blend;
     s.shading_cost = o.shading_cost;
     s.exposure = float(o.exposure);
     return s;
@@ -130,8 +142,11 @@ void makeConfigs(const RunOptions& o, Prepared& p) {
             if (s.name == "drr-scale") c.settings.drr_scale = s.value;
             if (s.name == "drr-filter")
                 c.settings.drr_filter = s.word == "bilinear" ? render::DrrFilter::Bilinear : render::DrrFilter::CatmullRom;
+            if (s.name == "taau-scale") c.settings.taau_scale = s.value;
+            if (s.name == "taau-blend") c.settings.taau_blend = s.value;
             if (s.name == "cbr-lod-bias") c.settings.cbr_lod_bias = float(s.value);
             if (s.name == "cbr-route") c.settings.cbr_route = s.word;
+            if (s.name == "cbr-history") c.settings.cbr_full_history = s.word == "full";
             if (s.name == "shading-cost") c.settings.shading_cost = int(s.value);
         }
         p.configs.push_back(std::move(c));

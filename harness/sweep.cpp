@@ -2,6 +2,7 @@
 #include "harness/sweep.h"
 
 #include "camera_paths/text.h"
+#include "renderer/variants/variants.h"
 #include "reports/sweep.h"
 
 #include <algorithm>
@@ -40,7 +41,7 @@ std::vector<std::string> split(const std::string& s, char sep) {
 
 bool inRange(const std::string& name, double v) {
     if (name == "cso-tolerance") return v > 0;
-    if (name == "drr-scale") return v > 0 && v <= 1;
+    if (name == "drr-scale" || name == "taau-scale" || name == "taau-blend") return v > 0 && v <= 1;
     if (name == "cbr-lod-bias") return std::abs(v) <= 16;  // as --cbr-lod-bias
     return v >= 1 && v == std::floor(v) && v <= 1024;      // shading-cost
 }
@@ -66,8 +67,11 @@ const std::vector<SweepParamInfo>& sweepParamTable() {
         {"cso-mode", "mode", {"cbr-cso"}, {"relative", "absolute"}, ""},
         {"drr-scale", "scale", {"drr"}, {}, "(0, 1]"},
         {"drr-filter", "filter", {"drr"}, {"bilinear", "catmull-rom"}, ""},
+        {"taau-scale", "tscale", {"taau"}, {}, "(0, 1]"},
+        {"taau-blend", "blend", {"taau"}, {}, "(0, 1]"},
         {"cbr-lod-bias", "lod", {"cbr-aso", "cbr-cso"}, {}, "[-16, 16]"},
         {"cbr-route", "route", {"cbr-aso", "cbr-cso"}, {"auto", "msaa-jitter", "msaa-locations", "multiview", "layers"}, ""},
+        {"cbr-history", "history", {"cbr-aso", "cbr-cso"}, {"quarter", "full"}, ""},
         {"shading-cost", "cost", {}, {}, "integer >= 1"},
         {"reference", "ref", {}, {"full", "ssaa"}, "", /*outer=*/true},
     };
@@ -211,15 +215,19 @@ std::vector<std::vector<SweepSetting>> combinations(const std::vector<const Swee
 }  // namespace
 
 std::vector<SweepConfig> expandSweep(const std::vector<SweepParam>& params, const std::vector<std::string>& variants) {
-    static const char* kTable[] = {"full", "drr", "cbr-aso", "cbr-cso"};
+    // In table order (renderer/variants), the reference first.
     std::vector<std::string> wanted{"full"};
-    for (const char* v : kTable)
-        if (std::string(v) != "full" &&
-            (variants.empty() || std::find(variants.begin(), variants.end(), v) != variants.end()))
-            wanted.emplace_back(v);
-    for (const auto& v : variants)
-        if (std::find(std::begin(kTable), std::end(kTable), v) == std::end(kTable))
-            throw std::invalid_argument("--variants " + v + ": unknown variant; expected full, drr, cbr-aso or cbr-cso");
+    for (const auto& v : cbr::variants::allVariants())
+        if (v.name != "full" &&
+            (variants.empty() || std::find(variants.begin(), variants.end(), v.name) != variants.end()))
+            wanted.emplace_back(v.name);
+    for (const auto& v : variants) {
+        bool known = false;
+        for (const auto& t : cbr::variants::allVariants()) known = known || t.name == v;
+        if (!known)
+            throw std::invalid_argument("--variants " + v + ": unknown variant; expected one of " +
+                                        cbr::variants::variantNames());
+    }
     checkParams(params, wanted);
 
     std::vector<double> costs{0};  // 0: the run's own --shading-cost, not a swept value

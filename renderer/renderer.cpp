@@ -73,7 +73,7 @@ Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants:
                    const Settings& settings)
     : ctx_(ctx), scene_(scene), settings_(settings) {
     variant_ = variant.build(ctx, scene, settings);
-    scale_ = !variant_->scaled() ? 1.0 : variant_->dynamicScale() ? settings.drr_control.max_scale : settings.drr_scale;
+    scale_ = !variant_->scaled() ? 1.0 : variant_->dynamicScale() ? settings.drr_control.max_scale : variant_->fixedScale();
 
     // Every light `shading_cost` times at 1/cost: K times the work, the same sum. Point
     // light positions are written per frame, relative to the camera (submit).

@@ -40,6 +40,10 @@ struct Settings {
     double drr_scale = 0.7071;  // per axis: half the pixels
     DrrFilter drr_filter = DrrFilter::CatmullRom;
     DrrControl drr_control;
+    // taau: per-axis render scale, Halton(2,3) jitter phases (8 or 16), history blend weight.
+    double taau_scale = 0.7071;
+    int taau_phases = 8;
+    double taau_blend = 0.1;
     int frames_in_flight = 2;
     bool deferred = false;           // --pipeline deferred: G-buffer, lighting resolve, forward transparency
     // Checkerboard rendering.
@@ -47,6 +51,7 @@ struct Settings {
     // History of the checkerboard resolve: false, frame N-1's quarter-res samples (the
     // paper's); true, the previous resolved full-res frame, clipped (--cbr-history full).
     bool cbr_full_history = false;
+    bool cbr_history_catmull_rom = true;  // the full history's read filter (--history-filter), else bilinear
     float cbr_lod_bias = -1.0f;      // matches full-res derivatives (README: chosen by a sweep); the paper: -0.5
     double cso_tolerance = 0.05;
     bool cso_absolute = false;       // false: relative to the mean neighbour depth

@@ -17,7 +17,7 @@ namespace cbr::reports {
 namespace {
 
 const char* kTextColumns[] = {"config", "variant", "path", "reference", "pipeline", "drr_filter", "cso_mode",
-                              "cbr_route", "status", "note"};
+                              "cbr_route", "cbr_history", "status", "note"};
 
 bool isSweepNumeric(const std::string& name) {
     return std::find(std::begin(kTextColumns), std::end(kTextColumns), name) == std::end(kTextColumns);
@@ -78,10 +78,10 @@ std::string groupName(const Group& g, bool paths_vary, bool references_vary) {
 const std::vector<std::string>& sweepColumns() {
     static const std::vector<std::string> cols = {
         "config", "variant", "path", "reference", "pipeline", "shading_cost", "drr_scale", "drr_filter",
-        "cso_tolerance", "cso_mode", "cbr_lod_bias", "cbr_route", "status", "note", "frames", "repeats",
+        "cso_tolerance", "cso_mode", "cbr_lod_bias", "cbr_route", "cbr_history", "taau_scale", "taau_blend", "status", "note", "frames", "repeats",
         "gpu_ms_median", "gpu_ms_ci_low", "gpu_ms_ci_high", "noise_cv", "speedup_vs_full", "speedup_ci_low",
         "speedup_ci_high", "psnr_db", "ssim", "eci", "flicker_ratio", "px_shaded", "px_reused", "px_missing_parity",
-        "px_occluded", "px_offscreen", "px_reset"};
+        "px_occluded", "px_offscreen", "px_reset", "px_clipped"};
     return cols;
 }
 
@@ -93,6 +93,9 @@ const std::vector<SweepSettingField>& sweepSettingFields() {
         {"drr-filter", "drr_filter", nullptr, &SweepPoint::drr_filter},
         {"cbr-lod-bias", "cbr_lod_bias", &SweepPoint::cbr_lod_bias, nullptr},
         {"cbr-route", "cbr_route", nullptr, &SweepPoint::cbr_route},
+        {"cbr-history", "cbr_history", nullptr, &SweepPoint::cbr_history},
+        {"taau-scale", "taau_scale", &SweepPoint::taau_scale, nullptr},
+        {"taau-blend", "taau_blend", &SweepPoint::taau_blend, nullptr},
     };
     return fields;
 }

@@ -15,13 +15,13 @@ namespace cbr::reports {
 // One row of sweep.csv: a configuration and what it measured.
 struct SweepPoint {
     std::string config;   // label, e.g. cbr-cso_tol=0.01_cost=4
-    std::string variant;  // full, drr, cbr-aso, cbr-cso
+    std::string variant;  // a row of the variant table: full, drr, cbr-aso, cbr-cso, taau
     std::string status;   // ok, failed, skipped
     std::string path, reference;  // the outer dimensions: one sweep per (path, reference)
     double shading_cost = 1;
     // The settings of the variants they change (empty on the others' rows).
-    std::optional<double> drr_scale, cso_tolerance, cbr_lod_bias;
-    std::string drr_filter, cso_mode, cbr_route;
+    std::optional<double> drr_scale, cso_tolerance, cbr_lod_bias, taau_scale, taau_blend;
+    std::string drr_filter, cso_mode, cbr_route, cbr_history;
     std::optional<double> gpu_ms, gpu_ms_low, gpu_ms_high, speedup, speedup_low, speedup_high;
     std::optional<double> psnr_db, ssim, eci, flicker;
     std::map<std::string, double> classes;  // px_* mean shares

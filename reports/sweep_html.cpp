@@ -25,6 +25,15 @@ std::string variantColour(const std::string& v) {
     if (v == "cbr-cso") return "#009e73";
     return "#cc79a7";
 }
+// The variants the sweep ran, in the order of their rows (the harness writes them in the
+// variant table's order): reports never list variants themselves.
+std::vector<std::string> variantsOf(const std::vector<SweepPoint>& points) {
+    std::vector<std::string> out;
+    for (const auto& p : points)
+        if (std::find(out.begin(), out.end(), p.variant) == out.end()) out.push_back(p.variant);
+    return out;
+}
+
 const char* kCostColours[] = {"#009e73", "#0072b2", "#d55e00", "#cc79a7", "#e69f00", "#56b4e9", "#a08c00"};
 
 std::string jsonString(const nlohmann::json& j, const char* ptr) {
@@ -149,8 +158,8 @@ std::string paramsSection(const std::vector<SweepPoint>& points) {
     for (const auto& f : sweepSettingFields()) {
         if (!f.number) continue;
         const bool tol = std::string(f.name) == "cso-tolerance";
-        for (const char* v : {"drr", "cbr-aso", "cbr-cso"})
-            html += paramCharts(points, v, f, tol ? "cbr-aso" : nullptr, tol);
+        for (const auto& v : variantsOf(points))
+            if (v != "full") html += paramCharts(points, v.c_str(), f, tol ? "cbr-aso" : nullptr, tol);
     }
     if (shadingCosts(points).size() > 1) {
         html += "<h3>GPU time against shading cost</h3><div class=\"grid2\">";
@@ -160,7 +169,7 @@ std::string paramsSection(const std::vector<SweepPoint>& points) {
         c.x = shadingCosts(points);
         c.x_integer = false;
         std::vector<Series> legend;
-        for (const char* v : {"full", "drr", "cbr-aso", "cbr-cso"}) {
+        for (const auto& v : variantsOf(points)) {
             // The first configuration of each variant per cost (the swept values' first).
             Series s{v, variantColour(v), {}};
             for (double cost : c.x) {
@@ -203,10 +212,10 @@ std::string answerSection(const std::vector<SweepPoint>& points) {
 
 std::string equalSection(const std::vector<SweepPoint>& points) {
     const auto equal = equalCost(points, recommendTolerance(points));
-    std::string html = "<section id=\"equal\"><h2>Quality at equal cost: checkerboard against dynamic resolution</h2>";
+    std::string html = "<section id=\"equal\"><h2>Quality at equal cost: checkerboard and taau against dynamic resolution</h2>";
     for (const auto& e : equal) html += "<p class=\"answer\">" + esc(e.verdict) + "</p>";
     if (!equal.empty()) {
-        html += "<div class=\"scroll\"><table><tr><th>checkerboard</th><th class=\"num\">cost</th><th class=\"num\">GPU ms"
+        html += "<div class=\"scroll\"><table><tr><th>configuration</th><th class=\"num\">cost</th><th class=\"num\">GPU ms"
                 "</th><th class=\"num\">PSNR dB</th><th class=\"num\">SSIM</th><th class=\"num\">ECI</th><th>drr at that "
                 "cost</th><th class=\"num\">scale</th><th class=\"num\">GPU ms</th><th class=\"num\">PSNR dB</th>"
                 "<th class=\"num\">SSIM</th><th class=\"num\">ECI</th></tr>";
@@ -220,7 +229,7 @@ std::string equalSection(const std::vector<SweepPoint>& points) {
                     fmt(e.drr_eci, 4) + "</td></tr>";
         html += "</table></div>";
     }
-    return html + "<p class=\"note\">The drr scale whose median GPU time equals the checkerboard configuration's, with "
+    return html + "<p class=\"note\">The drr scale whose median GPU time equals the configuration's (checkerboard or taau), with "
                   "its quality, interpolated linearly in time between the two swept drr scales around it (the drr times "
                   "sorted). Without a drr scale on both sides the nearest is shown and no equal-cost claim is made.</p>"
                   "</section>";
@@ -228,6 +237,8 @@ std::string equalSection(const std::vector<SweepPoint>& points) {
 
 std::string planeSection(const std::vector<SweepPoint>& points) {
     std::string html = "<section id=\"plane\"><h2>Error against run time</h2>";
+    std::vector<Series> legend;
+    for (const auto& v : variantsOf(points)) legend.push_back({v, variantColour(v), {}});
     for (double cost : shadingCosts(points)) {
         ScatterChart sc;
         sc.title = "PSNR against GPU time" + costSuffix(points, cost);
@@ -241,8 +252,7 @@ std::string planeSection(const std::vector<SweepPoint>& points) {
             if (p.shading_cost == cost && p.status == "ok" && p.gpu_ms)
                 sc.points.push_back({p.config, variantColour(p.variant), *p.gpu_ms, p.psnr_db});
         html += "<h3>Sequence PSNR against median GPU time" + esc(costSuffix(points, cost)) + "</h3>" +
-                legendHtml({{"full", variantColour("full"), {}}, {"drr", variantColour("drr"), {}},
-                            {"cbr-aso", variantColour("cbr-aso"), {}}, {"cbr-cso", variantColour("cbr-cso"), {}}}) +
+                legendHtml(legend) +
                 "<div class=\"chart-block\" style=\"max-width:900px\">" + scatterChartSvg(sc) + "</div>";
         std::string list;
         for (size_t i : paretoFront(sc.points, true)) list += (list.empty() ? "" : ", ") + sc.points[i].label;

@@ -20,12 +20,12 @@ std::optional<double> lerp(std::optional<double> a, std::optional<double> b, dou
     return *a + f * (*b - *a);
 }
 
-// cbr-aso's and cbr-cso's best-PSNR configuration at one cost (cbr-cso's at the
-// recommended tolerance): one each, whatever else was swept.
+// The peers of drr at equal cost: cbr-aso's, cbr-cso's and taau's best-PSNR configuration
+// at one cost (cbr-cso's at the recommended tolerance): one each, whatever else was swept.
 std::vector<const SweepPoint*> checkerboardConfigs(const std::vector<SweepPoint>& points, double cost,
                                                    const std::vector<ToleranceChoice>& choices) {
     std::vector<const SweepPoint*> cbr;
-    for (const char* v : {"cbr-aso", "cbr-cso"}) {
+    for (const char* v : {"cbr-aso", "cbr-cso", "taau"}) {
         const SweepPoint* best = nullptr;
         for (const auto& p : points) {
             if (p.variant != v || p.shading_cost != cost || p.status != "ok" || !p.gpu_ms) continue;
@@ -155,7 +155,8 @@ std::vector<EqualCost> equalCost(const std::vector<SweepPoint>& points, const st
                 if (e.drr_psnr && e.cbr_psnr) {
                     double d = *e.cbr_psnr - *e.drr_psnr;
                     s += std::abs(d) < 0.05 ? ": the same PSNR at equal cost"
-                                            : std::string(": checkerboard is ") + (d > 0 ? "better" : "worse") + " by " +
+                                            : std::string(c->variant == "taau" ? ": taau is " : ": checkerboard is ") +
+                                                  (d > 0 ? "better" : "worse") + " by " +
                                                   fmt(std::abs(d), 2) + " dB at equal cost";
                 }
             } else if (e.cbr_ms < *e.drr_ms) {

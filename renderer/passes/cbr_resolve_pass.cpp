@@ -116,6 +116,7 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
         s.push_back({/* OUTPUT= */ 5, output});
         s.push_back({/* PARITY= */ 6, parity});
         s.push_back({/* FULL_HISTORY= */ 7, desc.full_history ? 1 : 0});
+        s.push_back({/* HISTORY_CATMULL_ROM= */ 8, desc.history_catmull_rom ? 1 : 0});
         s.push_back({/* GROUP= */ 20, desc.group});
         for (uint32_t i = 0; i < 8; ++i) s.push_back({/* PATTERN_i= */ 10 + i, r.push.pattern[i]});
         return s;

@@ -39,6 +39,7 @@ struct CbrResolveDesc {
     // The previous resolved full-res frame (linear) as the history, clipped (tiled only);
     // else frame N-1's quarter-res samples.
     bool full_history = false;
+    bool history_catmull_rom = true;  // the full history's read filter, else bilinear
     VkExtent2D full_extent{};       // output size, for the full history images
 };
 

@@ -37,6 +37,7 @@ layout(constant_id = 6) const int PARITY = 0;
 // full-res frame in linear colour (history_prev, bilinear), clipped to this frame's shaded
 // neighbourhood in YCoCg (issue 17, --cbr-history full).
 layout(constant_id = 7) const int FULL_HISTORY = 0;
+layout(constant_id = 8) const int HISTORY_CATMULL_ROM = 1;  // full history read: 1 Catmull-Rom, 0 bilinear
 layout(constant_id = 10) const int PATTERN_0 = 0;
 layout(constant_id = 11) const int PATTERN_1 = 0;
 layout(constant_id = 12) const int PATTERN_2 = 0;
@@ -251,7 +252,8 @@ vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls
         // Every pixel of frame N-1 was resolved: no missing parity, no lost column. The
         // history is clipped to this frame's shaded neighbours; ASO/CSO decide as above.
         bool moved;
-        vec3 history = sampleHistory(prev_pos, vec2(size));
+        vec3 history = HISTORY_CATMULL_ROM != 0 ? sampleHistory(prev_pos, vec2(size))
+                                                : textureLod(history_prev, prev_pos / vec2(size), 0.0).rgb;
         vec3 clipped = clipToBox(history, f.lo, f.hi, moved);
         cls = occluded ? kOccluded : moved ? kClipped : kReused;
         cls = on_screen ? cls : kOffscreen;

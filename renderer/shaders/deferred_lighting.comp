@@ -1,5 +1,5 @@
 #version 460
-// Deferred `lighting` pass (full, drr): the rendered region of the G-buffer lit into HDR.
+// Deferred `lighting` pass (full, drr, taau): the rendered region of the G-buffer lit into HDR.
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -18,7 +18,8 @@ layout(push_constant) uniform Params {
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, params.render_size))) return;
-    vec2 ndc = (vec2(p) + 0.5) / vec2(params.render_size) * 2.0 - 1.0;
+    // taau jitters the projection by view_offsets.xy (zero for full and drr): take it out.
+    vec2 ndc = (vec2(p) + 0.5) / vec2(params.render_size) * 2.0 - 1.0 - frame.view_offsets.xy;
     vec3 c = lightSample(ndc, texelFetch(gb_depth, p, 0).r, texelFetch(gb_albedo, p, 0), texelFetch(gb_normal, p, 0),
                          texelFetch(gb_emissive, p, 0));
     imageStore(out_color, p, vec4(c, 1.0));

@@ -117,6 +117,7 @@ public:
         rdesc.group = resolveGroup(ctx);
         rdesc.full_history = s.cbr_full_history;
         rdesc.full_extent = full;
+        rdesc.history_catmull_rom = s.cbr_history_catmull_rom;
         resolve_ = passes::createCbrResolve(ctx, rdesc, scene.frame_layout, sets_, {&hdr_, &display_, &class_});
         if (!fused_) tonemap_ = passes::createTonemap(ctx, hdr_, display_);
         if (desc.sample_locations)
@@ -220,8 +221,9 @@ public:
                              "motion from depth reprojection in the resolve"},
             {"fill", "tone-mapped average of frame N's cardinal neighbours, weights 1/(1+luma)"},
             {"history", settings_.cbr_full_history
-                            ? "full: the previous resolved frame (linear RGBA16F, output size), bilinear at the "
-                              "reprojected position, clipped towards the centre of the YCoCg box of this frame's "
+                            ? std::string("full: the previous resolved frame (linear RGBA16F, output size), ") +
+                                  (settings_.cbr_history_catmull_rom ? "Catmull-Rom (5 bilinear taps)" : "bilinear") +
+                                  " at the reprojected position, clipped towards the centre of the YCoCg box of this frame's "
                               "shaded cardinal neighbours; CSO compares frame N-1's quarter-res depth there"
                             : "quarter: frame N-1's quarter-res samples (the paper's)"},
             {"pipeline_detail", deferred_ ? "deferred: checkerboard G-buffer, per-sample lighting into the SRT, "

@@ -14,6 +14,7 @@ constexpr Variant kVariants[] = {
     {"drr", "dynamic resolution: scaled render, upscaled to output size", buildDynamicResolution},
     {"cbr-aso", "checkerboard, assume shading occluded on quarter-res motion", buildCheckerboardAso},
     {"cbr-cso", "checkerboard, check shading occlusion with a view-space depth test", buildCheckerboardCso},
+    {"taau", "temporal upsampling: jittered scaled render accumulated into a full-res history", buildTaau},
 };
 
 }  // namespace

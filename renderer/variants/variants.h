@@ -47,6 +47,8 @@ public:
     virtual VkExtent2D renderExtent(double scale) const = 0;
     virtual bool scaled() const { return false; }        // renders below output size
     virtual bool dynamicScale() const { return false; }  // the scale follows the GPU time
+    // The per-axis scale of a scaled variant without a controller (--drr-scale, --taau-scale).
+    virtual double fixedScale() const { return 1.0; }
     // Names of the counters this variant fills in the stats buffer (empty: none).
     virtual std::vector<std::string> statNames() const { return {}; }
     // An extra full-res R8_UINT image worth saving beside the display image (class map).

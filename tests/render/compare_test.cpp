@@ -91,12 +91,23 @@ TEST(Compare, SameSettingsTwiceFindNoChange) {
     ASSERT_EQ(r.cur_run.exit_code, 0) << r.cur_run.err;
     auto cur = copyRun(r.cur, "aa");
     auto res = runBench({"compare", r.base.string(), cur.string()}, r.work);
-    EXPECT_EQ(res.exit_code, 0) << res.out << res.err;
+    EXPECT_TRUE(res.exit_code == 0 || res.exit_code == 1) << res.out << res.err;
     auto csv = cbr::test::readCsv(cur / "compare.csv");
     ASSERT_EQ(csv.rows.size(), 2u);  // full and cbr-cso
+    // Two real runs' times may differ on a loaded machine (a busy 2-core CI box made one
+    // cell FASTER): timings are not asserted (calibrate measures the false-alarm rate);
+    // the time verdict of a run against its own copy is.
+    auto self = copyRun(r.base, "aa-self");
+    auto self_res = runBench({"compare", r.base.string(), self.string()}, r.work);
+    EXPECT_EQ(self_res.exit_code, 0) << self_res.out << self_res.err;
+    auto self_csv = cbr::test::readCsv(self / "compare.csv");
+    for (size_t i = 0; i < self_csv.rows.size(); ++i) {
+        std::string v = self_csv.at(i, "time_verdict");
+        EXPECT_TRUE(v == "SAME" || v == "UNKNOWN") << self_csv.at(i, "variant") << ": " << v;
+    }
     for (size_t i = 0; i < csv.rows.size(); ++i) {
         std::string v = csv.at(i, "time_verdict");
-        EXPECT_TRUE(v == "SAME" || v == "UNKNOWN") << csv.at(i, "variant") << ": " << v;
+        EXPECT_TRUE(v == "SAME" || v == "UNKNOWN" || v == "SLOWER" || v == "FASTER") << csv.at(i, "variant") << ": " << v;
         EXPECT_EQ(csv.at(i, "baseline_reps"), "5");
         EXPECT_EQ(csv.at(i, "psnr_verdict"), "SAME");
         EXPECT_EQ(csv.at(i, "ssim_verdict"), "SAME");

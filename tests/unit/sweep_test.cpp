@@ -55,7 +55,7 @@ TEST(SweepExpand, ParametersApplyOnlyToTheVariantsTheyChange) {
     std::vector<std::string> labels;
     for (const auto& c : configs) labels.push_back(c.label);
     EXPECT_EQ(labels, (std::vector<std::string>{"full", "drr_scale=0.5", "drr_scale=1", "cbr-aso", "cbr-cso_tol=0.01",
-                                                "cbr-cso_tol=0.1", "cbr-cso_tol=1"}));
+                                                "cbr-cso_tol=0.1", "cbr-cso_tol=1", "taau"}));
     for (const auto& c : configs) EXPECT_EQ(c.baseline, "full");
 }
 
@@ -205,7 +205,7 @@ TEST(SweepExpand, ModeAndFilterApplyToTheirOwnVariantsAndTheReferenceToNone) {
     std::vector<std::string> labels;
     for (const auto& c : configs) labels.push_back(c.label);
     EXPECT_EQ(labels, (std::vector<std::string>{"full", "drr_filter=bilinear", "drr_filter=catmull-rom", "cbr-aso",
-                                                "cbr-cso_tol=0.1_mode=relative", "cbr-cso_tol=0.1_mode=absolute"}));
+                                                "cbr-cso_tol=0.1_mode=relative", "cbr-cso_tol=0.1_mode=absolute", "taau"}));
 }
 
 TEST(SweepExpand, RefusesASettingNoWantedVariantUsesNamingWhichWould) {
@@ -355,3 +355,21 @@ TEST(SweepEqualCost, OneConfigurationPerCheckerboardVariantItsBestPsnr) {
     ASSERT_EQ(eq.size(), 1u);
     EXPECT_EQ(eq[0].config, "cbr-aso_lod=-1");
 }
+
+namespace cbr::harness {
+namespace {
+
+// taau-scale and taau-blend change only taau (issue 17), and are checked like drr-scale.
+TEST(SweepExpand, TaauParametersApplyOnlyToTaau) {
+    auto configs = expandSweep({parseSweepParam("taau-scale=0.5,0.7071"), parseSweepParam("taau-blend=0.05,0.2")},
+                               {"drr", "taau"});
+    std::vector<std::string> labels;
+    for (const auto& c : configs) labels.push_back(c.label);
+    EXPECT_EQ(labels, (std::vector<std::string>{"full", "drr", "taau_tscale=0.5_blend=0.05", "taau_tscale=0.5_blend=0.2",
+                                                "taau_tscale=0.7071_blend=0.05", "taau_tscale=0.7071_blend=0.2"}));
+    EXPECT_THROW(parseSweepParam("taau-blend=0,0.5"), std::invalid_argument);
+    EXPECT_THROW(parseSweepParam("taau-scale=1.5"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace cbr::harness
