@@ -11,6 +11,7 @@
 
 #include "metrics/image_io.h"
 #include "renderer/scene/scene.h"
+#include "tests/support/load_error.h"
 #include "tests/support/big_scene.h"
 
 namespace cbr::scene {
@@ -22,14 +23,7 @@ using testsupport::writeBigScene;
 
 const fs::path kGltf2 = fs::path(CBR_ASSIMP_MODELS) / "glTF2";
 
-std::string loadError(const std::string& spec) {
-    try {
-        loadScene(spec);
-    } catch (const std::invalid_argument& e) {
-        return e.what();
-    }
-    return "";
-}
+using testsupport::sceneLoadError;
 
 // Sets an environment variable for one scope.
 struct ScopedEnv {
@@ -148,7 +142,7 @@ TEST_F(GeneratedScene, CorruptImagesNameTheFirstOneAsTheSerialParseDid) {
     }
     for (const char* threads : {"1", "4"}) {
         ScopedEnv env("CBR_DECODE_THREADS", threads);
-        const std::string message = loadError(gltf_.string());
+        const std::string message = sceneLoadError(gltf_.string());
         expectOneLine(message, {"tinygltf", "STB cannot decode image data for image[3]"});
         EXPECT_EQ(message.find("image[5]"), std::string::npos) << message;
     }
@@ -156,18 +150,18 @@ TEST_F(GeneratedScene, CorruptImagesNameTheFirstOneAsTheSerialParseDid) {
 
 TEST_F(GeneratedScene, HeaderChecksStillRunDuringTheParse) {
     std::ofstream(png(2), std::ios::binary) << "GIF89a this is not a glTF image format at all";
-    expectOneLine(loadError(gltf_.string()), {"/images/2", "neither PNG nor JPEG"});
+    expectOneLine(sceneLoadError(gltf_.string()), {"/images/2", "neither PNG nor JPEG"});
     // A PNG header claiming 16384x16384 in a few hundred bytes: refused before decoding.
     std::vector<unsigned char> bytes = readBytes(png(4));
     bytes.resize(300);
     for (int i : {16, 20}) bytes[size_t(i)] = 0, bytes[size_t(i) + 1] = 0, bytes[size_t(i) + 2] = 0x40, bytes[size_t(i) + 3] = 0;
     std::ofstream(png(2), std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-    expectOneLine(loadError(gltf_.string()), {"/images/2", "16384x16384", "truncated"});
+    expectOneLine(sceneLoadError(gltf_.string()), {"/images/2", "16384x16384", "truncated"});
 }
 
 TEST_F(GeneratedScene, DecodeThreadsOverrideIsChecked) {
     ScopedEnv env("CBR_DECODE_THREADS", "0");
-    const std::string message = loadError(gltf_.string());
+    const std::string message = sceneLoadError(gltf_.string());
     EXPECT_NE(message.find("CBR_DECODE_THREADS=0"), std::string::npos) << message;
     EXPECT_NE(message.find("expected 1 to 256"), std::string::npos) << message;
 }

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/scene/scene.h"
+#include "tests/support/load_error.h"
 
 namespace cbr::scene {
 namespace {
@@ -21,15 +22,7 @@ namespace fs = std::filesystem;
 
 const fs::path kGltf2 = fs::path(CBR_ASSIMP_MODELS) / "glTF2";
 
-// The message of the std::invalid_argument that loading throws, or "" when it loads.
-std::string loadError(const std::string& spec) {
-    try {
-        loadScene(spec);
-    } catch (const std::invalid_argument& e) {
-        return e.what();
-    }
-    return "";
-}
+using testsupport::sceneLoadError;
 
 void requireModels() {
     if (!fs::is_directory(kGltf2)) GTEST_SKIP() << "assimp-testmodels not installed at " << kGltf2;
@@ -106,7 +99,7 @@ TEST(ProceduralScenes, ListsAtriumAndBlocksWithDescriptions) {
 }
 
 TEST(ProceduralScenes, UnknownNameListsTheAcceptedOnes) {
-    const std::string message = loadError("nonesuch");
+    const std::string message = sceneLoadError("nonesuch");
     EXPECT_NE(message.find("nonesuch"), std::string::npos) << message;
     EXPECT_NE(message.find("atrium"), std::string::npos) << message;
     EXPECT_NE(message.find("blocks"), std::string::npos) << message;
@@ -379,7 +372,7 @@ TEST(Gltf, StripsAndFansBecomeTriangleLists) {
             EXPECT_GT(glm::cross(b - a, c - a).z, 0.0f) << file;
         }
     }
-    const std::string points = loadError((dir / "Mesh_PrimitiveMode_00.gltf").string());
+    const std::string points = sceneLoadError((dir / "Mesh_PrimitiveMode_00.gltf").string());
     EXPECT_NE(points.find("no triangles"), std::string::npos) << points;
 }
 
@@ -418,7 +411,7 @@ TEST(Gltf, BadModelsFailWithFileAndPointer) {
     };
     for (const BadModel& bad : cases) {
         const fs::path file = kGltf2 / bad.path;
-        const std::string message = loadError(file.string());
+        const std::string message = sceneLoadError(file.string());
         ASSERT_FALSE(message.empty()) << bad.path << " loaded";
         EXPECT_NE(message.find(file.filename().string()), std::string::npos) << message;
         EXPECT_NE(message.find("expected"), std::string::npos) << message;
@@ -429,14 +422,14 @@ TEST(Gltf, BadModelsFailWithFileAndPointer) {
 
 TEST(Gltf, BadPathsFailWithTheName) {
     requireModels();
-    const std::string missing = loadError("/nonexistent/dir/model.gltf");
+    const std::string missing = sceneLoadError("/nonexistent/dir/model.gltf");
     EXPECT_NE(missing.find("/nonexistent/dir/model.gltf"), std::string::npos) << missing;
     EXPECT_NE(missing.find("does not exist"), std::string::npos) << missing;
     const fs::path dir = kGltf2 / "BoxTextured-glTF";
-    const std::string directory = loadError(dir.string());
+    const std::string directory = sceneLoadError(dir.string());
     EXPECT_NE(directory.find("BoxTextured-glTF"), std::string::npos) << directory;
     EXPECT_NE(directory.find("directory"), std::string::npos) << directory;
-    const std::string extension = loadError((dir / "CesiumLogoFlat.png").string());
+    const std::string extension = sceneLoadError((dir / "CesiumLogoFlat.png").string());
     EXPECT_NE(extension.find("CesiumLogoFlat.png"), std::string::npos) << extension;
     EXPECT_NE(extension.find(".gltf or .glb"), std::string::npos) << extension;
 }
@@ -541,7 +534,7 @@ TEST(GltfSynthetic, EachDefectIsNamedByItsPointer) {
         json doc = triangleDoc();
         c.mutate(doc);
         const fs::path file = writeDoc(doc, "defect.gltf");
-        const std::string message = loadError(file.string());
+        const std::string message = sceneLoadError(file.string());
         EXPECT_NE(message.find("defect.gltf"), std::string::npos) << c.name << ": " << message;
         EXPECT_NE(message.find(c.pointer), std::string::npos) << c.name << ": " << message;
     }
@@ -550,13 +543,13 @@ TEST(GltfSynthetic, EachDefectIsNamedByItsPointer) {
 TEST(GltfSynthetic, BrokenContainersAndSyntax) {
     const fs::path syntax = fs::path(testing::TempDir()) / "syntax.gltf";
     std::ofstream(syntax) << "{\"asset\": {\"version\": \"2.0\"},";
-    const std::string json_error = loadError(syntax.string());
+    const std::string json_error = sceneLoadError(syntax.string());
     EXPECT_NE(json_error.find("syntax.gltf"), std::string::npos) << json_error;
     EXPECT_NE(json_error.find("JSON"), std::string::npos) << json_error;
 
     const fs::path glb = fs::path(testing::TempDir()) / "truncated.glb";
     std::ofstream(glb, std::ios::binary) << "glTF\x02";
-    const std::string glb_error = loadError(glb.string());
+    const std::string glb_error = sceneLoadError(glb.string());
     EXPECT_NE(glb_error.find("truncated.glb"), std::string::npos) << glb_error;
     EXPECT_NE(glb_error.find("GLB"), std::string::npos) << glb_error;
 
@@ -565,7 +558,7 @@ TEST(GltfSynthetic, BrokenContainersAndSyntax) {
         std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         const fs::path cut = fs::path(testing::TempDir()) / "cut.glb";
         std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
-        const std::string cut_error = loadError(cut.string());
+        const std::string cut_error = sceneLoadError(cut.string());
         EXPECT_NE(cut_error.find("cut.glb"), std::string::npos) << cut_error;
         EXPECT_NE(cut_error.find("GLB header"), std::string::npos) << cut_error;
     }
