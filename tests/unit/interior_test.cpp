@@ -152,42 +152,41 @@ TEST(InteriorPlacement, ClosedObjectsAndOpenScenesStayOutside) {
     }
 }
 
+// Adds a level floor grid (facing up) and finalizes: what a camera could stand on.
+void addFloorAndFinalize(scene::Scene& s, const char* name, float half, float y, int cells) {
+    scene::MeshBuilder ground;
+    scene::addGrid(ground, {-half, y, half}, {2 * half, 0, 0}, {0, 0, -2 * half}, cells, cells, {1, 1});
+    scene::addInstance(s, scene::addMesh(s, name, ground, 0), glm::dmat4(1.0));
+    scene::finalizeScene(s);
+}
+
+// Expects findInterior to call the scene outside, with `why` in its reason.
+void expectOutside(const scene::Scene& s, const std::string& why) {
+    const scene::Interior in = scene::findInterior(s);
+    EXPECT_FALSE(in.enclosed) << in.reason;
+    EXPECT_NE(in.reason.find(why), std::string::npos) << in.reason;
+}
+
 // Closed objects often come double-sided (exporters' default): still not a room.
 TEST(InteriorPlacement, DoubleSidedClosedBoxIsNotARoom) {
     scene::Scene s = closedBox({-5, 0, -5}, {5, 4, 5}, false);
     s.materials[0].double_sided = true;
-    scene::MeshBuilder ground;
-    scene::addGrid(ground, {-4.9f, 0.01f, 4.9f}, {9.8f, 0, 0}, {0, 0, -9.8f}, 2, 2, {1, 1});
-    scene::addInstance(s, scene::addMesh(s, "inner_floor", ground, 0), glm::dmat4(1.0));
-    scene::finalizeScene(s);
-    const scene::Interior in = scene::findInterior(s);
-    EXPECT_FALSE(in.enclosed) << in.reason;
-    EXPECT_NE(in.reason.find("the back of one"), std::string::npos) << in.reason;
+    addFloorAndFinalize(s, "inner_floor", 4.9f, 0.01f, 2);
+    expectOutside(s, "the back of one");
 }
 
 // A small room on a large open ground: an enclosed cavity, not an interior scene.
 TEST(InteriorPlacement, SmallCavityInALargeSceneStaysOutside) {
     Room room = boxRoom(1.5, 1.5, 2.5, true, {});
-    scene::Scene& s = room.scene;
-    scene::MeshBuilder ground;
-    scene::addGrid(ground, {-20, 0, 20}, {40, 0, 0}, {0, 0, -40}, 4, 4, {1, 1});
-    scene::addInstance(s, scene::addMesh(s, "ground", ground, 0), glm::dmat4(1.0));
-    scene::finalizeScene(s);
-    const scene::Interior in = scene::findInterior(s);
-    EXPECT_FALSE(in.enclosed) << in.reason;
-    EXPECT_NE(in.reason.find("a cavity"), std::string::npos) << in.reason;
+    addFloorAndFinalize(room.scene, "ground", 20, 0, 4);
+    expectOutside(room.scene, "a cavity");
 }
 
 // A solid seen from within: closed, but every surface faces away from the spot.
 TEST(InteriorPlacement, InsideOfAClosedSolidIsNotAnInterior) {
     scene::Scene s = closedBox({-5, 0, -5}, {5, 4, 5}, false);
-    scene::MeshBuilder ground;  // something to stand on inside it, facing up
-    scene::addGrid(ground, {-4.9f, 0.01f, 4.9f}, {9.8f, 0, 0}, {0, 0, -9.8f}, 2, 2, {1, 1});
-    scene::addInstance(s, scene::addMesh(s, "inner_floor", ground, 0), glm::dmat4(1.0));
-    scene::finalizeScene(s);
-    const scene::Interior in = scene::findInterior(s);
-    EXPECT_FALSE(in.enclosed) << in.reason;
-    EXPECT_NE(in.reason.find("the back of one"), std::string::npos) << in.reason;
+    addFloorAndFinalize(s, "inner_floor", 4.9f, 0.01f, 2);  // something to stand on inside it
+    expectOutside(s, "the back of one");
 }
 
 TEST(InteriorPlacement, AtriumKeepsItsAisleAndFilesAreTheirAuthors) {
