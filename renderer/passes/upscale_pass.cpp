@@ -49,10 +49,12 @@ void addUpscalePass(graph::Graph& graph, const Upscale& u, vk::Image& source, Vk
                      {int32_t(target.extent.width), int32_t(target.extent.height)},
                      u.exposure,
                      u.pass_through ? 1u : 0u};
-    uint32_t group = u.impl == render::ResolveImpl::Reference ? 8 : 16;  // GROUP in upscale.glsl
-    pass.record = [&u, push, group](VkCommandBuffer cmd) {
-        vk::dispatchImageKernel(cmd, u.kernel, &push, sizeof(push), uint32_t(push.output_size[0]),
-                                uint32_t(push.output_size[1]), group);
+    // upscale.glsl: 8x8 invocations, each writing 2x2 output pixels; the reference one pixel each.
+    bool block = u.impl != render::ResolveImpl::Reference;
+    uint32_t width = uint32_t(push.output_size[0]), height = uint32_t(push.output_size[1]);
+    pass.record = [&u, push, block, width, height](VkCommandBuffer cmd) {
+        vk::dispatchImageKernel(cmd, u.kernel, &push, sizeof(push), block ? (width + 1) / 2 : width,
+                                block ? (height + 1) / 2 : height, 8);
     };
     graph.addPass(std::move(pass));
 }
