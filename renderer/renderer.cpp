@@ -57,7 +57,11 @@ struct Renderer::Slot {
     vk::Buffer readback;
     vk::Buffer diagnostic;  // the variant's diagnostic image, when it has one
     vk::Buffer analysis;    // the analysis pass's output, when enabled
-    vk::Buffer stats;       // kFrameStats counters, zeroed by the host per frame
+    vk::Buffer stats;       // kFrameStats counters as the host reads them (a copy of stats_gpu)
+    // The counters the resolve adds to, in device-local memory (zeroed before the first
+    // timestamp, copied to `stats` after the last): on a GPU the host-visible kind is
+    // system memory, where every group's atomic add would cross the bus.
+    vk::Buffer stats_gpu;
     vk::Buffer instances;   // model and previous model matrix per instance
     vk::Buffer lights;      // GpuLight records, positions relative to this frame's camera
     VkDescriptorSet frame_set = VK_NULL_HANDLE;
@@ -148,8 +152,13 @@ Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants:
         if (settings.analysis)
             slot->analysis = vk::createBuffer(ctx, VkDeviceSize(settings.width) * settings.height * 16,
                                               VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-        slot->stats = vk::createBuffer(ctx, variants::kFrameStats * sizeof(uint32_t),
-                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        constexpr VkDeviceSize kStatsBytes = variants::kFrameStats * sizeof(uint32_t);
+        slot->stats = vk::createBuffer(ctx, kStatsBytes,
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        slot->stats_gpu = vk::createBuffer(ctx, kStatsBytes,
+                                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                                   VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                               false);
         slot->instances = vk::createBuffer(ctx, std::max<size_t>(1, scene.cpu->instances.size()) * 2 * sizeof(glm::mat4),
                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
         slot->lights = vk::createBuffer(ctx, std::max<size_t>(1, lights_.size()) * sizeof(shaders::GpuLight),
@@ -158,8 +167,8 @@ Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants:
         vk::writeBuffer(ctx, slot->frame_set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slot->frame_ubo.buffer, 0,
                         sizeof(shaders::FrameUniforms));
         vk::writeBuffer(ctx, slot->frame_set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, slot->lights.buffer, 0, VK_WHOLE_SIZE);
-        vk::writeBuffer(ctx, slot->frame_set, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, slot->stats.buffer, 0,
-                        VK_WHOLE_SIZE);
+        vk::writeBuffer(ctx, slot->frame_set, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                        (slot->stats_gpu.buffer ? slot->stats_gpu : slot->stats).buffer, 0, VK_WHOLE_SIZE);
         vk::writeBuffer(ctx, slot->frame_set, 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, slot->instances.buffer, 0,
                         VK_WHOLE_SIZE);
         slots_.push_back(std::move(slot));
@@ -178,6 +187,7 @@ Renderer::~Renderer() {
         vk::destroyBuffer(ctx_, slot->diagnostic);
         vk::destroyBuffer(ctx_, slot->analysis);
         vk::destroyBuffer(ctx_, slot->stats);
+        vk::destroyBuffer(ctx_, slot->stats_gpu);
         vk::destroyBuffer(ctx_, slot->instances);
         vk::destroyBuffer(ctx_, slot->lights);
     }
@@ -214,7 +224,6 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
         request.history_reset ? frame->models : gpu::instanceMatrices(*scene_.cpu, request.prev_time, eye);
     frame->clear_color = glm::vec4(scene_.cpu->background, 0.0f);
 
-    std::memset(slot.stats.mapped, 0, variants::kFrameStats * sizeof(uint32_t));
     auto* matrices = static_cast<glm::mat4*>(slot.instances.mapped);
     for (size_t i = 0; i < frame->models.size(); ++i) {
         matrices[2 * i] = frame->models[i];
@@ -293,7 +302,30 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(slot.cmd, &begin));
+    auto statsBarrier = [&](VkPipelineStageFlags2 src, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst,
+                            VkAccessFlags2 dst_access) {
+        VkBufferMemoryBarrier2 b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2, nullptr, src, src_access, dst, dst_access};
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.buffer = slot.stats_gpu.buffer;
+        b.size = VK_WHOLE_SIZE;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.bufferMemoryBarrierCount = 1;
+        dep.pBufferMemoryBarriers = &b;
+        vkCmdPipelineBarrier2(slot.cmd, &dep);
+    };
+    // The counters are zeroed before the graph's first timestamp and copied for the host
+    // after its last: neither is part of the frame.
+    vkCmdFillBuffer(slot.cmd, slot.stats_gpu.buffer, 0, VK_WHOLE_SIZE, 0);
+    statsBarrier(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     slot.recorded = graph.record(slot.cmd, slot.queries);
+    // From the fill too: in a variant without a resolve it is the last write.
+    statsBarrier(VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                 VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferCopy stats_region{0, 0, slot.stats.size};
+    vkCmdCopyBuffer(slot.cmd, slot.stats_gpu.buffer, slot.stats.buffer, 1, &stats_region);
     if (slot.recorded.extra_work_recorded) slowdown_applied_ = true;
     {
         // The host reads copies and counters after the fence: make the writes visible to it.

@@ -1,12 +1,12 @@
 // Checkerboard reconstruction (Intel, "Checkerboard Rendering for Real-Time Upscaling on
 // Intel Integrated Graphics", and method/cbr.md), written for SIMD hardware: the rules of
 // cbr_resolve_reference.glsl without a per-pixel path. One invocation resolves one 2x2
-// block (one quarter pixel); a 16x16 group loads frame N's samples under its 32x32 pixels,
-// plus a one-quarter-pixel halo, once into shared memory. Which quadrant frame N shaded
-// depends only on the frame's so it is the same in every invocation: the shaded
-// quadrants copy their sample, the other two read the same candidates everywhere (4
-// cardinal neighbours from the tile, the reprojected frame N-1 sample from memory),
-// evaluate every test and select colour and class arithmetically. On a CPU driver a
+// block (one quarter pixel); a group (16x16 invocations on CPU drivers, 8x8 on GPUs) loads
+// frame N's samples under its pixels, plus a one-quarter-pixel halo, once into shared
+// memory. Which quadrant frame N shaded depends only on the frame's parity, so it is the
+// same in every invocation: the shaded quadrants copy their sample, the other two read the
+// same candidates everywhere (4 cardinal neighbours from the tile, the reprojected frame
+// N-1 sample from memory), evaluate every test and select colour and class arithmetically. On a CPU driver a
 // divergent branch runs for the whole SIMD group; on a GPU the old per-pixel early returns
 // and up-to-8 dependent taps cost latency. Included by the cbr_resolve_*.comp files after
 // cbr_io.glsl, which declares the inputs and FETCH, FETCH_CUR_COLOR, FETCH_PREV_COLOR.
@@ -71,13 +71,18 @@ layout(push_constant) uniform Params {
 const uint kShaded = 0u, kReused = 1u, kMissingParity = 2u, kOccluded = 3u, kOffscreen = 4u, kReset = 5u;
 const uint kClipped = 6u;  // full history: reused, moved by the neighbourhood clip
 
-// The tile: quarter pixels [origin, origin + TILE) of frame N, two samples each. A group
-// covers GROUP quarter pixels; neighbours reach one further each way and the jitter
-// route's odd frames read one to the right (dx = 1): 1 before, 2 after.
-const int TILE = GROUP + 3;
-const int SLOTS = TILE * TILE * 2;
-shared vec4 tile_sample[SLOTS];    // rgb colour, a device depth; a = -1: no such sample
-shared vec4 tile_weighted[SLOTS];  // fill terms: rgb max(colour, 0) * w, a w = 1 / (1 + luma)
+// The tile: quarter pixels [origin, origin + (TILE_X, TILE_Y)) of frame N, two samples each. A
+// group covers GROUP quarter pixels; neighbours reach one further each way, and the jitter
+// route's odd frames read one more to the right (dx = 1: bit 5 of a packed entry, whose
+// dx + 1 is 1 or 2).
+const int READS_RIGHT = (((1 - PARITY) * (PATTERN_0 | PATTERN_1 | PATTERN_2 | PATTERN_3) +
+                          PARITY * (PATTERN_4 | PATTERN_5 | PATTERN_6 | PATTERN_7)) >> 5) & 1;
+const int TILE_X = GROUP + 2 + READS_RIGHT;
+const int TILE_Y = GROUP + 2;
+const int SLOTS = TILE_X * TILE_Y * 2;
+// rgb colour, a device depth; a = -1: no such sample. The fill weights are computed where a
+// neighbour is read, not stored: half the shared memory, so more groups fit a multiprocessor.
+shared vec4 tile_sample[SLOTS];
 shared vec2 tile_motion[SLOTS];
 shared uint group_counts[4];       // class counts, two 16-bit fields each
 
@@ -102,7 +107,7 @@ float luma(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 int slotOf(ivec2 n, ivec2 quadrant, ivec2 origin, ivec2 size, out bool shaded) {
     ivec3 e = patternEntry(PARITY, quadrant);
     ivec2 t = (n >> 1) + e.yz - origin;
-    int slot = (t.y * TILE + t.x) * 2 + max(e.x, 0);
+    int slot = (t.y * TILE_X + t.x) * 2 + max(e.x, 0);
     shaded = e.x >= 0 && all(greaterThanEqual(n, ivec2(0))) && all(lessThan(n, size)) && tile_sample[slot].a >= 0.0;
     return slot;
 }
@@ -111,14 +116,10 @@ void loadTile(ivec2 origin) {
     for (uint i = gl_LocalInvocationIndex; i < uint(SLOTS); i += uint(GROUP * GROUP)) {
         int s = int(i & 1u);
         int cell = int(i >> 1);
-        ivec2 q = origin + ivec2(cell % TILE, cell / TILE);
+        ivec2 q = origin + ivec2(cell % TILE_X, cell / TILE_X);
         bool exists = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, quarterSize()));
         ivec2 qc = clamp(q, ivec2(0), quarterSize() - 1);
-        vec3 colour = FETCH_CUR_COLOR(qc, s);
-        vec3 c = max(colour, vec3(0.0));
-        float w = 1.0 / (1.0 + luma(c));
-        tile_sample[i] = exists ? vec4(colour, FETCH(cur_depth, qc, s).r) : vec4(0.0, 0.0, 0.0, -1.0);
-        tile_weighted[i] = vec4(c * w, w);
+        tile_sample[i] = exists ? vec4(FETCH_CUR_COLOR(qc, s), FETCH(cur_depth, qc, s).r) : vec4(0.0, 0.0, 0.0, -1.0);
         if (HAS_MOTION != 0) tile_motion[i] = FETCH(cur_motion, qc, s).xy;
     }
 }
@@ -146,8 +147,12 @@ vec3 fromYCoCg(vec3 c) { return vec3(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z
 void addNeighbour(inout Fill f, ivec2 n, ivec2 quadrant, ivec2 origin, ivec2 size) {
     bool shaded;
     int slot = slotOf(n, quadrant, origin, size, shaded);
-    f.sum += shaded ? tile_weighted[slot] : vec4(0.0);
-    float depth = tile_sample[slot].a;
+    vec4 sample_ = tile_sample[slot];
+    // Fill terms: rgb max(colour, 0) * w, a w = 1 / (1 + luma).
+    vec3 c = max(sample_.rgb, vec3(0.0));
+    float w = 1.0 / (1.0 + luma(c));
+    f.sum += shaded ? vec4(c * w, w) : vec4(0.0);
+    float depth = sample_.a;
     bool closer = shaded && depth > f.nearest;
     f.nearest = closer ? depth : f.nearest;
     f.nearest_slot = closer ? slot : f.nearest_slot;
@@ -155,7 +160,7 @@ void addNeighbour(inout Fill f, ivec2 n, ivec2 quadrant, ivec2 origin, ivec2 siz
     f.depth_sum += shaded ? viewDepth(depth, frame.depth_params.xy) : 0.0;
     f.depth_count += shaded ? 1 : 0;
     if (FULL_HISTORY != 0) {
-        vec3 y = toYCoCg(tile_sample[slot].rgb);
+        vec3 y = toYCoCg(sample_.rgb);
         f.lo = shaded ? min(f.lo, y) : f.lo;
         f.hi = shaded ? max(f.hi, y) : f.hi;
     }

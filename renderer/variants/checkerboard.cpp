@@ -244,7 +244,8 @@ public:
                                        : "a separate tonemap pass"});
         d.push_back({"class_stats", reference ? "subgroup ballots per class and invocation in the timed resolve"
                                               : "counted per workgroup in the timed resolve: one subgroup sum of "
-                                                "packed counts, one shared histogram, at most 6 global adds per group"});
+                                                "packed counts, one shared histogram, at most 6 global adds per group, into "
+                                                "device-local counters copied for the host after the last timestamp"});
         d.push_back({"class_map", reference ? "written by the timed resolve every frame"
                                             : "written only on quality frames, by the untimed cbr_class_map pass "
                                               "after the last timestamp"});
