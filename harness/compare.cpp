@@ -29,14 +29,15 @@ using reports::RunData;
 
 // The settings in run.json that change timings or images: part of a cell's key.
 // (debug_slowdown is left out on purpose: it is how a detector test makes a known regression.)
-const std::vector<std::string> kKeySettings = {"shading_cost", "drr_scale",     "drr_filter",   "cso_tolerance",
-                                               "cso_mode",     "cbr_route",     "cbr_lod_bias", "reference",
-                                               "resolve_impl", "taau_scale",    "taau_phases",  "taau_blend"};
+const std::vector<std::string> kKeySettings = {
+    "shading_cost", "drr_scale",  "drr_filter", "cso_tolerance", "cso_mode",    "cbr_route",  "cbr_lod_bias",
+    "reference",    "resolve_impl", "cbr_history", "history_filter", "taau_scale", "taau_phases", "taau_blend"};
 
 struct Side {
     RunData data;
     std::string context;  // scene#hash|path#hash|pipeline|WxH|settings
     std::string scene, path, pipeline, resolution, settings;
+    std::vector<std::string> key_values;  // per kKeySettings; empty where the run.json predates it
 };
 
 struct Cell {
@@ -85,10 +86,24 @@ Side loadSide(const std::string& dir, const std::string& role) {
         std::string v = jsonString(run, "/settings/" + k);
         // Older runs record the reference only under metrics.
         if (v.empty() && k == "reference") v = jsonString(run, "/metrics/reference_kind");
-        s.settings += (s.settings.empty() ? "" : ";") + k + "=" + v;
+        s.key_values.push_back(v);
     }
-    s.context = s.scene + "|" + s.path + "|" + s.pipeline + "|" + s.resolution + "|" + s.settings;
     return s;
+}
+
+// The cells' key from the settings both runs record: a setting added to run.json after the
+// baseline was made (cbr_history, taau_*) does not split every cell of an older baseline
+// from the current run. A setting only one of them records is left out of the key (so a
+// current run with a non-default value of it meets an older baseline's cell all the same).
+void keySides(Side& a, Side& b) {
+    for (Side* s : {&a, &b}) {
+        s->settings.clear();
+        for (size_t i = 0; i < kKeySettings.size(); ++i) {
+            if (a.key_values[i].empty() != b.key_values[i].empty()) continue;
+            s->settings += (s->settings.empty() ? "" : ";") + kKeySettings[i] + "=" + s->key_values[i];
+        }
+        s->context = s->scene + "|" + s->path + "|" + s->pipeline + "|" + s->resolution + "|" + s->settings;
+    }
 }
 
 std::string deviceText(const RunData& d) {
@@ -338,6 +353,7 @@ int runCompare(const CompareOptions& o) {
             throw std::invalid_argument("compare: --psnr-threshold and --ssim-threshold must be >= 0");
         base = loadSide(o.baseline_dir, "baseline");
         cur = loadSide(o.current_dir, "current");
+        keySides(base, cur);
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "cbrbench: %s\n", e.what());
         return kCompareBadInput;

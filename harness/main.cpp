@@ -230,7 +230,8 @@ int main(int argc, char** argv) {
     addRunOptions(sweep, o, variant_list);
     sweep->add_option("--param", o.params,
                       "NAME=LO:HI:log|lin:N or NAME=V1,V2,... (repeatable); numeric NAME: cso-tolerance, drr-scale, "
-                      "shading-cost, cbr-lod-bias; word-valued NAME=W1,W2,...: cbr-route, cso-mode, drr-filter, and "
+                      "taau-scale, taau-blend, shading-cost, cbr-lod-bias; word-valued NAME=W1,W2,...: cbr-route, "
+                      "cbr-history, cso-mode, drr-filter, and "
                       "reference (full,ssaa: one run per value into OUT/ref=K/, as --path a,b runs one per path)")
         ->required();
 

@@ -176,6 +176,15 @@ std::string planHash(const RunOptions& o) {
               {"far", o.far ? json(*o.far) : json()}};
     // Only when set: plans made before --flip-ppd existed keep their hash.
     if (o.flip_ppd != metrics::kFlipDefaultPpd) j["flip_ppd"] = o.flip_ppd;
+    // Likewise the settings added with the full history and taau (they change images and times).
+    const RunOptions defaults;
+    if (o.cbr_history != defaults.cbr_history) j["cbr_history"] = o.cbr_history;
+    if (o.history_filter != defaults.history_filter) j["history_filter"] = o.history_filter;
+    if (o.taau_scale != defaults.taau_scale) j["taau_scale"] = o.taau_scale;
+    if (o.taau_phases != defaults.taau_phases) j["taau_phases"] = o.taau_phases;
+    if (o.taau_blend != defaults.taau_blend) j["taau_blend"] = o.taau_blend;
+    if (o.animation != defaults.animation) j["animation"] = o.animation;
+    if (o.fps != defaults.fps) j["fps"] = o.fps;
     // The jobs, not the lists' spelling: "a,b" and "b,a" are one plan.
     json ids = json::array();
     for (const auto& job : planJobs(o)) ids.push_back(job.id);

@@ -179,3 +179,31 @@ TEST(Compare, MalformedBaselineIsBadInput) {
     expectBadInput(runBench({"compare", r.base.string(), cur.string(), "--threshold", "lots"}, r.work), cur,
                    "--threshold");
 }
+
+// A setting run.json gained after a baseline was made (cbr_history, history_filter) does not
+// split every cell of that baseline from the current run; a value both record does.
+TEST(Compare, SettingsOnlyOneRunRecordsDoNotSplitCells) {
+    auto& r = runs();
+    ASSERT_EQ(r.base_run.exit_code, 0) << r.base_run.err;
+    ASSERT_EQ(r.cur_run.exit_code, 0) << r.cur_run.err;
+    auto old_base = copyRun(r.base, "older-baseline");
+    auto j = cbr::test::readJson(old_base / "run.json");
+    ASSERT_TRUE(j["settings"].contains("cbr_history"));
+    j["settings"].erase("cbr_history");
+    j["settings"].erase("history_filter");
+    writeFile(old_base / "run.json", j.dump(2));
+    auto cur = copyRun(r.cur, "older-baseline-cur");
+    auto res = runBench({"compare", old_base.string(), cur.string()}, r.work);
+    EXPECT_TRUE(res.exit_code == 0 || res.exit_code == 1) << res.out << res.err;
+    EXPECT_EQ(res.err.find("no cell matches"), std::string::npos) << res.err;
+    auto csv = cbr::test::readCsv(cur / "compare.csv");
+    ASSERT_EQ(csv.rows.size(), 2u);
+    for (size_t i = 0; i < csv.rows.size(); ++i) EXPECT_EQ(csv.at(i, "baseline_reps"), "5");
+
+    auto other = copyRun(r.cur, "other-history");
+    auto k = cbr::test::readJson(other / "run.json");
+    k["settings"]["cbr_history"] = "full";
+    writeFile(other / "run.json", k.dump(2));
+    auto res2 = runBench({"compare", r.base.string(), other.string()}, r.work);
+    EXPECT_NE(res2.err.find("no cell matches"), std::string::npos) << res2.out << res2.err;
+}

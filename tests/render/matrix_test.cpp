@@ -129,3 +129,20 @@ TEST(Matrix, BadShardIsOneLineExitTwo) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("GTEST_TOTAL_SHARDS"), std::string::npos) << r.err;
 }
+
+// The full history and taau's settings change images and times: shards made with other
+// values are another plan. Their defaults leave the hash as it was before they existed.
+TEST(Matrix, PlanHashFollowsHistoryAndTaauSettings) {
+    auto work = cbr::test::scratchDir("matrix-plan-hash");
+    auto hash = [&](std::vector<std::string> extra) {
+        auto r = runBench(with({"plan"}, with(extra, matrixArgs())), work);
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        return r.out.substr(0, r.out.find(':'));  // "plan XXXXXXXX"
+    };
+    std::string base = hash({});
+    EXPECT_EQ(hash({"--cbr-history", "quarter", "--taau-blend", "0.1"}), base);
+    EXPECT_NE(hash({"--cbr-history", "full"}), base);
+    EXPECT_NE(hash({"--history-filter", "bilinear"}), base);
+    EXPECT_NE(hash({"--taau-scale", "0.5"}), base);
+    EXPECT_NE(hash({"--taau-phases", "16"}), base);
+}
