@@ -18,6 +18,7 @@
 #include "reports/csv.h"
 #include "reports/csv_read.h"
 #include "reports/output_dir.h"
+#include "renderer/variants/variants.h"
 
 namespace cbr::harness {
 namespace {
@@ -234,12 +235,19 @@ int printPlan(const RunOptions& o, int shards) {
     if (shards < 1) throw std::invalid_argument("--shards " + std::to_string(shards) + ": expected >= 1");
     auto jobs = planJobs(o);
     for (const auto& j : jobs) checkRunOptions(j.options);
-    std::string variants;
-    for (const auto& v : o.variants) variants += (variants.empty() ? "" : ",") + v;
+    // Without --variants every variant of the table runs (full first: it is the reference).
+    std::string variants = "full";
+    if (o.variants.empty()) {
+        for (const auto& v : variants::allVariants())
+            if (v.name != "full") variants += "," + std::string(v.name);
+    } else {
+        for (const auto& v : o.variants)
+            if (v != "full") variants += "," + v;
+    }
     std::printf("plan %s: %zu job%s (scene x path x pipeline x resolution), each running the variants %s together, "
                 "%d shard%s\n",
                 planHash(o).c_str(), jobs.size(), jobs.size() == 1 ? "" : "s",
-                variants.empty() ? "full,drr,cbr-aso,cbr-cso" : ("full," + variants).c_str(), shards,
+                variants.c_str(), shards,
                 shards == 1 ? "" : "s");
     size_t w = 4;
     for (const auto& j : jobs) w = std::max(w, j.id.size());
