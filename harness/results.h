@@ -73,7 +73,7 @@ struct RunResults {
     int frames = 0;
     int repeats = 0;
     double seconds = 0;         // wall time of the run
-    double first_frame_seconds = 0;  // wall time from the start (scene loading included) to the first timed frame's result
+    double first_frame_seconds = 0;  // wall time from the start (scene loading included) to the first rendered frame's result (the quality pass's)
     std::vector<double> reference_ms;        // the ssaa reference's frame times (not a variant)
     std::vector<std::string> worst_files;    // worst/<variant>_<kind>_<what>.png
     vk::CopyBandwidth copy_bandwidth;        // measured after the variants, for the resolve's bandwidth

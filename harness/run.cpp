@@ -149,6 +149,7 @@ int runBenchmark(const RunOptions& options) {
     renderSsaaReference(s);
     makeRenderers(s);
     calibrateSlowdown(s);
+    renderQualityFrames(s);
     renderRepetitions(s);
     scoreFrames(s);
     releaseAndMeasure(s);

@@ -83,15 +83,23 @@ struct RunState {
     const size_t mid;
     std::vector<Bytes> mid_images;
     std::vector<Bytes> reference_frames;
+    // The quality pass's rows, one per (configuration, frame): only their scores are kept,
+    // copied into repetition 0's timed rows.
+    std::vector<FrameRow> quality_rows;
+    FrameRow& qualityRow(size_t config, size_t frame) { return quality_rows[config * p.poses.size() + frame]; }
     Progress progress;
     // One renderer per variant for the whole run: pipelines and targets are built once.
     std::vector<std::unique_ptr<render::Renderer>> renderers;
 };
 
+// The `rep` of a ConfigPass that renders the untimed, scored quality frames.
+constexpr int kQualityPass = -1;
+
 // The loop's steps in the order runBenchmark calls them (run_loop.cpp).
 void renderSsaaReference(RunState& s);
 void makeRenderers(RunState& s);
 void calibrateSlowdown(RunState& s);
+void renderQualityFrames(RunState& s);
 void renderRepetitions(RunState& s);
 void scoreFrames(RunState& s);
 

@@ -64,7 +64,8 @@ RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene
       mid(prepared.poses.size() / 2),
       mid_images(prepared.configs.size()),
       reference_frames(prepared.poses.size()),
-      progress(int(prepared.configs.size() * prepared.poses.size()) * prepared.options.repeat +
+      quality_rows(prepared.configs.size() * prepared.poses.size()),
+      progress(int(prepared.configs.size() * prepared.poses.size()) * (prepared.options.repeat + 1) +
                (prepared.options.reference == "ssaa" ? int(prepared.poses.size()) : 0)),
       renderers(prepared.configs.size()) {}
 
@@ -150,8 +151,11 @@ AlignmentCheck checkAlignment(const std::vector<uint8_t>& variant, const std::ve
 // other full configurations differ only in shading cost and are scored against it).
 bool isReference(const RunState& s, size_t vi) { return vi == 0 && s.options.reference != "ssaa"; }
 
-// One configuration's repetition: its frames in path order, each kept as a row, the
-// repetition-0 frames scored; an error becomes rows that say so.
+// One pass of one configuration over the path, in path order: the quality pass (untimed,
+// every frame read back and scored into `quality_rows`) or a timed repetition (nothing
+// read back, so neither the readback nor the scoring runs while frames are timed: on a
+// CPU device such as lavapipe the scorer's threads would take the renderer's cores). An
+// error becomes rows that say so.
 class ConfigPass {
 public:
     ConfigPass(RunState& s, int rep, size_t vi)
@@ -160,12 +164,11 @@ public:
     void run() {
         if (vr_.status != "ok") return failRemaining();
         render::Renderer& renderer = *s_.renderers[vi_];
-        const bool quality = rep_ == 0;
         try {
             warmUp(s_, renderer);
             for (size_t i = 0; i < s_.p.poses.size(); ++i) {
                 throwIfInterrupted();
-                for (auto& fr : renderer.submit(request(s_.p, i, quality))) keep(std::move(fr));
+                for (auto& fr : renderer.submit(request(s_.p, i, !timed()))) keep(std::move(fr));
             }
             for (auto& fr : renderer.finish()) keep(std::move(fr));
         } catch (const vk::Unsupported& e) {
@@ -180,8 +183,12 @@ public:
     }
 
 private:
-    // A failed variant becomes rows that say so, not a crash of the run.
+    bool timed() const { return rep_ != kQualityPass; }
+
+    // A failed variant becomes rows that say so, not a crash of the run (the timed
+    // repetitions write them; the quality pass leaves the status for them).
     void failRemaining() {
+        if (!timed()) return;
         for (size_t i = 0; i < s_.p.poses.size(); ++i) {
             if (done_[i]) continue;
             FrameRow& row = s_.results.rows.emplace_back();
@@ -196,11 +203,12 @@ private:
 
     void keep(render::FrameResult&& fr) {
         RunResults& results = s_.results;
-        if (results.rows.empty())
+        if (results.first_frame_seconds == 0)
             results.first_frame_seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - s_.wall_start).count();
-        FrameRow& row = results.rows.emplace_back();
         done_[size_t(fr.index)] = true;
+        if (!timed()) return keepQuality(std::move(fr));
+        FrameRow& row = results.rows.emplace_back();
         row.variant = vr_.name;
         row.repeat = rep_;
         row.frame = fr.index;
@@ -213,16 +221,25 @@ private:
         if (!fr.timing_consistent) row.note = "pass times do not sum to the frame time";
         row.passes = fr.passes;
         row.stats = fr.stats;
-        if (rep_ == 0 && fr.index == 0) {
-            for (const auto& pt : fr.passes) vr_.passes_ran.push_back(pt.name);
-            vr_.left_out = fr.left_out;
+        if (rep_ == 0) {
+            // Rendering is deterministic: the quality pass's scores are this frame's.
+            row.quality = s_.qualityRow(vi_, size_t(fr.index)).quality;
+            if (fr.index == 0) {
+                for (const auto& pt : fr.passes) vr_.passes_ran.push_back(pt.name);
+                vr_.left_out = fr.left_out;
+            }
         }
         s_.progress.step("repeat " + std::to_string(rep_ + 1) + "/" + std::to_string(s_.options.repeat) + " " + vr_.name);
-        if (!fr.rgba.empty()) score(row, std::move(fr));
     }
 
-    // Hands a read-back frame to the scorer (and to the reference, when it is one).
-    void score(FrameRow& row, render::FrameResult&& fr) {
+    // Hands a read-back frame to the scorer (and to the reference, when it is one). The
+    // scorer's queue is kept short, so read-back frames do not pile up in memory.
+    void keepQuality(render::FrameResult&& fr) {
+        FrameRow& row = s_.qualityRow(vi_, size_t(fr.index));
+        row.variant = vr_.name;
+        row.frame = fr.index;
+        s_.progress.step("quality frames " + vr_.name);
+        if (fr.rgba.empty()) return;
         const bool is_reference = isReference(s_, vi_);
         size_t i = size_t(fr.index);
         auto image = std::make_shared<const std::vector<uint8_t>>(std::move(fr.rgba));
@@ -238,7 +255,10 @@ private:
                         i == 0 || s_.p.poses[i].cut};
         s_.scorer.score(vr_.name, is_reference, row, std::move(qf));
         if (s_.options.save_frames) savePng(s_.out, vr_.name, fr.index, image, classes, s_.w, s_.h, s_.workers);
+        s_.workers.waitUntilAtMost(kMaxQueuedJobs);
     }
+
+    static constexpr size_t kMaxQueuedJobs = 16;
 
     RunState& s_;
     const int rep_;
@@ -300,6 +320,13 @@ void calibrateSlowdown(RunState& s) {
             } catch (const vk::Error&) {
                 // The repetitions meet the same error and record the variant as failed.
             }
+}
+
+// Every configuration's frames once, untimed, read back and scored; the scores are done
+// before the first timed frame (timing.md: timing frames include no readback).
+void renderQualityFrames(RunState& s) {
+    for (size_t vi = 0; vi < s.p.configs.size(); ++vi) ConfigPass(s, kQualityPass, vi).run();
+    s.workers.wait();
 }
 
 // The repetitions, variants interleaved within each so drift touches all alike.

@@ -30,6 +30,11 @@ void WorkerPool::wait() {
     idle_.wait(lock, [this] { return jobs_.empty() && running_ == 0; });
 }
 
+void WorkerPool::waitUntilAtMost(size_t jobs) {
+    std::unique_lock lock(mutex_);
+    idle_.wait(lock, [this, jobs] { return jobs_.size() + running_ <= jobs; });
+}
+
 size_t WorkerPool::pending() {
     std::lock_guard lock(mutex_);
     return jobs_.size() + running_;

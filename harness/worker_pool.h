@@ -16,6 +16,7 @@ public:
     ~WorkerPool();  // waits for every job
     void submit(std::function<void()> job);
     void wait();    // until the queue is empty and no job runs
+    void waitUntilAtMost(size_t jobs);  // until at most `jobs` are queued or running
     size_t pending();
 
 private:
