@@ -16,6 +16,7 @@
 
 #include "harness/stats.h"
 #include "harness/verdict.h"
+#include "reports/junit.h"
 #include "reports/csv.h"
 #include "reports/html.h"
 #include "reports/report_data.h"
@@ -216,6 +217,63 @@ std::string compareHtml(const CompareOptions& o, const Side& base, const Side& c
     return h.str();
 }
 
+// "+5.2% [+3.1%, +7.4%] 90%, q 0.012": a time verdict's evidence in one line.
+std::string timeEvidence(const TimeVerdict& t) {
+    char b[96];
+    std::string s = t.change ? (std::snprintf(b, sizeof b, "%+.2f%%", *t.change * 100), std::string(b)) : "no change";
+    if (t.interval && t.interval->bounded()) s += " " + intervalText(t);
+    if (t.q) s += (std::snprintf(b, sizeof b, ", q %.3g", *t.q), std::string(b));
+    return s;
+}
+
+// One JUnit testcase per cell, one suite per context (scene, path, pipeline, resolution,
+// settings): SLOWER and WORSE as the failure, UNKNOWN and unmatched cells as skipped.
+std::string compareJunit(const std::vector<Cell>& cells, double threshold, const std::string& timestamp) {
+    std::vector<reports::JUnitSuite> suites;
+    char b[160];
+    for (const auto& c : cells) {
+        const Side& s = sideOf(c);
+        const std::string suite = s.scene + " " + s.path + " " + s.pipeline + " " + s.resolution +
+                                  (s.settings.empty() ? "" : " " + s.settings);
+        auto it = std::find_if(suites.begin(), suites.end(), [&](const auto& x) { return x.name == suite; });
+        if (it == suites.end()) it = suites.insert(suites.end(), {suite, {}});
+        reports::JUnitCase jc;
+        jc.classname = "cbrbench.compare." + s.pipeline + "." + s.resolution;
+        jc.name = c.variant + (c.base && c.cur ? "" : c.base ? " (baseline only)" : " (current only)");
+        const TimeVerdict& t = c.time;
+        std::vector<std::string> failed;
+        if (t.verdict == "SLOWER")
+            failed.push_back("SLOWER: frame time " + timeEvidence(t) + " beyond +" +
+                             (std::snprintf(b, sizeof b, "%g", threshold * 100), std::string(b)) + "%");
+        auto quality = [&](const char* what, const Cell::Quality& q, const char* spec) {
+            if (q.verdict != "WORSE") return;
+            std::snprintf(b, sizeof b, spec, *q.base, *q.cur);
+            failed.push_back(std::string(what) + " WORSE: " + b);
+        };
+        quality("PSNR", c.psnr, "%.3f -> %.3f dB");
+        quality("SSIM", c.ssim, "%.5f -> %.5f");
+        quality("ECI", c.eci, "%.5f -> %.5f");
+        std::snprintf(b, sizeof b, "baseline %s ms (%zu reps), current %s ms (%zu reps)", num(c.base_ms).c_str(),
+                      c.base_reps.size(), num(c.cur_ms).c_str(), c.cur_reps.size());
+        jc.detail = std::string(b) + "; time " + t.verdict + " " + timeEvidence(t) + "; PSNR " + c.psnr.verdict +
+                    ", SSIM " + c.ssim.verdict + ", ECI " + c.eci.verdict;
+        if (!noteOf(c).empty()) jc.detail += "; " + noteOf(c);
+        if (!failed.empty()) {
+            jc.failure_type = t.verdict == "SLOWER" ? "SLOWER" : "WORSE";
+            for (const auto& f : failed) jc.failure_message += (jc.failure_message.empty() ? "" : "; ") + f;
+        } else if (!c.base || !c.cur) {
+            jc.skipped = "not compared: " + noteOf(c);
+        } else if (t.verdict == "UNKNOWN") {
+            jc.skipped = "UNKNOWN: frame time " + timeEvidence(t) + " straddles a boundary of +-" +
+                         (std::snprintf(b, sizeof b, "%g", threshold * 100), std::string(b)) + "%";
+            if (t.reps_needed) jc.skipped = *jc.skipped + "; about " + std::to_string(*t.reps_needed) +
+                                            " repetitions per side would likely settle it";
+        }
+        it->cases.push_back(std::move(jc));
+    }
+    return reports::junitXml("cbrbench compare", suites, timestamp);
+}
+
 // Writes compare.csv and compare.html into the current run's directory and prints a
 // short table; returns the exit code.
 int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, const std::vector<Cell>& cells,
@@ -275,6 +333,8 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
     reports::writeTextAtomically(out / "compare.csv", csv.str());
     reports::writeTextAtomically(out / "compare.html",
                                  compareHtml(o, base, cur, cells, threshold, eci_threshold, outcome));
+    if (!o.junit.empty())
+        reports::writeTextAtomically(o.junit, compareJunit(cells, threshold, jsonString(cur.data.run, "/date")));
 
     if (!matched)
         std::fprintf(stderr, "cbrbench: compare: no cell matches (scene, path, pipeline, resolution or settings differ)\n");
@@ -351,6 +411,12 @@ int runCompare(const CompareOptions& o) {
             throw std::invalid_argument("compare: --alpha " + std::to_string(o.alpha) + ": accepted: 0 < alpha < 1");
         if (!(o.psnr_db >= 0) || !(o.ssim >= 0))
             throw std::invalid_argument("compare: --psnr-threshold and --ssim-threshold must be >= 0");
+        if (!o.junit.empty()) {
+            fs::path dir = fs::absolute(o.junit).parent_path();
+            if (!fs::is_directory(dir) || fs::is_directory(o.junit))
+                throw std::invalid_argument("compare: --junit " + o.junit +
+                                            ": accepted: a file path in an existing directory");
+        }
         base = loadSide(o.baseline_dir, "baseline");
         cur = loadSide(o.current_dir, "current");
         keySides(base, cur);

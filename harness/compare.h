@@ -18,6 +18,7 @@ struct CompareOptions {
     double ssim = 0.001;           // SSIM change that counts, absolute
     std::string eci = "5%";        // ECI change that counts, relative to the baseline
     bool strict = false;           // UNKNOWN cells make the exit code 2
+    std::string junit;             // --junit FILE: the verdicts as JUnit XML (empty: none)
 };
 
 inline constexpr int kCompareSame = 0;
@@ -25,8 +26,9 @@ inline constexpr int kCompareRegression = 1;
 inline constexpr int kCompareInconclusive = 2;
 inline constexpr int kCompareBadInput = 3;
 
-// Reads both directories, writes CURRENT_DIR/compare.csv and compare.html (only after
-// every input parsed), prints a short table. Returns one of the kCompare* codes; bad
+// Reads both directories, writes CURRENT_DIR/compare.csv and compare.html (and the
+// --junit file: one testcase per cell, SLOWER and WORSE verdicts as failures, UNKNOWN and
+// unmatched cells skipped) only after every input parsed, prints a short table. Returns one of the kCompare* codes; bad
 // input prints one line on stderr and writes nothing.
 int runCompare(const CompareOptions& o);
 

@@ -17,6 +17,7 @@
 #include "metrics/metrics.h"
 #include "harness/calibrate.h"
 #include "harness/compare.h"
+#include "harness/export.h"
 #include "harness/interrupt.h"
 #include "harness/matrix.h"
 #include "harness/stress.h"
@@ -91,6 +92,7 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_option("--device", o.device, "device index or name substring (default: lavapipe, else the first)");
     cmd->add_flag("--validate", o.validate, "enable the Khronos validation layer and count its messages");
     cmd->add_flag("--save-frames", o.save_frames, "save display images as PNG (repetition 0)");
+    cmd->add_option("--export", o.exports, "also write the results as: gbench (gbench.json, Google Benchmark JSON)");
     cmd->add_option("--out", o.out, "output directory (default out/<scene>-<path>-<date-time>)");
     cmd->add_option("--drr-scale", o.drr_scale, "drr per-axis render scale in (0, 1]")->capture_default_str();
     cmd->add_option("--drr-filter", o.drr_filter, "drr upscale filter: bilinear or catmull-rom")->capture_default_str();
@@ -154,6 +156,12 @@ int main(int argc, char** argv) {
     auto* compare = app.add_subcommand("compare", "regression verdicts: CURRENT_DIR against BASELINE_DIR (exit 0 same, "
                                                    "1 regression, 2 inconclusive with --strict, 3 bad input)");
     cbr::harness::CompareOptions cmp;
+    auto* export_cmd = app.add_subcommand("export", "write a run's results in another tool's format (gbench: Google "
+                                                     "Benchmark JSON, which compare.py and benchmark dashboards read)");
+    std::string export_dir, export_format, export_out;
+    export_cmd->add_option("RUN_DIR", export_dir, "a run's output directory")->required();
+    export_cmd->add_option("--format", export_format, "gbench")->required();
+    export_cmd->add_option("--out", export_out, "the file to write (default: RUN_DIR/gbench.json)");
     compare->add_option("BASELINE_DIR", cmp.baseline_dir, "the baseline run's output directory")->required();
     compare->add_option("CURRENT_DIR", cmp.current_dir, "the current run's output directory (gets compare.*)")->required();
     compare->add_option("--threshold", cmp.threshold, "time change that counts (e.g. 3% or 0.03)")->capture_default_str();
@@ -161,6 +169,8 @@ int main(int argc, char** argv) {
     compare->add_option("--psnr-threshold", cmp.psnr_db, "PSNR change that counts, dB")->capture_default_str();
     compare->add_option("--ssim-threshold", cmp.ssim, "SSIM change that counts")->capture_default_str();
     compare->add_option("--eci-threshold", cmp.eci, "relative ECI change that counts")->capture_default_str();
+    compare->add_option("--junit", cmp.junit,
+                        "also write the verdicts as JUnit XML to FILE (SLOWER/WORSE: failures, UNKNOWN: skipped)");
     compare->add_flag("--strict", cmp.strict, "UNKNOWN cells give exit code 2");
     cbr::harness::RunOptions o;
     std::string variant_list;
@@ -266,6 +276,7 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (*compare) return cbr::harness::runCompare(cmp);
+        if (*export_cmd) return cbr::harness::runExport(export_dir, export_format, export_out);
         if (*calibrate) {
             cal.run.variants = cbr::harness::splitList(variant_list.empty() ? std::string("full") : variant_list);
             cal.run.argv.assign(argv, argv + argc);

@@ -44,6 +44,7 @@ struct RunOptions {
     std::string pipeline = "forward";    // forward | deferred
     std::string debug_slowdown;          // PASS=PCT: a known slowdown for testing regression detection
     std::string reference = "full";      // full | ssaa: what variants are scored against
+    std::string exports;                 // --export: comma list of formats (harness/export.h)
     int ssaa = 4;                        // k x k samples per pixel of the ssaa reference
     double flip_ppd = metrics::kFlipDefaultPpd;  // FLIP's observer: pixels per degree of visual angle
     // Placement (harness/placement.h): world' = offset + scale * world, scene and path together.

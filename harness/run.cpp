@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "harness/export.h"
 #include "harness/outputs.h"
 #include "harness/run_internal.h"
 #include "renderer/vk/bandwidth.h"
@@ -64,6 +65,7 @@ void writeFiles(const RunState& s, reports::OutputDir& out) {
         writeSweepCsv(out.path(), rc);
         reports::writeSweepReport(out.path());
     }
+    writeExports(out.path(), parseExportFormats(options.exports, "--export"));
     out.commit();
     // An outer sweep's run is renamed once more with the others: name where it will be.
     const std::filesystem::path shown = options.shown_out.empty() ? out.finalPath() : std::filesystem::path(options.shown_out);

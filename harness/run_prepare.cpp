@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "harness/export.h"
 #include "harness/gltf_path.h"
 #include "harness/placement.h"
 #include "harness/run_internal.h"
@@ -193,6 +194,7 @@ Prepared prepare(const RunOptions& o) {
     Prepared p;
     p.options = o;
     p.settings = settingsFromOptions(o);
+    (void)parseExportFormats(o.exports, "--export");
     makeConfigs(o, p);
     loadSceneAndPath(o, p);
     p.out = outputDirectory(o);

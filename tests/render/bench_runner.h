@@ -74,6 +74,23 @@ inline BenchResult runBench(const std::vector<std::string>& args, const std::fil
     return r;
 }
 
+// A shell command's exit code, stdout and stderr (the tools tests check outputs with).
+inline BenchResult runCommand(const std::string& command) {
+    static int calls = 0;
+    auto base = std::filesystem::temp_directory_path() /
+                ("cbrbench-cmd-" + std::to_string(::getpid()) + "-" + std::to_string(calls++));
+    auto out_file = base.string() + ".out", err_file = base.string() + ".err";
+    std::string cmd = "(" + command + ") >" + shellQuote(out_file) + " 2>" + shellQuote(err_file);
+    int status = std::system(cmd.c_str());
+    BenchResult r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out_file);
+    r.err = slurp(err_file);
+    std::filesystem::remove(out_file);
+    std::filesystem::remove(err_file);
+    return r;
+}
+
 // A parsed CSV: header names -> column index, rows of strings (no quoted commas in
 // the columns tests read).
 struct Csv {

@@ -59,8 +59,9 @@ void writeFile(const fs::path& p, const std::string& text) {
     std::ofstream(p, std::ios::binary) << text;
 }
 
-// Rewrites frames.csv's gpu_ms: `ms` plus a tiny per-repetition offset (low noise).
-void setGpuMs(const fs::path& dir, const std::string& variant, double ms) {
+// Rewrites frames.csv's gpu_ms: `ms` plus a per-repetition offset, `spread` times the
+// repetition's index (the default: low noise).
+void setGpuMs(const fs::path& dir, const std::string& variant, double ms, double spread = 0.001) {
     auto csv = cbr::test::readCsv(dir / "frames.csv");
     int c_ms = csv.col("gpu_ms"), c_rep = csv.col("repeat"), c_var = csv.col("variant");
     std::ostringstream out;
@@ -68,7 +69,7 @@ void setGpuMs(const fs::path& dir, const std::string& variant, double ms) {
     out << "\n";
     for (auto& row : csv.rows) {
         if (row[size_t(c_var)] == variant)
-            row[size_t(c_ms)] = std::to_string(ms * (1.0 + 0.001 * std::stod(row[size_t(c_rep)])));
+            row[size_t(c_ms)] = std::to_string(ms * (1.0 + spread * std::stod(row[size_t(c_rep)])));
         for (size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << row[i];
         out << "\n";
     }
@@ -206,4 +207,68 @@ TEST(Compare, SettingsOnlyOneRunRecordsDoNotSplitCells) {
     writeFile(other / "run.json", k.dump(2));
     auto res2 = runBench({"compare", r.base.string(), other.string()}, r.work);
     EXPECT_NE(res2.err.find("no cell matches"), std::string::npos) << res2.out << res2.err;
+}
+
+namespace {
+
+// xmllint's answer to an XPath expression on `file` (Debian's libxml2-utils).
+std::string xpath(const fs::path& file, const std::string& expr) {
+    auto r = cbr::test::runCommand("xmllint --xpath " + cbr::test::shellQuote(expr) + " " +
+                                   cbr::test::shellQuote(file.string()));
+    while (!r.out.empty() && r.out.back() == '\n') r.out.pop_back();
+    return r.out;
+}
+
+}  // namespace
+
+// compare --junit: one testcase per cell, valid against the JUnit schema CI readers take
+// (tests/data/junit.xsd, checked by xmllint), SLOWER a failure with its interval and q,
+// UNKNOWN skipped with the repetitions likely to settle it.
+TEST(Compare, JunitReportsFailuresAndSkipsAndValidates) {
+    auto& r = runs();
+    ASSERT_EQ(r.base_run.exit_code, 0) << r.base_run.err;
+    if (cbr::test::runCommand("command -v xmllint").exit_code != 0) GTEST_SKIP() << "xmllint (libxml2-utils) missing";
+    const fs::path xsd = fs::path(CBR_TEST_DATA) / "junit.xsd";
+    auto base = copyRun(r.base, "junit-base"), cur = copyRun(r.cur, "junit-cur");
+    for (const char* v : {"full", "cbr-cso"}) setGpuMs(base, v, 1.0);
+    setGpuMs(cur, "full", 1.0);
+    setGpuMs(cur, "cbr-cso", 1.5);
+    fs::path slow = r.work / "junit-slow.xml";
+    auto res = runBench({"compare", base.string(), cur.string(), "--junit", slow.string()}, r.work);
+    EXPECT_EQ(res.exit_code, 1) << res.out << res.err;
+    auto valid = cbr::test::runCommand("xmllint --noout --schema " + cbr::test::shellQuote(xsd.string()) + " " +
+                                       cbr::test::shellQuote(slow.string()));
+    EXPECT_EQ(valid.exit_code, 0) << valid.out << valid.err << cbr::test::slurp(slow);
+    EXPECT_EQ(xpath(slow, "count(//testcase)"), "2");
+    EXPECT_EQ(xpath(slow, "string(/testsuites/@failures)"), "1");
+    EXPECT_EQ(xpath(slow, "string(//testcase[failure]/@name)"), "cbr-cso");
+    EXPECT_EQ(xpath(slow, "string(//testcase[failure]/failure/@type)"), "SLOWER");
+    const std::string message = xpath(slow, "string(//testcase[failure]/failure/@message)");
+    EXPECT_NE(message.find("SLOWER: frame time +"), std::string::npos) << message;
+    EXPECT_NE(message.find("q "), std::string::npos) << message;
+    EXPECT_NE(message.find("%]"), std::string::npos) << message;  // the interval
+    EXPECT_EQ(xpath(slow, "count(//testcase[@name='full']/*[self::failure or self::skipped])"), "0");
+
+    // A current run spread +-6% around the baseline at a 3% threshold: UNKNOWN, skipped.
+    auto noisy = copyRun(r.cur, "junit-noisy");
+    setGpuMs(noisy, "full", 1.0);
+    setGpuMs(noisy, "cbr-cso", 0.94, 0.03);
+    fs::path unknown = r.work / "junit-unknown.xml";
+    auto res2 = runBench({"compare", base.string(), noisy.string(), "--junit", unknown.string()}, r.work);
+    EXPECT_EQ(res2.exit_code, 0) << res2.out << res2.err;
+    EXPECT_EQ(cbr::test::readCsv(noisy / "compare.csv").at(1, "time_verdict"), "UNKNOWN");
+    EXPECT_EQ(xpath(unknown, "string(/testsuites/@skipped)"), "1");
+    EXPECT_EQ(xpath(unknown, "string(/testsuites/@failures)"), "0");
+    const std::string skip = xpath(unknown, "string(//testcase[skipped]/skipped/@message)");
+    EXPECT_NE(skip.find("UNKNOWN: frame time"), std::string::npos) << skip;
+    EXPECT_EQ(cbr::test::runCommand("xmllint --noout --schema " + cbr::test::shellQuote(xsd.string()) + " " +
+                                    cbr::test::shellQuote(unknown.string()))
+                  .exit_code,
+              0);
+
+    // A --junit path in no directory is bad input: one line, nothing written.
+    auto bad = copyRun(r.cur, "junit-bad");
+    auto res3 = runBench({"compare", base.string(), bad.string(), "--junit", (r.work / "no" / "such.xml").string()},
+                         r.work);
+    expectBadInput(res3, bad, "--junit");
 }
