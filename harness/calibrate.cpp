@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/compare.h"
+#include "harness/progress.h"
 #include "harness/run.h"
 #include "harness/stats.h"
 #include "harness/verdict.h"
@@ -193,14 +194,21 @@ Judged renderPairs(const Plan& p, const fs::path& dir) {
     in_dir.out = dir;
     Judged j;
     const int pairs = std::max(p.o.pairs, p.slowdowns.empty() ? 0 : p.o.slow_pairs);
+    ProgressBar bar("runs", pairs + p.o.pairs + p.o.slow_pairs * int(p.slowdowns.size()));
+    auto run = [&](const std::string& name, const std::string& slowdown) {
+        bar.step("calibrate " + name, 0);
+        auto data = runOnce(in_dir, name, slowdown);
+        bar.step("calibrate " + name);
+        return data;
+    };
     for (int i = 0; i < pairs; ++i) {
-        auto base = runOnce(in_dir, "base-" + pairId(i), "");
+        auto base = run("base-" + pairId(i), "");
         if (i == 0) checkSlowdownPasses(p, base), j.describe(base);
-        if (i < p.o.pairs) j.add(base, runOnce(in_dir, "aa-" + pairId(i), ""), "aa", i, p);
+        if (i < p.o.pairs) j.add(base, run("aa-" + pairId(i), ""), "aa", i, p);
         if (i < p.o.slow_pairs)
             for (const auto& s : p.slowdowns) {
                 j.injected[s.spec()] = s.pct;
-                j.add(base, runOnce(in_dir, "slow-" + s.pass + "-" + reports::Cell(s.pct).text() + "-" + pairId(i), s.spec()),
+                j.add(base, run("slow-" + s.pass + "-" + reports::Cell(s.pct).text() + "-" + pairId(i), s.spec()),
                       s.spec(), i, p);
             }
     }

@@ -22,6 +22,7 @@
 #include "harness/matrix.h"
 #include "harness/stress.h"
 #include "harness/options.h"
+#include "harness/progress.h"
 #include "harness/run.h"
 #include "renderer/scene/scene.h"
 #include "renderer/variants/variants.h"
@@ -91,7 +92,7 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_option("--warmup", o.warmup, "untimed warm-up frames per variant and repetition")->capture_default_str();
     cmd->add_option("--device", o.device, "device index or name substring (default: lavapipe, else the first)");
     cmd->add_flag("--validate", o.validate, "enable the Khronos validation layer and count its messages");
-    cmd->add_flag("--save-frames", o.save_frames, "save display images as PNG (repetition 0)");
+    cmd->add_flag("--save-frames", o.save_frames, "save display images as PNG (the scored quality pass)");
     cmd->add_option("--export", o.exports, "also write the results as: gbench (gbench.json, Google Benchmark JSON)");
     cmd->add_option("--out", o.out, "output directory (default out/<scene>-<path>-<date-time>)");
     cmd->add_option("--drr-scale", o.drr_scale, "drr per-axis render scale in (0, 1]")->capture_default_str();
@@ -245,6 +246,9 @@ int main(int argc, char** argv) {
                       "reference (full,ssaa: one run per value into OUT/ref=K/, as --path a,b runs one per path)")
         ->required();
 
+    bool no_progress = false;
+    for (auto* c : {run, sweep, stress, merge, calibrate})
+        c->add_flag("--quiet", no_progress, "no progress bar on the terminal (none is drawn when stderr is not one)");
     cbr::harness::installInterruptHandler();
     try {
         app.parse(argc, argv);
@@ -258,6 +262,7 @@ int main(int argc, char** argv) {
         return compare->parsed() ? cbr::harness::kCompareBadInput : kExitBadInput;
     }
 
+    cbr::harness::setProgressQuiet(no_progress);
     try {
         if (*devices) return listDevices();
         if (*scenes) {

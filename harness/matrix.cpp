@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/interrupt.h"
+#include "harness/progress.h"
 #include "harness/run.h"
 #include "reports/csv.h"
 #include "reports/csv_read.h"
@@ -368,12 +369,14 @@ int mergeRuns(const std::vector<std::string>& dirs, const std::string& out_dir) 
     reports::OutputDir out(out_dir);
     std::vector<json> rows;
     std::vector<std::pair<json, std::string>> done;
+    ProgressBar bar("jobs", int(jobs.size()));
     for (const auto& [id, entry] : jobs) {
         rows.push_back(entry.first);
         if (entry.first.value("status", "") == "ok") {
             std::filesystem::copy(entry.second, out.path() / id, std::filesystem::copy_options::recursive);
             done.push_back({entry.first, id});
         }
+        bar.step("merge " + id);
     }
     std::vector<std::string> missing;
     for (const auto& [id, pj] : plan_jobs)

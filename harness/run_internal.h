@@ -9,6 +9,7 @@
 #include "camera_paths/path.h"
 #include "harness/builtin_context.h"
 #include "harness/options.h"
+#include "harness/progress.h"
 #include "harness/quality.h"
 #include "harness/results.h"
 #include "harness/scene_load.h"
@@ -48,20 +49,6 @@ struct Prepared {
 // Options to settings, configurations, scene and path, output directory (run_prepare.cpp).
 Prepared prepare(const RunOptions& o);
 
-// Prints the ETA of a run on a terminal; silent otherwise.
-class Progress {
-public:
-    explicit Progress(int total);
-    void step(const std::string& what);
-    ~Progress();
-
-private:
-    int total_;
-    int done_ = 0;
-    bool tty_;
-    std::chrono::steady_clock::time_point start_;
-};
-
 // The state the render loop's steps share, from the uploaded scene to the scored frames.
 // Members are destroyed in reverse: renderers, then the scorer, then the workers (which
 // finish their PNG writes into `out` before the output directory goes).
@@ -87,7 +74,7 @@ struct RunState {
     // copied into repetition 0's timed rows.
     std::vector<FrameRow> quality_rows;
     FrameRow& qualityRow(size_t config, size_t frame) { return quality_rows[config * p.poses.size() + frame]; }
-    Progress progress;
+    ProgressBar progress;  // frames rendered, on a terminal
     // One renderer per variant for the whole run: pipelines and targets are built once.
     std::vector<std::unique_ptr<render::Renderer>> renderers;
 };

@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cstdio>
 #include <thread>
-#include <unistd.h>
 
 #include "harness/interrupt.h"
 #include "harness/run_internal.h"
@@ -12,20 +11,6 @@
 #include "renderer/vk/check.h"
 
 namespace cbr::harness {
-
-Progress::Progress(int total) : total_(total), tty_(::isatty(2)), start_(std::chrono::steady_clock::now()) {}
-
-void Progress::step(const std::string& what) {
-    ++done_;
-    if (!tty_) return;
-    double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    double eta = done_ > 0 ? elapsed / done_ * (total_ - done_) : 0;
-    std::fprintf(stderr, "\r\033[K%s  %d/%d frames  ETA %.0f s", what.c_str(), done_, total_, eta);
-}
-
-Progress::~Progress() {
-    if (tty_) std::fprintf(stderr, "\r\033[K");
-}
 
 namespace {
 
@@ -65,8 +50,10 @@ RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene
       mid_images(prepared.configs.size()),
       reference_frames(prepared.poses.size()),
       quality_rows(prepared.configs.size() * prepared.poses.size()),
-      progress(int(prepared.configs.size() * prepared.poses.size()) * (prepared.options.repeat + 1) +
-               (prepared.options.reference == "ssaa" ? int(prepared.poses.size()) : 0)),
+      progress("frames",
+               int(prepared.configs.size() * prepared.poses.size()) * (prepared.options.repeat + 1) +
+                   (prepared.options.reference == "ssaa" ? int(prepared.poses.size()) : 0),
+               !prepared.options.quiet),
       renderers(prepared.configs.size()) {}
 
 namespace {

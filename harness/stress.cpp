@@ -26,6 +26,7 @@
 #include "harness/builtin_context.h"
 #include "harness/interrupt.h"
 #include "harness/options.h"
+#include "harness/progress.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
 #include "renderer/scene/scene.h"
@@ -456,11 +457,19 @@ int runStress(const StressOptions& o) {
 
     reports::CsvTable table({"case", "pipeline", "expectation", "finite", "held", "quality", "detail", "runs"});
     int failed = 0, total = 0;
+    auto selected = [&](const Case& c) {
+        return o.cases.empty() || std::find(o.cases.begin(), o.cases.end(), c.name) != o.cases.end();
+    };
+    std::set<std::string> run_ids;  // sub-runs of one pipeline (the shared baseline once)
+    for (const auto& c : cases)
+        if (selected(c))
+            for (const auto& run : c.runs) run_ids.insert(run.first == "base" ? "base" : c.name + "-" + run.first);
+    ProgressBar bar("runs", int(run_ids.size() * o.pipelines.size()));
     std::string rows_html;
     for (const auto& pipeline : o.pipelines) {
         std::map<std::string, Child> children;  // shared sub-runs (the flythrough baseline) run once per pipeline
         for (const auto& c : cases) {
-            if (!o.cases.empty() && std::find(o.cases.begin(), o.cases.end(), c.name) == o.cases.end()) continue;
+            if (!selected(c)) continue;
             Children ch;
             std::string links;
             for (const auto& [key, args] : c.runs) {
@@ -478,8 +487,10 @@ int runStress(const StressOptions& o) {
                     if (!o.device.empty()) common.insert(common.end(), {"--device", o.device});
                     if (o.validate) common.push_back("--validate");
                     if (!o.cbr_route.empty()) common.insert(common.end(), {"--cbr-route", o.cbr_route});
-                    std::fprintf(stderr, "stress: %s %s (%s)\n", pipeline.c_str(), c.name.c_str(), id.c_str());
+                    if (!bar.shown())
+                        std::fprintf(stderr, "stress: %s %s (%s)\n", pipeline.c_str(), c.name.c_str(), id.c_str());
                     runChild(self, child, common);
+                    bar.step("stress " + pipeline + " " + id);
                     throwIfInterrupted();  // the child had the signal too: stop, keep nothing
                     it = children.emplace(id, std::move(child)).first;
                 }
