@@ -46,10 +46,13 @@ int listDevices() {
 }
 
 // `cbrbench score`: the suite's metrics on saved images, so any number can be recomputed.
-int scoreImages(const std::string& ref_file, const std::string& img_file, const std::string& crop, double flip_ppd) {
+int scoreImages(const std::string& ref_file, const std::string& img_file, const std::string& crop, double flip_ppd,
+                float exposure) {
     cbr::harness::checkFlipPpd(flip_ppd);
-    auto ref = cbr::metrics::readPng(ref_file);
-    auto img = cbr::metrics::readPng(img_file);
+    auto ref_in = cbr::metrics::readDisplayImage(ref_file, exposure);
+    auto img_in = cbr::metrics::readDisplayImage(img_file, exposure);
+    const auto& ref = ref_in.image;
+    const auto& img = img_in.image;
     if (ref.width != img.width || ref.height != img.height)
         throw std::invalid_argument(img_file + ": " + std::to_string(img.width) + "x" + std::to_string(img.height) +
                                     "; expected the reference's size " + std::to_string(ref.width) + "x" +
@@ -67,6 +70,8 @@ int scoreImages(const std::string& ref_file, const std::string& img_file, const 
     std::printf("psnr_db %s\nssim %.6f\nssim_luma %.6f\nflip_mean %.6f\nflip_q1 %.6f\nflip_median %.6f\nflip_q3 %.6f\n",
                 std::isinf(psnr) ? "inf" : std::to_string(psnr).c_str(), s.ssim, s.luma_ssim, f.mean, f.q1, f.median,
                 f.q3);
+    for (const auto* in : {&ref_in, &img_in})
+        if (!in->conversion.empty()) std::printf("note %s\n", in->conversion.c_str());
     return 0;
 }
 
@@ -196,13 +201,17 @@ int main(int argc, char** argv) {
     metric_cost->add_option("--res", cost_res, "frame size WIDTHxHEIGHT")->capture_default_str();
     metric_cost->add_option("--frames", cost_frames, "timed frames (median reported)")->capture_default_str();
     metric_cost->add_option("--flip-ppd", cost_flip_ppd, kFlipPpdHelp);
-    auto* score = app.add_subcommand("score", "PSNR, SSIM and FLIP of an image against a reference (PNG files)");
+    auto* score = app.add_subcommand("score", "PSNR, SSIM and FLIP of an image against a reference (any format "
+                                              "OpenImageIO reads; linear EXR/HDR tone-mapped as the renderer does)");
     std::string score_ref, score_img, score_crop;
-    score->add_option("REFERENCE", score_ref, "reference PNG")->required();
-    score->add_option("IMAGE", score_img, "PNG to score")->required();
+    score->add_option("REFERENCE", score_ref, "reference image")->required();
+    score->add_option("IMAGE", score_img, "image to score (the same size)")->required();
     score->add_option("--crop", score_crop, "score only X,Y,W,H (e.g. to leave out a border column)");
     double score_flip_ppd = cbr::metrics::kFlipDefaultPpd;
     score->add_option("--flip-ppd", score_flip_ppd, kFlipPpdHelp);
+    float score_exposure = 1.0f;
+    score->add_option("--exposure", score_exposure, "exposure of the display transform for linear (float) inputs")
+        ->capture_default_str();
 
     addRunOptions(run, o, variant_list);
     std::string shard_flag;
@@ -288,7 +297,7 @@ int main(int argc, char** argv) {
             cal.out = cal.run.out;
             return cbr::harness::runCalibrate(cal);
         }
-        if (*score) return scoreImages(score_ref, score_img, score_crop, score_flip_ppd);
+        if (*score) return scoreImages(score_ref, score_img, score_crop, score_flip_ppd, score_exposure);
         if (*report) {
             if (!std::filesystem::is_directory(report_dir))
                 throw std::invalid_argument("report " + report_dir + ": not a directory; expected a run's output directory");

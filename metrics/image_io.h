@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace cbr::metrics {
@@ -25,5 +26,32 @@ void writePng(const std::filesystem::path& file, const Rgba8Image& image);
 Rgba8Image readPng(const std::filesystem::path& file);
 // "OpenImageIO x.y.z" or "stb_image_write": for provenance.
 const char* imageIoBackend();
+
+}  // namespace cbr::metrics
+
+namespace cbr::metrics {
+
+// An image from another engine's capture, as the 8-bit display image the metrics are
+// defined on (`cbrbench score`).
+struct DisplayImage {
+    Rgba8Image image;
+    std::string conversion;  // how it was made display-referred; "" when read as it was
+};
+
+// The renderer's display transform of one linear value (renderer/shaders/display.glsl):
+// exposure, the ACES fit (Narkowicz 2015), sRGB encoding, rounding to 8 bits.
+uint8_t displayByte(float linear, float exposure);
+
+// Any format OpenImageIO reads (PNG, EXR, TIFF, JPEG, HDR, ...). 8-bit files are read as
+// they are (grey copied to RGB, alpha 255 where absent); 16-bit integer files are rounded to
+// 8 bits; float and half files (linear EXR, HDR) go through the renderer's display
+// transform at `exposure` (a pixel with NaN or Inf shows magenta, as the renderer's does).
+// Builds without OpenImageIO read 8-bit PNG only. Throws std::invalid_argument naming the
+// file for a missing, unreadable or unsupported file.
+DisplayImage readDisplayImage(const std::filesystem::path& file, float exposure = 1.0f);
+
+// Writes a float RGBA image (linear values) as EXR or TIFF by extension: for tests and
+// captures. Throws std::runtime_error without OpenImageIO or on failure.
+void writeFloatImage(const std::filesystem::path& file, int width, int height, const std::vector<float>& rgba);
 
 }  // namespace cbr::metrics

@@ -1,0 +1,85 @@
+// Captures from other engines as display images: any OpenImageIO format, linear float
+// files through the renderer's display transform.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include "metrics/image_io.h"
+
+namespace fs = std::filesystem;
+using namespace cbr::metrics;
+
+namespace {
+
+fs::path scratch(const std::string& name) {
+    auto dir = fs::temp_directory_path() / ("cbr-image-any-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    return dir / name;
+}
+
+}  // namespace
+
+TEST(DisplayTransform, MatchesTheShadersFormula) {
+    EXPECT_EQ(displayByte(0.0f, 1.0f), 0);
+    EXPECT_EQ(displayByte(-3.0f, 1.0f), 0);      // negative clamps to black
+    EXPECT_EQ(displayByte(0.18f, 1.0f), 141);    // ACES fit 0.2669, sRGB 0.5534
+    EXPECT_EQ(displayByte(0.09f, 2.0f), 141);    // exposure scales the linear value
+    EXPECT_EQ(displayByte(1000.0f, 1.0f), 255);  // the fit exceeds 1 there and is clamped
+}
+
+TEST(ReadDisplayImage, LinearExrIsToneMappedAsTheRendererDoes) {
+    const int w = 5, h = 3;
+    std::vector<float> rgba(size_t(w * h * 4));
+    for (int i = 0; i < w * h; ++i) {
+        rgba[size_t(i) * 4 + 0] = 0.05f * float(i);
+        rgba[size_t(i) * 4 + 1] = 0.18f;
+        rgba[size_t(i) * 4 + 2] = 4.0f - 0.2f * float(i);
+        rgba[size_t(i) * 4 + 3] = 1.0f;
+    }
+    rgba[7 * 4 + 1] = std::numeric_limits<float>::quiet_NaN();
+    auto file = scratch("linear.exr");
+    writeFloatImage(file, w, h, rgba);
+    auto got = readDisplayImage(file, 1.0f);
+    ASSERT_EQ(got.image.width, w);
+    ASSERT_EQ(got.image.height, h);
+    EXPECT_NE(got.conversion.find("tone-mapped as the renderer does"), std::string::npos) << got.conversion;
+    for (int i = 0; i < w * h; ++i) {
+        const uint8_t* p = got.image.pixels.data() + size_t(i) * 4;
+        if (i == 7) {  // NaN: magenta, as the renderer shows it
+            EXPECT_EQ(p[0], displayByte(1.0f, 1.0f));
+            EXPECT_EQ(p[1], 0);
+            EXPECT_EQ(p[2], displayByte(1.0f, 1.0f));
+            continue;
+        }
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(p[c], displayByte(rgba[size_t(i) * 4 + size_t(c)], 1.0f)) << i << " " << c;
+        EXPECT_EQ(p[3], 255);
+    }
+    fs::remove(file);
+}
+
+TEST(ReadDisplayImage, EightBitFilesAreReadAsTheyAre) {
+    Rgba8Image img;
+    img.width = 4;
+    img.height = 2;
+    for (int i = 0; i < 8; ++i) img.pixels.insert(img.pixels.end(), {uint8_t(30 * i), uint8_t(255 - i), 7, 255});
+    auto png = scratch("plain.png");
+    writePng(png, img);
+    auto got = readDisplayImage(png);
+    EXPECT_TRUE(got.conversion.empty());
+    EXPECT_EQ(got.image.pixels, img.pixels);
+    EXPECT_THROW(readDisplayImage(scratch("missing.exr")), std::invalid_argument);
+    auto junk = scratch("junk.exr");
+    { std::FILE* f = std::fopen(junk.c_str(), "wb"); std::fputs("not an image", f); std::fclose(f); }
+    try {
+        readDisplayImage(junk);
+        ADD_FAILURE() << "junk accepted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("junk.exr"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("accepted"), std::string::npos) << e.what();
+    }
+    fs::remove(png);
+    fs::remove(junk);
+}
