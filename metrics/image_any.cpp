@@ -1,5 +1,6 @@
 // Captures in any format as display images (metrics/image_io.h: readDisplayImage).
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
