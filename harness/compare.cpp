@@ -370,16 +370,8 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
 }  // namespace
 
 std::vector<double> repetitionMedians(const reports::RunData& d, const std::string& variant, int max_repeats) {
-    std::map<double, std::vector<double>> by_rep;
-    const auto& f = d.frames;
-    for (size_t r = 0; r < f.rows.size(); ++r) {
-        if (f.text(r, "variant") != variant || f.text(r, "status") != "ok") continue;
-        auto ms = f.num(r, "gpu_ms");
-        auto rep = f.num(r, "repeat");
-        if (ms && rep && std::isfinite(*ms) && *rep < max_repeats) by_rep[*rep].push_back(*ms);
-    }
     std::vector<double> out;
-    for (auto& [rep, v] : by_rep) out.push_back(median(v));
+    for (auto& [rep, v] : reports::gpuMsByRepetition(d, variant, max_repeats)) out.push_back(median(v));
     return out;
 }
 

@@ -55,18 +55,6 @@ nlohmann::json context(const RunData& d) {
     return c;
 }
 
-// Per repetition of a variant: its frames' GPU times (frames.csv rows with status ok).
-std::map<int, std::vector<double>> repetitions(const RunData& d, const std::string& variant) {
-    std::map<int, std::vector<double>> reps;
-    const auto& f = d.frames;
-    for (size_t i = 0; i < f.rows.size(); ++i) {
-        if (f.text(i, "variant") != variant || f.text(i, "status") != "ok") continue;
-        auto ms = f.num(i, "gpu_ms");
-        auto rep = f.num(i, "repeat");
-        if (ms && rep && std::isfinite(*ms)) reps[int(*rep)].push_back(*ms);
-    }
-    return reps;
-}
 
 }  // namespace
 
@@ -80,7 +68,7 @@ nlohmann::json gbenchJson(const RunData& d) {
     int family = 0;
     for (const auto& v : d.variants) {
         if (!variantOk(d, v)) continue;
-        auto reps = repetitions(d, v);
+        auto reps = gpuMsByRepetition(d, v);
         if (reps.empty()) continue;
         const std::string name = prefix + v;
         nlohmann::json counters = nlohmann::json::object();

@@ -160,6 +160,18 @@ bool isCheckerboard(const RunData& d, const std::string& variant) {
     return false;
 }
 
+std::map<int, std::vector<double>> gpuMsByRepetition(const RunData& d, const std::string& variant, int max_repeats) {
+    std::map<int, std::vector<double>> reps;
+    const auto& f = d.frames;
+    for (size_t i = 0; i < f.rows.size(); ++i) {
+        if (f.text(i, "variant") != variant || f.text(i, "status") != "ok") continue;
+        auto ms = f.num(i, "gpu_ms");
+        auto rep = f.num(i, "repeat");
+        if (ms && rep && std::isfinite(*ms) && *rep < max_repeats) reps[int(*rep)].push_back(*ms);
+    }
+    return reps;
+}
+
 std::vector<std::optional<double>> perFrame(const RunData& d, const std::string& variant, const std::string& column,
                                             int repeat) {
     std::vector<std::vector<double>> values(d.frame_ids.size());

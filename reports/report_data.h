@@ -1,7 +1,9 @@
 // A run directory loaded for the report, and the queries the report's sections share.
 #pragma once
 
+#include <climits>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,6 +45,11 @@ const nlohmann::json* variantJson(const RunData& d, const std::string& variant);
 // (repeat < 0) the median over all repetitions. nullopt where no row or empty cell.
 std::vector<std::optional<double>> perFrame(const RunData& d, const std::string& variant, const std::string& column,
                                             int repeat);
+// A variant's GPU frame times (frames.csv `gpu_ms`, rows with status ok, finite) grouped by
+// repetition, repetitions 0 .. max_repeats - 1 in order.
+std::map<int, std::vector<double>> gpuMsByRepetition(const RunData& d, const std::string& variant,
+                                                     int max_repeats = INT_MAX);
+
 // The frame (repetition 0) where a column is lowest (or highest); nullopt without values.
 std::optional<int> extremeFrame(const RunData& d, const std::string& variant, const std::string& column,
                                 bool highest);
