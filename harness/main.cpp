@@ -162,12 +162,6 @@ int main(int argc, char** argv) {
     auto* compare = app.add_subcommand("compare", "regression verdicts: CURRENT_DIR against BASELINE_DIR (exit 0 same, "
                                                    "1 regression, 2 inconclusive with --strict, 3 bad input)");
     cbr::harness::CompareOptions cmp;
-    auto* export_cmd = app.add_subcommand("export", "write a run's results in another tool's format (gbench: Google "
-                                                     "Benchmark JSON, which compare.py and benchmark dashboards read)");
-    std::string export_dir, export_format, export_out;
-    export_cmd->add_option("RUN_DIR", export_dir, "a run's output directory")->required();
-    export_cmd->add_option("--format", export_format, "gbench")->required();
-    export_cmd->add_option("--out", export_out, "the file to write (default: RUN_DIR/gbench.json)");
     compare->add_option("BASELINE_DIR", cmp.baseline_dir, "the baseline run's output directory")->required();
     compare->add_option("CURRENT_DIR", cmp.current_dir, "the current run's output directory (gets compare.*)")->required();
     compare->add_option("--threshold", cmp.threshold, "time change that counts (e.g. 3% or 0.03)")->capture_default_str();
@@ -177,6 +171,12 @@ int main(int argc, char** argv) {
     compare->add_option("--eci-threshold", cmp.eci, "relative ECI change that counts")->capture_default_str();
     compare->add_option("--junit", cmp.junit,
                         "also write the verdicts as JUnit XML to FILE (SLOWER/WORSE: failures, UNKNOWN: skipped)");
+    auto* export_cmd = app.add_subcommand("export", "write a run's results in another tool's format (gbench: Google "
+                                                     "Benchmark JSON, which compare.py and benchmark dashboards read)");
+    std::string export_dir, export_format, export_out;
+    export_cmd->add_option("RUN_DIR", export_dir, "a run's output directory")->required();
+    export_cmd->add_option("--format", export_format, "gbench")->required();
+    export_cmd->add_option("--out", export_out, "the file to write (default: RUN_DIR/gbench.json)");
     compare->add_flag("--strict", cmp.strict, "UNKNOWN cells give exit code 2");
     cbr::harness::RunOptions o;
     std::string variant_list;
