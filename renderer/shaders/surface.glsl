@@ -3,6 +3,7 @@
 // fragment. The includer declares ALPHA_MODE and includes shared.h first.
 #ifndef CBR_SURFACE_GLSL
 #define CBR_SURFACE_GLSL
+#extension GL_KHR_shader_subgroup_ballot : require
 
 layout(set = 1, binding = 0) uniform Material { MaterialUniforms material; };
 layout(set = 1, binding = 1) uniform sampler2D base_color_tex;
@@ -54,7 +55,12 @@ vec3 perturbNormal(vec3 n, vec3 p, vec2 uv, vec3 tangent_normal) {
 // fragments below the cutoff.
 Surface evaluateSurface(float bias) {
     Surface s;
-    uint flags = material.flags.x;
+    // The flags are read through subgroupBroadcastFirst (the same value: a draw's material is
+    // uniform) so that no branch below depends on a plain uniform-buffer load. lavapipe (Mesa
+    // 22.3) inlines such values into a shader it deems small enough and compiles it again
+    // whenever they change: the G-buffer shader was rebuilt at every draw with a new material,
+    // about 3 ms a draw at any resolution, and the deferred pipeline measured compilation.
+    uint flags = subgroupBroadcastFirst(material.flags.x);
     vec4 base = material.base_color;
     if ((flags & CBR_TEX_BASE_COLOR) != 0u) base *= texture(base_color_tex, in_uv, bias);
     if (ALPHA_MODE == 1 && base.a < material.params.z) discard;

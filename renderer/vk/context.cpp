@@ -269,6 +269,19 @@ Context::Context(const ContextOptions& options) {
     if (!f13.dynamicRendering || !f13.synchronization2)
         throw Unsupported("device " + description.name + " lacks dynamicRendering or synchronization2");
 
+    // Subgroup operations: the resolve's class counts (compute: arithmetic, ballot) and the
+    // material read in every scene fragment shader (surface.glsl: ballot).
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
+    vkGetPhysicalDeviceProperties2(physical, &p2);
+    const VkSubgroupFeatureFlags ops = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT |
+                                       VK_SUBGROUP_FEATURE_BALLOT_BIT;
+    const VkShaderStageFlags stages = VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    if ((subgroup.supportedOperations & ops) != ops || (subgroup.supportedStages & stages) != stages)
+        throw Unsupported("device " + description.name +
+                          " lacks subgroup basic, arithmetic and ballot operations in compute and fragment "
+                          "shaders; cbrbench needs them (class counts, material reads)");
+
     caps.timestamp_period_ns = properties.limits.timestampPeriod;
     caps.pipeline_statistics = f2.features.pipelineStatisticsQuery;
     caps.sample_rate_shading = f2.features.sampleRateShading;
