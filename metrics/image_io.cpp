@@ -1,4 +1,5 @@
-// PNG reading and writing for display images: OpenImageIO when built with it, else stb.
+// PNG reading and writing for display images: OpenImageIO when built with it (the module
+// oiio_module.cpp, loaded on first use), else stb.
 #include "metrics/image_io.h"
 
 #include <unistd.h>
@@ -13,8 +14,12 @@
 #include <string>
 #include <system_error>
 
+#include "metrics/image_io_detail.h"
+
 #if CBR_WITH_OIIO
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
+
+#include "metrics/oiio_module.h"
 #else
 // Static stb implementations: tinygltf (in another library of this program) may
 // compile its own non-static stb_image, and two external copies would clash at link.
@@ -33,131 +38,34 @@
 namespace cbr::metrics {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-void checkWritable(const fs::path& file, const Rgba8Image& image) {
-    if (image.width <= 0 || image.height <= 0 ||
-        image.pixels.size() != size_t(image.width) * image.height * 4)
-        throw std::invalid_argument("writePng " + file.string() + ": image is " +
-                                    std::to_string(image.width) + "x" +
-                                    std::to_string(image.height) + " with " +
-                                    std::to_string(image.pixels.size()) +
-                                    " bytes, expected width * height * 4 > 0");
-}
-
-// Unique per process and call, in the target's folder so that the rename cannot cross
-// file systems (a cross-device rename is a copy, and no longer atomic).
-fs::path temporaryName(const fs::path& file) {
-    static std::atomic<unsigned> counter{0};
-    fs::path tmp = file;
-    tmp += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-    return tmp;
-}
-
-void commit(const fs::path& tmp, const fs::path& file) {
-    std::error_code ec;
-    fs::rename(tmp, file, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw std::runtime_error("writePng " + file.string() + ": cannot rename the temporary file: " +
-                                 ec.message());
-    }
-}
-
-// Missing files get their own message: "no such file" is the common mistake, and a
-// decoder's error for it is often vague.
-void checkReadable(const fs::path& file) {
-    std::error_code ec;
-    if (!fs::exists(file, ec))
-        throw std::invalid_argument("readPng " + file.string() + ": no such file");
-    if (!fs::is_regular_file(file, ec))
-        throw std::invalid_argument("readPng " + file.string() + ": not a regular file");
-}
-
-[[noreturn]] void unreadable(const fs::path& file, const std::string& why) {
-    throw std::invalid_argument("readPng " + file.string() + ": not a readable 8-bit PNG (" + why +
-                                ")");
-}
-
-}  // namespace
+using namespace detail;
 
 #if CBR_WITH_OIIO
 
-void writePng(const fs::path& file, const Rgba8Image& image) {
-    checkWritable(file, image);
-    const fs::path tmp = temporaryName(file);
-    // Created by format name, since the temporary name has no .png extension.
-    auto out = OIIO::ImageOutput::create("png");
-    if (!out)
-        throw std::runtime_error("writePng " + file.string() +
-                                 ": OpenImageIO has no PNG writer: " + OIIO::geterror());
-    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
-    // Without this OpenImageIO treats the pixels as premultiplied and divides colour by
-    // alpha on write: pixels with alpha < 255 would not round-trip.
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    bool ok = out->open(tmp.string(), spec) &&
-              out->write_image(OIIO::TypeDesc::UINT8, image.pixels.data());
-    ok = out->close() && ok;
-    if (!ok) {
-        const std::string error = out->geterror();
+const OiioApi& oiio() {
+    static const OiioApi* api = [] {
         std::error_code ec;
-        fs::remove(tmp, ec);
-        throw std::runtime_error("writePng " + file.string() + ": " + error);
-    }
-    commit(tmp, file);
-}
-
-Rgba8Image readPng(const fs::path& file) {
-    checkReadable(file);
-    OIIO::ImageSpec config;
-    // Keep the stored (unassociated) values; OpenImageIO would premultiply by alpha.
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(file.string(), &config);
-    if (!in) unreadable(file, OIIO::geterror());
-    if (std::strcmp(in->format_name(), "png") != 0)
-        unreadable(file, std::string("it is ") + in->format_name());
-    const OIIO::ImageSpec& spec = in->spec();
-    // 16-bit files are refused rather than converted: stb and OpenImageIO round them
-    // differently, and metrics are defined on the 8-bit display image.
-    if (spec.format != OIIO::TypeDesc::UINT8) unreadable(file, "not 8 bits per channel");
-    const int channels = spec.nchannels;
-    if (channels < 1 || channels > 4)
-        unreadable(file, std::to_string(channels) + " channels");
-    std::vector<uint8_t> raw(size_t(spec.width) * spec.height * channels);
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, raw.data())) unreadable(file, in->geterror());
-    in->close();
-
-    Rgba8Image image;
-    image.width = spec.width;
-    image.height = spec.height;
-    image.pixels.resize(size_t(image.width) * image.height * 4);
-    const size_t count = size_t(image.width) * image.height;
-    for (size_t i = 0; i < count; ++i) {
-        const uint8_t* s = raw.data() + i * channels;
-        uint8_t* d = image.pixels.data() + i * 4;
-        if (channels <= 2) {  // grey, grey + alpha
-            d[0] = d[1] = d[2] = s[0];
-            d[3] = channels == 2 ? s[1] : 255;
-        } else {
-            d[0] = s[0];
-            d[1] = s[1];
-            d[2] = s[2];
-            d[3] = channels == 4 ? s[3] : 255;
+        const fs::path beside = fs::read_symlink("/proc/self/exe", ec).parent_path() / "libcbr_oiio.so";
+        std::string tried;
+        for (const fs::path& module : {beside, fs::path(CBR_OIIO_MODULE)}) {
+            if (!fs::exists(module, ec)) continue;
+            dlerror();
+            if (void* handle = dlopen(module.c_str(), RTLD_NOW | RTLD_LOCAL))
+                if (auto entry = reinterpret_cast<const OiioApi* (*)()>(dlsym(handle, "cbr_oiio_api")))
+                    return entry();
+            const char* why = dlerror();
+            tried += (tried.empty() ? "" : "; ") + module.string() + ": " + (why ? why : "no cbr_oiio_api");
         }
-    }
-    return image;
+        throw std::runtime_error("cannot load the OpenImageIO module libcbr_oiio.so (" +
+                                 (tried.empty() ? fs::path(CBR_OIIO_MODULE).string() + " not found" : tried) +
+                                 "); expected it next to the executable or where the build wrote it");
+    }();
+    return *api;
 }
 
-const char* imageIoBackend() {
-    // The library actually loaded, not the headers compiled against.
-    static const std::string name = [] {
-        const int v = OIIO::openimageio_version();
-        return "OpenImageIO " + std::to_string(v / 10000) + "." + std::to_string(v / 100 % 100) +
-               "." + std::to_string(v % 100);
-    }();
-    return name.c_str();
-}
+void writePng(const fs::path& file, const Rgba8Image& image) { oiio().write_png(file, image); }
+Rgba8Image readPng(const fs::path& file) { return oiio().read_png(file); }
+const char* imageIoBackend() { return oiio().backend(); }
 
 #else  // stb
 

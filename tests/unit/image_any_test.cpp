@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <unistd.h>
@@ -84,4 +86,34 @@ TEST(ReadDisplayImage, EightBitFilesAreReadAsTheyAre) {
     }
     fs::remove(png);
     fs::remove(junk);
+}
+
+namespace {
+
+std::string commandOutput(const std::string& command) {
+    std::string out;
+    if (FILE* p = ::popen(command.c_str(), "r")) {
+        char buf[4096];
+        for (size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
+        ::pclose(p);
+    }
+    return out;
+}
+
+}  // namespace
+
+// OpenImageIO's ~260 libraries cost a process 0.4 s of CPU when linked in: the program does
+// not link them (no DT_NEEDED entry), and the module that does is loaded when an image is first
+// read or written.
+TEST(ImageIoModule, OpenImageIoIsLoadedOnFirstUseNotAtStart) {
+    const std::string needed = commandOutput("readelf -d /proc/" + std::to_string(::getpid()) + "/exe");
+    ASSERT_NE(needed.find("(NEEDED)"), std::string::npos) << "readelf printed no dynamic section";
+    EXPECT_EQ(needed.find("OpenImageIO"), std::string::npos) << needed;
+    if (std::string(imageIoBackend()).rfind("OpenImageIO ", 0) != 0) GTEST_SKIP() << "built without OpenImageIO";
+    auto file = scratch("first-use.exr");
+    writeFloatImage(file, 2, 2, std::vector<float>(16, 0.5f));
+    EXPECT_EQ(readDisplayImage(file).image.width, 2);
+    std::ifstream maps("/proc/self/maps");
+    const std::string mapped((std::istreambuf_iterator<char>(maps)), std::istreambuf_iterator<char>());
+    EXPECT_NE(mapped.find("libOpenImageIO"), std::string::npos);
 }
