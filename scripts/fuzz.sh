@@ -22,7 +22,7 @@ if [[ ! -f "$build/CMakeCache.txt" ]]; then
   CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCBR_FUZZ=ON -DCBR_BUILD_TESTS=OFF -DCBR_WITH_OIIO=OFF >&2
 fi
-cmake --build "$build" -j"$(nproc)" --target "${targets[@]}" >&2
+cmake --build "$build" -j"$(nproc)" --target cbr_fuzzers >&2
 
 scratch=$(mktemp -d "${TMPDIR:-/tmp}/cbr-fuzz-corpus.XXXXXX")
 trap 'rm -rf "$scratch"' EXIT
