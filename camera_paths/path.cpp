@@ -252,6 +252,9 @@ glm::dvec3 centripetal(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dv
     const double d0 = knotStep(p0, p1) > 0 ? knotStep(p0, p1) : d1;
     const double d2 = knotStep(p2, p3) > 0 ? knotStep(p2, p3) : d1;
     const double t0 = 0, t1 = d0, t2 = t1 + d1, t3 = t2 + d2;
+    // Steps 1e16 times apart (a key 1e72 away next to one a unit away) vanish in the sums,
+    // and the pyramid would divide by zero: such a segment is interpolated linearly.
+    if (!(t1 > t0 && t2 > t1 && t3 > t2)) return glm::mix(p1, p2, u);
     const double t = t1 + u * d1;
     const glm::dvec3 a1 = ((t1 - t) * p0 + (t - t0) * p1) / (t1 - t0);
     const glm::dvec3 a2 = ((t2 - t) * p1 + (t - t1) * p2) / (t2 - t1);
@@ -305,7 +308,11 @@ CameraPose keyPose(const Keyframe& k) {
 }  // namespace
 
 glm::dquat lookAtOrientation(const glm::dvec3& eye, const glm::dvec3& target) {
-    const glm::dvec3 forward = glm::normalize(target - eye);
+    glm::dvec3 d = target - eye;
+    // A direction whose squared length overflows (beyond 1e154) or underflows is scaled first.
+    const double len2 = glm::dot(d, d);
+    if (!std::isfinite(len2) || len2 < 1e-300) d /= std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+    const glm::dvec3 forward = glm::normalize(d);
     glm::dvec3 right = glm::cross(forward, glm::dvec3(0, 1, 0));
     // Looking straight up or down, "up" gives no right vector: keep +X, which is what a
     // camera facing -Z keeps when it pitches by 90 degrees.
@@ -509,7 +516,9 @@ CameraPose samplePose(const CameraPath& path, double t) {
     bool looked_at = false;
     if (a.target && b.target) {
         const glm::dvec3 target = interpolatePoint(path, first, last, j, u, keyTarget);
-        if (!closeTo(target, pose.position)) {
+        const glm::dvec3 d = target - pose.position;
+        const bool finite = std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z);
+        if (finite && !closeTo(target, pose.position)) {
             pose.orientation = lookAtOrientation(pose.position, target);
             looked_at = true;
         }

@@ -369,6 +369,21 @@ TEST(PathSample, ViewMatchesGlmLookAt) {
 
 // ---- cuts
 
+// Found by fuzz_camera_path: a key target 1e72 away beside keys a unit apart made the
+// centripetal knot steps 1e36 and 1, the sums lost the small one and the spline divided by
+// zero (a NaN orientation); a direction beyond 1e154 overflowed its squared length.
+TEST(PathSample, KeysFarApartGiveFiniteOrientations) {
+    for (double far : {1.4e72, 1e200}) {
+        const CameraPath path = pathOf({key(0, {-20, 4, -16}, {-4.8, 1, 0}), key(0.5, {-15, 5, -16}, {-3.6, 1, far}),
+                                        key(1, {-10, 5, -16}, {-2.4, 1, 0}), key(1.5, {-5, 5, -16}, {-1.2, 1, -1})});
+        for (double t = 0; t <= 1.5; t += 0.05) {
+            const glm::dquat q = samplePose(path, t).orientation;
+            EXPECT_TRUE(std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z))
+                << far << " at t = " << t;
+        }
+    }
+}
+
 TEST(PathCut, NoInterpolationAcrossACut) {
     const std::vector<Keyframe> before = {key(0, {0, 0, 0}, {0, 0, -1}), key(1, {1, 0, 0}, {1, 0, -1}),
                                           key(1.2, {1.5, 0.5, 0}, {1.5, 0, -1})};
