@@ -53,7 +53,10 @@ render_subset+='|Sweep\.BadParameter|Matrix\.BadShard|Stress\.UnknownCase)'
 
 status=0
 ctest --output-on-failure -j"$(nproc)" -L unit "$@" || status=1
-ctest --output-on-failure -j"$(nproc)" -L render -R "$render_subset" "$@" || status=1
+# A render test fails again once before it counts: under load, LeakSanitizer's exit-time
+# tracer itself crashed once in a cbrbench child ("Tracer caught signal 11 ... LeakSanitizer
+# has encountered a fatal error", Checkerboard.CutResetsHistory, session 10; 5 of 5 alone passed).
+ctest --output-on-failure -j"$(nproc)" -L render -R "$render_subset" --repeat until-pass:2 "$@" || status=1
 # The reconstruction against its CPU model: ctest runs it as one entry per image size
 # (tests/CMakeLists.txt), so its subset is a GoogleTest filter (CBR_ASAN_ALL_RENDER=1
 # runs the three entries above).
