@@ -152,7 +152,8 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
 // texture, a vertex array, a frame read back) is faulted in again page by page. On a
 // virtual machine a page fault costs several microseconds: loading the 1M-triangle test
 // scene took 1.04 s here, 186k faults for 730 MiB touched. Kept memory is reused instead.
-// The timed frames do not change (lavapipe, the default bench, measured both ways).
+// lavapipe allocates its per-frame memory with malloc too: its timed frames were 7-11%
+// faster with this (README, "Loading large scenes", session 11).
 void keepFreedMemory() {
     mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest accepted value
     mallopt(M_TRIM_THRESHOLD, 1 << 30);
