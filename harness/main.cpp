@@ -24,6 +24,8 @@
 #include "harness/stress.h"
 #include "harness/options.h"
 #include "harness/progress.h"
+#include "harness/score_seq.h"
+#include "harness/sequence_files.h"
 #include "harness/run.h"
 #include "renderer/scene/scene.h"
 #include "renderer/variants/variants.h"
@@ -228,6 +230,32 @@ int main(int argc, char** argv) {
     score->add_option("--exposure", score_exposure, "exposure of the display transform for linear (float) inputs")
         ->capture_default_str();
 
+    auto* score_seq = app.add_subcommand(
+        "score-seq", "PSNR, SSIM, FLIP, edge crawl and flicker of an image sequence against a reference sequence, "
+                     "per frame, with a report; exit 0 pass, 1 --warn crossed, 2 --fail crossed, 3 sizes differ, "
+                     "4 a file missing or unreadable, 5 a bad option (idiff's convention)");
+    cbr::harness::ScoreSeqOptions seq;
+    seq.flip_ppd = cbr::metrics::kFlipDefaultPpd;
+    score_seq->add_option("REFERENCE", seq.reference, "reference frames: a folder (natural name order) or a pattern "
+                                                      "such as ref/frame_%04d.png")->required();
+    score_seq->add_option("TEST", seq.test, "frames to score, the same way (two patterns: matched by frame number, "
+                                            "else by position)")->required();
+    score_seq->add_option("--motion", seq.motion, "float images (EXR) of the reference's motion in pixels, matched like "
+                                                  "TEST: the surface at p in frame t was at p + (R,G) in frame t-1 "
+                                                  "(default: one global translation per frame by phase correlation)");
+    score_seq->add_option("--motion-scale", seq.motion_scale, "SX,SY multiplying the motion files' R and G into that "
+                                                              "convention")->capture_default_str();
+    score_seq->add_option("--cuts", seq.cuts, "frame numbers that start a new shot (no edge-crawl pair across them)")
+        ->delimiter(',');
+    score_seq->add_option("--name", seq.name, "label of the test sequence (default: its folder's name)");
+    score_seq->add_option("--out", seq.out, "output folder, must not exist (default out/score-seq-<date-time>)");
+    score_seq->add_option("--flip-ppd", seq.flip_ppd, kFlipPpdHelp)->capture_default_str();
+    score_seq->add_option("--exposure", seq.exposure, "exposure of the display transform for linear (float) inputs")
+        ->capture_default_str();
+    score_seq->add_option("--warn", seq.warn, "METRIC=VALUE (repeatable): exit 1 when the worst frame crosses it; "
+                                              "METRIC psnr or ssim (crossed below), flip, eci or flicker (above)");
+    score_seq->add_option("--fail", seq.fail, "METRIC=VALUE (repeatable): exit 2 when the worst frame crosses it");
+
     addRunOptions(run, o, variant_list);
     std::string shard_flag;
     run->add_option("--shard", shard_flag,
@@ -271,7 +299,7 @@ int main(int argc, char** argv) {
         ->required();
 
     bool no_progress = false;
-    for (auto* c : {run, sweep, stress, merge, calibrate})
+    for (auto* c : {run, sweep, stress, merge, calibrate, score_seq})
         c->add_flag("--quiet", no_progress, "no progress bar on the terminal (none is drawn when stderr is not one)");
     cbr::harness::installInterruptHandler();
     try {
@@ -282,7 +310,9 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "cbrbench: %s (see cbrbench --help)\n", e.what());
-        // compare's callers read exit 2 as "inconclusive": its bad input is 3.
+        // compare's callers read exit 2 as "inconclusive": its bad input is 3; score-seq
+        // follows idiff, where 2 is a failed comparison.
+        if (score_seq->parsed()) return cbr::harness::kSeqBadOption;
         return compare->parsed() ? cbr::harness::kCompareBadInput : kExitBadInput;
     }
 
@@ -311,6 +341,18 @@ int main(int argc, char** argv) {
             cal.run.argv.assign(argv, argv + argc);
             cal.out = cal.run.out;
             return cbr::harness::runCalibrate(cal);
+        }
+        if (*score_seq) {
+            seq.argv.assign(argv, argv + argc);
+            try {
+                return cbr::harness::runScoreSeq(seq);
+            } catch (const cbr::harness::SequenceError& e) {
+                std::fprintf(stderr, "cbrbench: %s\n", e.what());
+                return e.code;
+            } catch (const std::invalid_argument& e) {
+                std::fprintf(stderr, "cbrbench: %s\n", e.what());
+                return cbr::harness::kSeqBadOption;
+            }
         }
         if (*score) return scoreImages(score_ref, score_img, score_crop, score_flip_ppd, score_exposure);
         if (*report) {

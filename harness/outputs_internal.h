@@ -19,6 +19,9 @@ inline reports::Cell optional(const std::optional<double>& v) { return v ? repor
 // Reports NaNs that reached a table (written as empty cells) instead of hiding them.
 size_t reportNaNs(const reports::CsvTable& table, const char* file);
 
+// Now in UTC, ISO 8601 (run.json `date`).
+std::string isoDate();
+
 // Each returns the non-finite cells it wrote as empty (run.json non_finite_cells).
 size_t writeFramesCsv(const std::filesystem::path& file, const RunResults& r, uint32_t width, uint32_t height);
 size_t writeSummaryCsv(const std::filesystem::path& file, const RunResults& r,

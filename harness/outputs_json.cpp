@@ -65,13 +65,6 @@ std::string pathHash(const std::vector<paths::CameraPose>& poses, const std::vec
     return hex(h);
 }
 
-std::string isoDate() {
-    std::time_t now = std::time(nullptr);
-    char buf[32];
-    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-    return buf;
-}
-
 nlohmann::json number(const std::optional<double>& v) {
     if (!v) return nullptr;
     if (!std::isfinite(*v)) return nullptr;  // JSON has no inf: null plus an *_is_inf flag
@@ -281,6 +274,13 @@ std::vector<std::string> fileList(const RunContext& rc) {
 }
 
 }  // namespace
+
+std::string isoDate() {
+    std::time_t now = std::time(nullptr);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    return buf;
+}
 
 void writeRunJson(const std::filesystem::path& file, const RunContext& rc, const std::vector<VariantSummary>& summaries,
                   size_t nan_cells) {

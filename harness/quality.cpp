@@ -99,6 +99,10 @@ void QualityScorer::score(const std::string& variant, bool is_reference, FrameRo
         c.pending.emplace(frame.index, std::make_pair(&row, frame));
         for (auto it = c.pending.find(c.next); it != c.pending.end(); it = c.pending.find(c.next)) {
             crawlStep(variant, *it->second.first, it->second.second);
+            if (release_references_) {
+                std::lock_guard reference_lock(mutex_);
+                reference_.at(size_t(c.next)).reset();
+            }
             c.pending.erase(it);
             ++c.next;
         }

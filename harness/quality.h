@@ -35,6 +35,9 @@ public:
     ~QualityScorer();
 
     void setReference(size_t frame, Bytes rgba);
+    // Drop each reference frame once its edge-crawl step is done, so a long sequence holds
+    // only the frames in flight (score-seq; valid while one variant is scored).
+    void releaseReferencesAfterUse() { release_references_ = true; }
     bool hasReference(size_t frame) const;
     // Scores `frame` of `variant` into `row` (which must outlive finish()). `is_reference`:
     // the variant is the reference itself (PSNR inf, SSIM 1, ECI 0, FLIP 0 without computing).
@@ -55,6 +58,7 @@ private:
     WorkerPool& workers_;
     mutable std::mutex mutex_;
     std::vector<Bytes> reference_;
+    bool release_references_ = false;
     std::map<std::string, std::unique_ptr<Chain>> chains_;
 };
 

@@ -25,6 +25,8 @@ DisplayImage readDisplayImage(const fs::path& file, float exposure) {
     return oiio().read_display_image(file, exposure);
 }
 
+FloatImage readFloatImage(const fs::path& file) { return oiio().read_float_image(file); }
+
 void writeFloatImage(const fs::path& file, int width, int height, const std::vector<float>& rgba) {
     oiio().write_float_image(file, width, height, rgba);
 }
@@ -37,6 +39,10 @@ DisplayImage readDisplayImage(const fs::path& file, float) {
     if (ext != ".png")
         throw std::invalid_argument(file.string() + ": this build reads 8-bit PNG only (built without OpenImageIO)");
     return {readPng(file), ""};
+}
+
+FloatImage readFloatImage(const fs::path& file) {
+    throw std::invalid_argument(file.string() + ": float images need OpenImageIO (this build has none)");
 }
 
 void writeFloatImage(const fs::path& file, int, int, const std::vector<float>&) {

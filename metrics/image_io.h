@@ -50,6 +50,19 @@ uint8_t displayByte(float linear, float exposure);
 // file for a missing, unreadable or unsupported file.
 DisplayImage readDisplayImage(const std::filesystem::path& file, float exposure = 1.0f);
 
+// A float image as stored (all channels, no display transform): motion vectors, depth.
+struct FloatImage {
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    std::vector<float> data;  // channels per pixel, row-major, top row first
+};
+
+// Any format OpenImageIO reads, every channel as float (8- and 16-bit integers as their
+// value / (2^bits - 1), as OpenImageIO converts them). Throws std::invalid_argument naming
+// the file for a missing, unreadable or empty file; without OpenImageIO always.
+FloatImage readFloatImage(const std::filesystem::path& file);
+
 // Writes a float RGBA image (linear values) as EXR or TIFF by extension: for tests and
 // captures. Throws std::runtime_error without OpenImageIO or on failure.
 void writeFloatImage(const std::filesystem::path& file, int width, int height, const std::vector<float>& rgba);

@@ -161,6 +161,24 @@ DisplayImage readDisplayImage(const fs::path& file, float exposure) {
     return out;
 }
 
+FloatImage readFloatImage(const fs::path& file) {
+    std::error_code ec;
+    if (!fs::exists(file, ec)) throw std::invalid_argument(file.string() + ": no such file");
+    if (!fs::is_regular_file(file, ec)) throw std::invalid_argument(file.string() + ": not a regular file");
+    auto in = OIIO::ImageInput::open(file.string());
+    if (!in) refuse(file, "unreadable (" + OIIO::geterror() + ")");
+    const OIIO::ImageSpec spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels < 1) refuse(file, "empty image");
+    FloatImage out;
+    out.width = spec.width;
+    out.height = spec.height;
+    out.channels = std::min(spec.nchannels, 4);
+    out.data.resize(size_t(out.width) * size_t(out.height) * size_t(out.channels));
+    if (!in->read_image(0, 0, 0, out.channels, OIIO::TypeDesc::FLOAT, out.data.data())) refuse(file, in->geterror());
+    in->close();
+    return out;
+}
+
 void writeFloatImage(const fs::path& file, int width, int height, const std::vector<float>& rgba) {
     if (width <= 0 || height <= 0 || rgba.size() != size_t(width) * size_t(height) * 4)
         throw std::invalid_argument("writeFloatImage " + file.string() + ": size mismatch");
@@ -179,6 +197,6 @@ void writeFloatImage(const fs::path& file, int width, int height, const std::vec
 extern "C" const cbr::metrics::OiioApi* cbr_oiio_api() {
     namespace m = cbr::metrics::oiio_module;
     static const cbr::metrics::OiioApi api{m::writePng, m::readPng, m::readDisplayImage, m::writeFloatImage,
-                                           m::imageIoBackend};
+                                           m::readFloatImage, m::imageIoBackend};
     return &api;
 }

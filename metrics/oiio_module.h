@@ -17,6 +17,7 @@ struct OiioApi {
     Rgba8Image (*read_png)(const std::filesystem::path& file);
     DisplayImage (*read_display_image)(const std::filesystem::path& file, float exposure);
     void (*write_float_image)(const std::filesystem::path& file, int width, int height, const std::vector<float>& rgba);
+    FloatImage (*read_float_image)(const std::filesystem::path& file);
     const char* (*backend)();  // "OpenImageIO x.y.z", of the library the module loaded
 };
 

@@ -67,3 +67,24 @@ private:
 double pooledEci(const std::vector<CrawlFrame>& frames);
 
 }  // namespace cbr::metrics
+
+namespace cbr::metrics {
+
+// One translation for the whole frame, for sequences that come without motion vectors
+// (`cbrbench score-seq` without --motion): the surface at pixel p of frame t was at
+// p + (dx, dy) in frame t-1, as MotionField::motion. Estimated by phase correlation of the
+// two frames' BT.709 luma under a Hann window (OpenCV's phaseCorrelate), to sub-pixel
+// precision; `response` in [0, 1] is the correlation peak's strength (near 0: no single
+// translation explains the change, e.g. a cut, parallax or an object moving alone).
+struct GlobalShift {
+    double dx = 0, dy = 0;
+    double response = 0;
+};
+// Throws std::invalid_argument when the images differ in size or are smaller than 8x8.
+GlobalShift estimateGlobalShift(const Image& previous, const Image& current);
+
+// A motion field that moves every pixel by (dx, dy), with equal depths everywhere (no
+// pixel is treated as disoccluded: without depth there is nothing to test).
+MotionField uniformMotion(int width, int height, double dx, double dy);
+
+}  // namespace cbr::metrics

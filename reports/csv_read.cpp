@@ -61,10 +61,10 @@ std::optional<double> parseNumberCell(const std::string& cell, bool& ok) {
 
 bool isReportNumericColumn(const std::string& name) {
     static const char* kPrefixes[] = {"gpu_ms", "psnr", "ssim", "flip", "eci", "flicker", "crawl", "px_", "speedup",
-                                      "mse", "fs_invocations", "render_", "time_s", "width", "height"};
+                                      "mse", "fs_invocations", "render_", "time_s", "width", "height", "shift_"};
     for (const char* p : kPrefixes)
         if (name.rfind(p, 0) == 0) return true;
-    return name == "frames" || name == "repeats" || name == "repeat" || name == "frame";
+    return name == "frames" || name == "repeats" || name == "repeat" || name == "frame" || name == "frame_number";
 }
 
 CsvData readCsv(const std::filesystem::path& file, const NumericColumn& numeric,

@@ -233,6 +233,7 @@ std::string passesSection(const RunData& d) {
 
 std::string reportHtml(const std::filesystem::path& run_dir) {
     const RunData d = loadRun(run_dir);
+    if (isSequence(d)) return sequenceReportHtml(d);
     const std::string scene = jsonText(jsonAt(d.run, "/scene/name"));
     const std::string path = jsonText(jsonAt(d.run, "/path/name"));
     const std::string res = jsonText(jsonAt(d.run, "/settings/width")) + "\u00d7" +

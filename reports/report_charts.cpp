@@ -102,8 +102,11 @@ std::string timeSection(const RunData& d) {
 
 std::string qualitySection(const RunData& d) {
     std::string out = "<section id=\"quality\"><h2>Quality per frame</h2>";
-    out += "<p class=\"note\">Against the reference (<code>full</code>, not drawn) at the same frame, repetition 0 "
-           "(rendering is deterministic). PSNR of a frame identical to the reference is infinite: it sits on the "
+    out += std::string("<p class=\"note\">") +
+           (isSequence(d) ? "Against the reference sequence's frame of the same position."
+                          : "Against the reference (<code>full</code>, not drawn) at the same frame, repetition 0 "
+                            "(rendering is deterministic).") +
+           " PSNR of a frame identical to the reference is infinite: it sits on the "
            "\u221e lane at the top (\u25b2) and never stretches the scale.</p>";
     std::vector<std::string> shown;  // variants with any per-frame quality value
     for (const auto& v : d.variants)

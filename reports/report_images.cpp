@@ -66,9 +66,9 @@ std::string img(const Embedded& e, const std::string& alt, const std::string& cl
 // Reference over variant; the slider uncovers the reference from the left.
 std::string wipe(const Embedded& ref, const Embedded& var, const std::string& variant) {
     std::string out = "<div class=\"wipe-box\" style=\"max-width:" + std::to_string(displayWidth(var)) + "px\">";
-    out += "<div class=\"wipe\">" + img(var, variant + " frame") + img(ref, "reference (full) frame", "wipe-top") +
+    out += "<div class=\"wipe\">" + img(var, variant + " frame") + img(ref, "reference frame", "wipe-top") +
            "<div class=\"wipe-bar\"></div></div>";
-    out += "<div class=\"wipe-controls\"><span>\u2190 reference (full)</span><input type=\"range\" min=\"0\" "
+    out += "<div class=\"wipe-controls\"><span>\u2190 reference</span><input type=\"range\" min=\"0\" "
            "max=\"100\" value=\"50\" aria-label=\"wipe between reference and " + esc(variant) +
            "\"><span>" + esc(variant) + " \u2192</span><button type=\"button\" class=\"flip\">flip</button></div>";
     return out + "</div>";

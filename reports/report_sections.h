@@ -26,6 +26,11 @@ std::string qualitySection(const RunData& d);
 std::string pixelClassSection(const RunData& d);
 std::string paretoSection(const RunData& d);
 
+// report_sequence.cpp: the page of a score-seq folder (run.json kind "score-seq").
+std::string sequenceReportHtml(const RunData& d);
+// True for a score-seq folder.
+bool isSequence(const RunData& d);
+
 // report_images.cpp: worst-frame comparisons.
 std::string imagesSection(const RunData& d);
 

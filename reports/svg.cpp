@@ -159,8 +159,18 @@ std::string lineChartSvg(const LineChart& c) {
 
     size_t points_total = 0;
     for (const auto& s : c.series) points_total += s.y.size();
+    // Long sequences (hundreds to thousands of frames): a dot per point would hide the line,
+    // so only each series' lowest and highest points get a dot, with their value on hover.
     const bool dots = points_total <= 240;
     for (const auto& s : c.series) {
+        std::optional<size_t> low, high;
+        if (!dots)
+            for (size_t i = 0; i < s.y.size() && i < c.x.size(); ++i) {
+                const auto& v = s.y[i];
+                if (!v || !std::isfinite(*v)) continue;
+                if (!low || *v < *s.y[*low]) low = i;
+                if (!high || *v > *s.y[*high]) high = i;
+            }
         std::string color = esc(s.color);
         out += "<g class=\"series\">";
         std::string path;
@@ -187,7 +197,7 @@ std::string lineChartSvg(const LineChart& c) {
                 out += triangle(xs(c.x[i]), *v > 0 ? lane_y : f.y0(), s.color, tip);
             } else if (*v < lo || *v > hi) {
                 out += triangle(xs(c.x[i]), ys(std::clamp(*v, lo, hi)), s.color, tip + " (clipped)");
-            } else if (dots) {
+            } else if (dots || i == low || i == high) {
                 out += "<circle cx=\"" + n1(xs(c.x[i])) + "\" cy=\"" + n1(ys(*v)) + "\" r=\"2.2\" fill=\"" + color +
                        "\"><title>" + esc(tip) + "</title></circle>";
             }
