@@ -43,6 +43,7 @@ struct SeqFrameInfo {
     long number = 0;
     fs::path reference, test;
     double shift_dx = 0, shift_dy = 0, shift_response = 0;
+    bool shift_rejected = false;  // the estimate explained less than no motion: 0 used
     bool cut = false;
 };
 
@@ -192,6 +193,7 @@ Scored scoreFrames(const ScoreSeqOptions& o, const SeqInputs& in, RunResults& re
                 info.shift_dx = shift.dx;
                 info.shift_dy = shift.dy;
                 info.shift_response = shift.response;
+                info.shift_rejected = shift.rejected;
             }
             analysis = uniformAnalysis(s.width, s.height, info.shift_dx, info.shift_dy);
             previous_reference = std::move(cur);
@@ -257,7 +259,7 @@ void writeSeqFramesCsv(const fs::path& file, const RunResults& r, const std::vec
     reports::CsvTable t({"variant", "repeat", "frame", "frame_number", "reference_file", "test_file", "psnr_db", "mse",
                          "ssim", "ssim_luma", "flip_mean", "flip_q1", "flip_median", "flip_q3", "eci",
                          "flicker_ratio", "crawl_valid_fraction", "motion", "shift_dx", "shift_dy",
-                         "shift_response", "cut", "note"});
+                         "shift_response", "global_shift_rejected", "cut", "note"});
     for (size_t i = 0; i < r.rows.size(); ++i) {
         const auto& row = r.rows[i];
         const auto& q = row.quality;
@@ -285,6 +287,7 @@ void writeSeqFramesCsv(const fs::path& file, const RunResults& r, const std::vec
             m["shift_dx"] = info.shift_dx;
             m["shift_dy"] = info.shift_dy;
             m["shift_response"] = info.shift_response;
+            m["global_shift_rejected"] = info.shift_rejected;
         }
         m["cut"] = info.cut;
         m["note"] = q.note + row.note;
@@ -376,7 +379,9 @@ json runJson(const ScoreSeqOptions& o, const SeqInputs& in, const Scored& s, con
     json motion = {{"source", in.motion_files.empty() ? "global shift" : "files"}};
     if (in.motion_files.empty())
         motion["method"] = "one translation per frame pair: phase correlation of the reference's luma (OpenCV "
-                           "phaseCorrelate, Hann window); no disocclusion test (no depth)";
+                           "phaseCorrelate, Hann window), refined by Gauss-Newton steps on the sigma-1 blurred luma, "
+                           "kept where it explains the reference's change better than no motion (else 0); no "
+                           "disocclusion test (no depth)";
     else
         motion.update({{"files", o.motion}, {"scale", {in.motion_sx, in.motion_sy}},
                        {"convention", "the first two channels x scale: the surface at pixel p of frame t was at p + "

@@ -63,6 +63,25 @@ cv::Point2d refine(const cv::Mat& previous, const cv::Mat& current, cv::Point2d 
     return m;
 }
 
+// Whether current(p) = previous(p + m) explains the reference's change better than no motion:
+// the mean squared differences of both, on the blurred luma, over the same interior pixels
+// (those whose source under m lies inside), at least a quarter of the frame.
+bool explainsBetterThanNoMotion(const cv::Mat& a, const cv::Mat& b, cv::Point2d m) {
+    const int margin = 3;
+    double moved = 0, still = 0;
+    size_t n = 0;
+    for (int y = margin; y < b.rows - margin; ++y)
+        for (int x = margin; x < b.cols - margin; ++x) {
+            const double sx = x + m.x, sy = y + m.y;
+            if (sx < margin || sy < margin || sx > a.cols - 1 - margin || sy > a.rows - 1 - margin) continue;
+            const double r = b.at<double>(y, x) - sample(a, sx, sy), r0 = b.at<double>(y, x) - a.at<double>(y, x);
+            moved += r * r;
+            still += r0 * r0;
+            ++n;
+        }
+    return n * 4 >= size_t(b.rows) * size_t(b.cols) && moved < still;
+}
+
 }  // namespace
 
 GlobalShift estimateGlobalShift(const Image& previous, const Image& current) {
@@ -83,10 +102,19 @@ GlobalShift estimateGlobalShift(const Image& previous, const Image& current) {
     GlobalShift s;
     if (std::isfinite(d.x) && std::isfinite(d.y)) {
         const cv::Point2d m = refine(a, b, {-d.x, -d.y});
-        s.dx = m.x;
-        s.dy = m.y;
+        // Kept only where it explains the reference's change better than no motion at all
+        // (zoom, parallax or a cut give a peak somewhere, but not a useful one).
+        cv::Mat ba, bb;
+        cv::GaussianBlur(a, ba, cv::Size(0, 0), 1.0, 1.0, cv::BORDER_REFLECT);
+        cv::GaussianBlur(b, bb, cv::Size(0, 0), 1.0, 1.0, cv::BORDER_REFLECT);
+        if (explainsBetterThanNoMotion(ba, bb, m)) {
+            s.dx = m.x;
+            s.dy = m.y;
+        } else {
+            s.rejected = true;
+        }
     }
-    s.response = std::isfinite(response) ? response : 0.0;
+    s.response = std::isfinite(response) ? std::clamp(response, 0.0, 1.0) : 0.0;
     // A flat frame has no peak: report no motion and no confidence rather than noise.
     if (!std::isfinite(d.x) || !std::isfinite(d.y)) s.response = 0.0;
     return s;

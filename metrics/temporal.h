@@ -75,10 +75,15 @@ namespace cbr::metrics {
 // p + (dx, dy) in frame t-1, as MotionField::motion. Estimated by phase correlation of the
 // two frames' BT.709 luma under a Hann window (OpenCV's phaseCorrelate), to sub-pixel
 // precision; `response` in [0, 1] is the correlation peak's strength (near 0: no single
-// translation explains the change, e.g. a cut, parallax or an object moving alone).
+// translation explains the change, e.g. a cut, parallax or an object moving alone). The
+// estimate is refined by Gauss-Newton steps on the sigma-1 blurred luma and kept only where it
+// leaves a smaller mean squared residual than no motion.
 struct GlobalShift {
     double dx = 0, dy = 0;
     double response = 0;
+    // The estimate explained the change no better than no motion (zoom, parallax, a cut):
+    // dx and dy are then 0.
+    bool rejected = false;
 };
 // Throws std::invalid_argument when the images differ in size or are smaller than 8x8.
 GlobalShift estimateGlobalShift(const Image& previous, const Image& current);

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string>
 
+#include "metrics/image_io.h"
 #include "tests/render/bench_runner.h"
 
 namespace fs = std::filesystem;
@@ -50,4 +51,23 @@ TEST(Progress, BarOnATerminalWithRateAndNothingElsewhere) {
     ASSERT_EQ(pipe.exit_code, 0) << pipe.err;
     EXPECT_EQ(pipe.err.find(kErase), std::string::npos) << pipe.err;
     EXPECT_EQ(pipe.out.find(kErase), std::string::npos);
+}
+
+TEST(Progress, ScoreSeqDrawsItsBarOnATerminal) {
+    if (runCommand("command -v script").exit_code != 0) GTEST_SKIP() << "script (util-linux) missing";
+    auto work = cbr::test::scratchDir("progress-seq");
+    for (const char* d : {"ref", "test"}) fs::create_directories(work / d);
+    for (int t = 0; t < 8; ++t) {
+        cbr::metrics::Rgba8Image img{32, 24, std::vector<uint8_t>(32 * 24 * 4, uint8_t(40 + t))};
+        cbr::metrics::writePng(work / "ref" / ("f" + std::to_string(t) + ".png"), img);
+        img.pixels[4 * size_t(t)] = 0;
+        cbr::metrics::writePng(work / "test" / ("f" + std::to_string(t) + ".png"), img);
+    }
+    auto tty = onTerminal("score-seq ref test --out tty", work);
+    ASSERT_EQ(tty.exit_code, 0) << tty.out;
+    EXPECT_NE(tty.out.find("/8 frames"), std::string::npos) << tty.out;
+    EXPECT_NE(tty.out.find(kErase + "score-seq: 8 frames"), std::string::npos) << tty.out;
+    auto quiet = onTerminal("score-seq ref test --out quiet --quiet", work);
+    ASSERT_EQ(quiet.exit_code, 0) << quiet.out;
+    EXPECT_EQ(quiet.out.find(kErase), std::string::npos) << quiet.out;
 }
