@@ -5,6 +5,7 @@
 
 #include "harness/outputs_internal.h"
 #include "harness/sweep.h"
+#include "renderer/variants/variants.h"
 #include "reports/sweep.h"
 
 namespace cbr::harness {
@@ -177,10 +178,10 @@ void sweepSettingCells(std::map<std::string, Cell>& row, const VariantRun& vr, c
         row["cso_tolerance"] = s.cso_tolerance;
         row["cso_mode"] = rc.options.cso_mode;
     }
-    if (vr.variant == "cbr-aso" || vr.variant == "cbr-cso") {
+    if (variants::isCheckerboardVariant(vr.variant)) {
         row["cbr_lod_bias"] = rc.options.cbr_lod_bias;
         row["cbr_route"] = rc.options.cbr_route;
-        row["cbr_history"] = rc.options.cbr_history;
+        row["cbr_history"] = vr.variant == "cbr-clip" ? std::string("full") : rc.options.cbr_history;
     }
     for (const auto& st : vr.settings) {
         std::string column = st.name;

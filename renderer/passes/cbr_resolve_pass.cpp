@@ -1,6 +1,8 @@
 // The `cbr_resolve` pass (fused: `cbr_resolve_tonemap`) and the untimed `cbr_class_map`.
 #include "renderer/passes/cbr_resolve_pass.h"
 
+#include <stdexcept>
+
 #include "renderer/shaders/cbr_pattern.h"
 #include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
@@ -72,6 +74,8 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
     r.check_occlusion = desc.check_occlusion;
     r.out = out;
     r.full_history = desc.full_history;
+    if (desc.clip_only && !desc.full_history)
+        throw std::logic_error("the clip rule needs the full history");
     if (desc.full_history && desc.impl == ResolveImpl::Reference)
         throw vk::Unsupported("--cbr-history full: the reference resolve keeps the quarter-res history; use "
                               "--resolve-impl fused or separate");
@@ -108,7 +112,7 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
     bool has_cfb = desc.deferred && sets[0].cfb.image;
     bool tiled = desc.impl != ResolveImpl::Reference;
     auto spec = [&](Output output, int parity) {
-        std::vector<vk::SpecConstant> s = {{/* CHECK_OCCLUSION= */ 1, desc.check_occlusion ? 1 : 0},
+        std::vector<vk::SpecConstant> s = {{/* CHECK_OCCLUSION= */ 1, desc.clip_only ? 2 : desc.check_occlusion ? 1 : 0},
                                            {/* CSO_ABSOLUTE= */ 2, desc.cso_absolute ? 1 : 0},
                                            {/* HAS_MOTION= */ 3, desc.has_motion ? 1 : 0}};
         if (desc.deferred) s.push_back({/* HAS_CFB= */ 4, has_cfb ? 1 : 0});

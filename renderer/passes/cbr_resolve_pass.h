@@ -41,6 +41,7 @@ struct CbrResolveDesc {
     bool full_history = false;
     bool history_catmull_rom = true;  // the full history's read filter, else bilinear
     VkExtent2D full_extent{};       // output size, for the full history images
+    bool clip_only = false;         // `clip` (full history only): reuse wherever on screen, the clip rejects
 };
 
 // Push constants of the reconstruction: the route's pattern rows, the CSO tolerance and

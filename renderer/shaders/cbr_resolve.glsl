@@ -20,7 +20,7 @@
 layout(constant_id = 20) const int GROUP = 16;
 layout(local_size_x_id = 20, local_size_y_id = 20) in;
 
-layout(constant_id = 1) const int CHECK_OCCLUSION = 0;  // 0: ASO, 1: CSO
+layout(constant_id = 1) const int CHECK_OCCLUSION = 0;  // 0: ASO, 1: CSO, 2: none (clip; full history)
 layout(constant_id = 2) const int CSO_ABSOLUTE = 0;     // 0: relative tolerance, 1: scene units
 layout(constant_id = 3) const int HAS_MOTION = 1;       // 0: camera motion from depth only
 const float kMotionFromDepth = -1.0e30;  // motion target: no moving object here (scene_pass.h)
@@ -241,7 +241,7 @@ vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls
     int prev_s = max(prev_entry.x, 0);
     vec3 prev_color = FETCH_PREV_COLOR(prev_qc, prev_s);
     bool occluded = any(notEqual(pp >> 1, p >> 1));  // ASO: any quarter-res motion means missing
-    if (CHECK_OCCLUSION != 0) {
+    if (CHECK_OCCLUSION == 1) {
         // CSO: view-space depths, so the test does not depend on where the camera looks.
         float d_prev = viewDepth(FETCH(prev_depth, prev_qc, prev_s).r, frame.depth_params.zw);
         float d_avg = f.depth_sum / float(max(f.depth_count, 1));
@@ -256,6 +256,9 @@ vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls
     if (FULL_HISTORY != 0) {
         // Every pixel of frame N-1 was resolved: no missing parity, no lost column. The
         // history is clipped to this frame's shaded neighbours; ASO/CSO decide as above.
+        // `clip` (TAA's rule): no occlusion test; the clip to this frame's neighbours is
+        // the only rejection.
+        occluded = CHECK_OCCLUSION == 2 ? false : occluded;
         bool moved;
         vec3 history = HISTORY_CATMULL_ROM != 0 ? sampleHistory(prev_pos, vec2(size))
                                                 : textureLod(history_prev, prev_pos / vec2(size), 0.0).rgb;

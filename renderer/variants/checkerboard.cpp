@@ -41,10 +41,17 @@ int resolveGroup(const vk::Context& ctx) {
     return ctx.description.is_lavapipe ? 16 : 8;
 }
 
+// How an unshaded pixel decides against its reprojected history (method/cbr.md; `clip` is
+// TAA's rule, issue 17).
+enum class Rule { Aso, Cso, Clip };
+
 class CheckerboardVariant final : public VariantRenderer {
 public:
-    CheckerboardVariant(vk::Context& ctx, const gpu::GpuScene& scene, const render::Settings& s, bool cso)
-        : ctx_(ctx), scene_(scene), settings_(s), cso_(cso), deferred_(s.deferred) {
+    CheckerboardVariant(vk::Context& ctx, const gpu::GpuScene& scene, const render::Settings& s, Rule rule)
+        : ctx_(ctx), scene_(scene), settings_(s), cso_(rule == Rule::Cso), clip_(rule == Rule::Clip),
+          deferred_(s.deferred) {
+        // `clip` needs a history at every pixel: always the full-resolution one.
+        if (clip_) settings_.cbr_full_history = true;
         route_ = chooseRoute(ctx, s.cbr_route);
         msaa_ = route_.route != CBR_ROUTE_MULTIVIEW;
         has_motion_ = scene.cpu->info.animated_instances > 0;
@@ -106,6 +113,7 @@ public:
         passes::CbrResolveDesc rdesc;
         rdesc.route = route_.route;
         rdesc.check_occlusion = cso_;
+        rdesc.clip_only = clip_;
         rdesc.cso_absolute = s.cso_absolute;
         rdesc.cso_tolerance = float(s.cso_tolerance);
         rdesc.has_motion = has_motion_;
@@ -115,7 +123,7 @@ public:
         rdesc.exposure = s.exposure;
         rdesc.pass_through = s.debug_pixel_id;
         rdesc.group = resolveGroup(ctx);
-        rdesc.full_history = s.cbr_full_history;
+        rdesc.full_history = settings_.cbr_full_history;
         rdesc.full_extent = full;
         rdesc.history_catmull_rom = s.cbr_history_catmull_rom;
         resolve_ = passes::createCbrResolve(ctx, rdesc, scene.frame_layout, sets_, {&hdr_, &display_, &class_});
@@ -213,7 +221,10 @@ public:
             {"route_reason", route_.reason},
             {"quarter_resolution", std::to_string(quarter_.width) + "x" + std::to_string(quarter_.height)},
             {"lod_bias", std::to_string(settings_.cbr_lod_bias)},
-            {"occlusion_rule", cso_ ? "CSO: view-space depth test" : "ASO: any quarter-res motion is missing"},
+            {"occlusion_rule", clip_ ? "clip: no occlusion test; history reused wherever its reprojection is on "
+                                       "screen, the YCoCg clip the only rejection (TAA's rule; always the full history)"
+                               : cso_ ? "CSO: view-space depth test"
+                                      : "ASO: any quarter-res motion is missing"},
             {"motion", !has_motion_ ? "camera motion from depth reprojection (static scene)"
                        : settings_.resolve_impl == render::ResolveImpl::Reference
                            ? "per-pixel motion vectors written by every opaque draw (moving objects present)"
@@ -264,6 +275,7 @@ private:
     const gpu::GpuScene& scene_;
     render::Settings settings_;
     bool cso_;
+    bool clip_;
     RouteChoice route_;
     bool msaa_ = false;
     bool has_motion_ = false;
@@ -352,12 +364,17 @@ std::pair<glm::vec2, glm::vec2> samplePositions(int parity) {
 
 std::unique_ptr<VariantRenderer> buildCheckerboardAso(vk::Context& ctx, const gpu::GpuScene& scene,
                                                       const render::Settings& s) {
-    return std::make_unique<CheckerboardVariant>(ctx, scene, s, false);
+    return std::make_unique<CheckerboardVariant>(ctx, scene, s, Rule::Aso);
 }
 
 std::unique_ptr<VariantRenderer> buildCheckerboardCso(vk::Context& ctx, const gpu::GpuScene& scene,
                                                       const render::Settings& s) {
-    return std::make_unique<CheckerboardVariant>(ctx, scene, s, true);
+    return std::make_unique<CheckerboardVariant>(ctx, scene, s, Rule::Cso);
+}
+
+std::unique_ptr<VariantRenderer> buildCheckerboardClip(vk::Context& ctx, const gpu::GpuScene& scene,
+                                                       const render::Settings& s) {
+    return std::make_unique<CheckerboardVariant>(ctx, scene, s, Rule::Clip);
 }
 
 }  // namespace cbr::variants

@@ -10,6 +10,10 @@ namespace cbr::variants {
 
 std::unique_ptr<VariantRenderer> buildCheckerboardAso(vk::Context& ctx, const gpu::GpuScene& scene,
                                                       const render::Settings& s);
+// `cbr-clip`: the full-resolution history reused wherever it reprojects on screen, the
+// YCoCg clip as the only rejection (TAA's rule applied to the checkerboard's unshaded pixels).
+std::unique_ptr<VariantRenderer> buildCheckerboardClip(vk::Context& ctx, const gpu::GpuScene& scene,
+                                                       const render::Settings& s);
 std::unique_ptr<VariantRenderer> buildCheckerboardCso(vk::Context& ctx, const gpu::GpuScene& scene,
                                                       const render::Settings& s);
 

@@ -12,8 +12,10 @@ namespace {
 constexpr Variant kVariants[] = {
     {"full", "native resolution, one sample per pixel (the reference)", buildFull},
     {"drr", "dynamic resolution: scaled render, upscaled to output size", buildDynamicResolution},
-    {"cbr-aso", "checkerboard, assume shading occluded on quarter-res motion", buildCheckerboardAso},
-    {"cbr-cso", "checkerboard, check shading occlusion with a view-space depth test", buildCheckerboardCso},
+    {"cbr-aso", "checkerboard, assume shading occluded on quarter-res motion", buildCheckerboardAso, true},
+    {"cbr-cso", "checkerboard, check shading occlusion with a view-space depth test", buildCheckerboardCso, true},
+    {"cbr-clip", "checkerboard with the full-res history, reused wherever on screen, the colour clip its only "
+                 "rejection (TAA's rule)", buildCheckerboardClip, true},
     {"taau", "temporal upsampling: jittered scaled render accumulated into a full-res history", buildTaau},
 };
 
@@ -31,6 +33,12 @@ std::string variantNames() {
     std::string s;
     for (const auto& v : kVariants) s += (s.empty() ? "" : ", ") + std::string(v.name);
     return s;
+}
+
+bool isCheckerboardVariant(std::string_view name) {
+    for (const auto& v : kVariants)
+        if (v.name == name) return v.checkerboard;
+    return false;
 }
 
 const Variant& findVariant(std::string_view name) {

@@ -63,12 +63,15 @@ struct Variant {
     std::string_view name;         // kebab-case, the user-visible key
     std::string_view description;
     BuildFn build;
+    bool checkerboard = false;     // takes the checkerboard settings (route, LOD bias, history)
 };
 
 std::span<const Variant> allVariants();
 // Throws std::invalid_argument naming the accepted variants for an unknown name.
 const Variant& findVariant(std::string_view name);
 std::string variantNames();  // "full, drr, ..."
+// A checkerboard variant of the table (false for unknown names).
+bool isCheckerboardVariant(std::string_view name);
 // The supersampled reference (`--reference ssaa`), shaped like a variant row but not in the table.
 const Variant& supersampledReference();
 

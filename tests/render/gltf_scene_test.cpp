@@ -73,6 +73,54 @@ TEST(GltfScene, MovingBoxOccludesForCsoAndAStillCopyDoesNot) {
     std::printf("px_occluded: moving %.5f, still %.5f\n", occluded, meanColumn(copy.frames, "cbr-cso", "px_occluded"));
 }
 
+// The sliding box's colour (0.9, 0.3, 0.1 lit): red well above blue. Wall and floor are not.
+bool boxColoured(const uint8_t* p) { return p[0] > p[2] + 60 && p[0] > p[1] + 30; }
+
+// Pixels the box left between frame t-1 and t of `full` (box-coloured then, background now):
+// the share of them the variant still shows box-coloured in frame t (its trail), over the run.
+double trailShare(const std::filesystem::path& run, const std::string& variant, int frames) {
+    size_t vacated = 0, trail = 0;
+    for (int t = 1; t < frames; ++t) {
+        char a[64], b[64], v[64];
+        std::snprintf(a, sizeof a, "frames/full_%04d.png", t - 1);
+        std::snprintf(b, sizeof b, "frames/full_%04d.png", t);
+        std::snprintf(v, sizeof v, "frames/%s_%04d.png", variant.c_str(), t);
+        const auto before = metrics::readPng(run / a), now = metrics::readPng(run / b), out = metrics::readPng(run / v);
+        for (size_t i = 0; i < now.pixels.size(); i += 4)
+            if (boxColoured(&before.pixels[i]) && !boxColoured(&now.pixels[i])) {
+                ++vacated;
+                trail += boxColoured(&out.pixels[i]);
+            }
+    }
+    EXPECT_GT(vacated, 100u) << "the box should vacate pixels every frame";
+    return vacated ? double(trail) / double(vacated) : 0.0;
+}
+
+// Issue 17: where the box was, the history holds the box; the full history's colour clip
+// keeps that trail below the quarter history's, for cbr-cso and for the clip-only rule.
+TEST(GltfScene, ClippingKeepsTheMovingBoxsTrailBelowTheQuarterHistory) {
+    const auto dir = scratchDir("gltf-trail");
+    const std::string file = slidingBoxScene(dir).string();
+    const std::vector<std::string> common = {"--scene", file, "--path", "gltf", "--res", "320x180", "--fps", "15",
+                                             "--save-frames"};
+    auto quarter_args = common;
+    quarter_args.insert(quarter_args.end(), {"--variants", "cbr-cso,cbr-clip", "--cbr-history", "quarter"});
+    const ValidatedRun quarter = runValidated("gltf-trail-quarter", quarter_args);
+    ASSERT_EQ(quarter.result.exit_code, 0) << quarter.result.err;
+    auto full_args = common;
+    full_args.insert(full_args.end(), {"--variants", "cbr-cso", "--cbr-history", "full"});
+    const ValidatedRun full = runValidated("gltf-trail-full", full_args);
+    ASSERT_EQ(full.result.exit_code, 0) << full.result.err;
+    const double cso_quarter = trailShare(quarter.dir, "cbr-cso", 16);
+    const double clip = trailShare(quarter.dir, "cbr-clip", 16);
+    const double cso_full = trailShare(full.dir, "cbr-cso", 16);
+    std::printf("trail share of vacated pixels: cbr-cso quarter %.4f, cbr-cso full %.4f, cbr-clip %.4f\n", cso_quarter,
+                cso_full, clip);
+    EXPECT_LT(cso_full, cso_quarter);
+    EXPECT_LT(clip, cso_quarter);
+    EXPECT_EQ(quarter.run["settings"]["cbr_history"], "quarter");  // cbr-clip takes the full history regardless
+}
+
 // Frame `frame` of the full variant in two runs: PSNR between them.
 double framePsnr(const std::filesystem::path& a, const std::filesystem::path& b, int frame) {
     char name[32];

@@ -55,7 +55,7 @@ TEST(SweepExpand, ParametersApplyOnlyToTheVariantsTheyChange) {
     std::vector<std::string> labels;
     for (const auto& c : configs) labels.push_back(c.label);
     EXPECT_EQ(labels, (std::vector<std::string>{"full", "drr_scale=0.5", "drr_scale=1", "cbr-aso", "cbr-cso_tol=0.01",
-                                                "cbr-cso_tol=0.1", "cbr-cso_tol=1", "taau"}));
+                                                "cbr-cso_tol=0.1", "cbr-cso_tol=1", "cbr-clip", "taau"}));
     for (const auto& c : configs) EXPECT_EQ(c.baseline, "full");
 }
 
@@ -205,7 +205,8 @@ TEST(SweepExpand, ModeAndFilterApplyToTheirOwnVariantsAndTheReferenceToNone) {
     std::vector<std::string> labels;
     for (const auto& c : configs) labels.push_back(c.label);
     EXPECT_EQ(labels, (std::vector<std::string>{"full", "drr_filter=bilinear", "drr_filter=catmull-rom", "cbr-aso",
-                                                "cbr-cso_tol=0.1_mode=relative", "cbr-cso_tol=0.1_mode=absolute", "taau"}));
+                                                "cbr-cso_tol=0.1_mode=relative", "cbr-cso_tol=0.1_mode=absolute", "cbr-clip",
+                                                "taau"}));
 }
 
 TEST(SweepExpand, RefusesASettingNoWantedVariantUsesNamingWhichWould) {
@@ -213,7 +214,7 @@ TEST(SweepExpand, RefusesASettingNoWantedVariantUsesNamingWhichWould) {
         expandSweep({parseSweepParam("cbr-lod-bias=-1,0")}, {"drr"});
         ADD_FAILURE() << "accepted";
     } catch (const std::invalid_argument& e) {
-        EXPECT_EQ(std::string(e.what()), "--param cbr-lod-bias: no swept variant uses it; expected cbr-aso or cbr-cso in "
+        EXPECT_EQ(std::string(e.what()), "--param cbr-lod-bias: no swept variant uses it; expected cbr-aso or cbr-cso or cbr-clip in "
                                          "--variants");
     }
     EXPECT_THROW(expandSweep({parseSweepParam("cso-mode=absolute")}, {"cbr-aso"}), std::invalid_argument);
