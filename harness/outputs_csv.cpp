@@ -107,6 +107,20 @@ size_t writeFramesCsv(const std::filesystem::path& file, const RunResults& r, ui
     return reportNaNs(table, "frames.csv");
 }
 
+void summaryQualityCells(std::map<std::string, reports::Cell>& m, const VariantSummary& s) {
+    m["psnr_db_mean"] = optional(s.psnr_db);
+    m["psnr_db_min"] = optional(s.psnr_db_min);
+    m["psnr_db_p5"] = optional(s.psnr_db_p5);
+    m["ssim_mean"] = optional(s.ssim_mean);
+    m["ssim_min"] = optional(s.ssim_min);
+    m["ssim_luma_mean"] = optional(s.ssim_luma_mean);
+    m["flip_mean"] = optional(s.flip_mean);
+    m["eci"] = optional(s.eci);
+    m["eci_p95"] = optional(s.eci_p95);
+    m["eci_max"] = optional(s.eci_max);
+    m["flicker_ratio_mean"] = optional(s.flicker_ratio_mean);
+}
+
 size_t writeSummaryCsv(const std::filesystem::path& file, const RunResults& r,
                        const std::vector<VariantSummary>& summaries) {
     std::vector<std::string> passes = passColumns(r);
@@ -140,17 +154,7 @@ size_t writeSummaryCsv(const std::filesystem::path& file, const RunResults& r,
             m["speedup_vs_full"] = optional(s.speedup);
             m["speedup_ci_low"] = optional(s.speedup_low);
             m["speedup_ci_high"] = optional(s.speedup_high);
-            m["psnr_db_mean"] = optional(s.psnr_db);
-            m["psnr_db_min"] = optional(s.psnr_db_min);
-            m["psnr_db_p5"] = optional(s.psnr_db_p5);
-            m["ssim_mean"] = optional(s.ssim_mean);
-            m["ssim_min"] = optional(s.ssim_min);
-            m["ssim_luma_mean"] = optional(s.ssim_luma_mean);
-            m["flip_mean"] = optional(s.flip_mean);
-            m["eci"] = optional(s.eci);
-            m["eci_p95"] = optional(s.eci_p95);
-            m["eci_max"] = optional(s.eci_max);
-            m["flicker_ratio_mean"] = optional(s.flicker_ratio_mean);
+            summaryQualityCells(m, s);
             m["fs_invocations_median"] = optional(s.fs_invocations_median);
             for (const auto& [name, v] : s.pass_ms_median) m["gpu_ms_" + name + "_median"] = v;
             for (const auto& [name, v] : s.stats_mean) m[name + "_mean"] = v;

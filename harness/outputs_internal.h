@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,6 +19,9 @@ std::vector<std::string> passColumns(const RunResults& r);
 inline reports::Cell optional(const std::optional<double>& v) { return v ? reports::Cell(*v) : reports::Cell(); }
 // Reports NaNs that reached a table (written as empty cells) instead of hiding them.
 size_t reportNaNs(const reports::CsvTable& table, const char* file);
+
+// summary.csv's sequence quality cells (psnr_db_mean ... flicker_ratio_mean) of a summary.
+void summaryQualityCells(std::map<std::string, reports::Cell>& m, const VariantSummary& s);
 
 // Now in UTC, ISO 8601 (run.json `date`).
 std::string isoDate();

@@ -308,17 +308,7 @@ void writeSeqSummaryCsv(const fs::path& file, const VariantSummary& s, int width
     m["repeats"] = 1;
     m["width"] = width;
     m["height"] = height;
-    m["psnr_db_mean"] = optional(s.psnr_db);
-    m["psnr_db_min"] = optional(s.psnr_db_min);
-    m["psnr_db_p5"] = optional(s.psnr_db_p5);
-    m["ssim_mean"] = optional(s.ssim_mean);
-    m["ssim_min"] = optional(s.ssim_min);
-    m["ssim_luma_mean"] = optional(s.ssim_luma_mean);
-    m["flip_mean"] = optional(s.flip_mean);
-    m["eci"] = optional(s.eci);
-    m["eci_p95"] = optional(s.eci_p95);
-    m["eci_max"] = optional(s.eci_max);
-    m["flicker_ratio_mean"] = optional(s.flicker_ratio_mean);
+    summaryQualityCells(m, s);
     m["note"] = s.note;
     t.addRow(m);
     t.write(file);

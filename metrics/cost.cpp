@@ -84,17 +84,7 @@ MetricCost measureMetricCost(int width, int height, int frames, double flip_ppd)
     if (!(flip_ppd > 0) || !std::isfinite(flip_ppd))
         throw std::invalid_argument("measureMetricCost: flip_ppd must be finite and > 0, got " +
                                     std::to_string(flip_ppd));
-    MotionField motion;
-    motion.width = width;
-    motion.height = height;
-    const size_t pixels = size_t(width) * height;
-    motion.motion.resize(2 * pixels);
-    for (size_t i = 0; i < pixels; ++i) {
-        motion.motion[2 * i] = float(kPanX);
-        motion.motion[2 * i + 1] = float(kPanY);
-    }
-    motion.depth.assign(pixels, 1.0f);
-    motion.prev_depth_expected.assign(pixels, 1.0f);
+    const MotionField motion = uniformMotion(width, height, kPanX, kPanY);
 
     CrawlTracker tracker;
     std::vector<double> psnr_ms, ssim_ms, eci_ms, flip_ms;

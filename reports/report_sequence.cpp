@@ -9,14 +9,14 @@ namespace cbr::reports {
 
 namespace {
 
-std::string at(const RunData& d, const std::string& pointer) { return jsonText(jsonAt(d.run, pointer)); }
+std::string runText(const RunData& d, const std::string& pointer) { return jsonText(jsonAt(d.run, pointer)); }
 
 std::string row(const std::string& k, const std::string& v) {
     return "<tr><th>" + esc(k) + "</th><td>" + esc(v) + "</td></tr>";
 }
 
 std::string verdictBox(const RunData& d, const std::string& name) {
-    const std::string verdict = at(d, "/thresholds/verdict");
+    const std::string verdict = runText(d, "/thresholds/verdict");
     std::string text = name + " against the reference over " + std::to_string(d.frame_ids.size()) +
                        " frames: PSNR " + fmt(summaryNum(d, name, "psnr_db_mean"), 2) + " dB (worst frame " +
                        fmt(summaryNum(d, name, "psnr_db_min"), 2) + "), SSIM " +
@@ -62,19 +62,19 @@ std::string summaryTable(const RunData& d, const std::string& name) {
 
 std::string inputsSection(const RunData& d) {
     std::string out = "<section id=\"provenance\"><h2>Inputs</h2><table class=\"kv\">";
-    out += row("reference", at(d, "/sequence/reference")) + row("test", at(d, "/sequence/test"));
-    out += row("frames matched by", at(d, "/sequence/matched_by"));
-    out += row("frame size", at(d, "/settings/width") + "\u00d7" + at(d, "/settings/height"));
-    out += row("motion for the edge crawl", at(d, "/sequence/motion/source"));
+    out += row("reference", runText(d, "/sequence/reference")) + row("test", runText(d, "/sequence/test"));
+    out += row("frames matched by", runText(d, "/sequence/matched_by"));
+    out += row("frame size", runText(d, "/settings/width") + "\u00d7" + runText(d, "/settings/height"));
+    out += row("motion for the edge crawl", runText(d, "/sequence/motion/source"));
     if (const auto* m = jsonAt(d.run, "/sequence/motion/method")) out += row("how", jsonText(m));
     if (const auto* m = jsonAt(d.run, "/sequence/motion/convention")) out += row("convention", jsonText(m));
     if (const auto* m = jsonAt(d.run, "/sequence/motion/scale")) out += row("motion scale", jsonText(m));
-    out += row("cuts", at(d, "/sequence/cuts"));
-    out += row("display conversion", at(d, "/sequence/conversions"));
-    out += row("FLIP pixels per degree", at(d, "/settings/flip_ppd"));
-    out += row("command line", at(d, "/command_line"));
-    out += row("cbrbench", at(d, "/tool/version") + ", commit " + at(d, "/tool/commit"));
-    out += row("host", at(d, "/host/name") + ", " + at(d, "/host/cpus") + " CPUs");
+    out += row("cuts", runText(d, "/sequence/cuts"));
+    out += row("display conversion", runText(d, "/sequence/conversions"));
+    out += row("FLIP pixels per degree", runText(d, "/settings/flip_ppd"));
+    out += row("command line", runText(d, "/command_line"));
+    out += row("cbrbench", runText(d, "/tool/version") + ", commit " + runText(d, "/tool/commit"));
+    out += row("host", runText(d, "/host/name") + ", " + runText(d, "/host/cpus") + " CPUs");
     return out + "</table></section>";
 }
 
@@ -111,11 +111,11 @@ bool isSequence(const RunData& d) { return jsonText(jsonAt(d.run, "/kind")) == "
 
 std::string sequenceReportHtml(const RunData& d) {
     const std::string name = d.variants.empty() ? std::string("test") : d.variants.front();
-    const std::string title = "cbrbench score-seq: " + name + " against " + at(d, "/sequence/reference");
+    const std::string title = "cbrbench score-seq: " + name + " against " + runText(d, "/sequence/reference");
     std::string html = pageStart(title);
     html += "<h1>" + esc(title) + "</h1>";
-    html += "<div class=\"sub\">" + esc(at(d, "/date")) + " \u00b7 " + std::to_string(d.frame_ids.size()) +
-            " frames \u00b7 " + esc(at(d, "/settings/width")) + "\u00d7" + esc(at(d, "/settings/height")) + "</div>";
+    html += "<div class=\"sub\">" + esc(runText(d, "/date")) + " \u00b7 " + std::to_string(d.frame_ids.size()) +
+            " frames \u00b7 " + esc(runText(d, "/settings/width")) + "\u00d7" + esc(runText(d, "/settings/height")) + "</div>";
     html += "<nav><a href=\"#summary\">summary</a><a href=\"#quality\">quality per frame</a>"
             "<a href=\"#images\">worst frames</a><a href=\"#provenance\">inputs</a></nav>";
     html += verdictBox(d, name);

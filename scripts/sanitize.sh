@@ -35,7 +35,8 @@ cd "$build"
 # every bad-input case through the real binary; every variant validated in both pipelines
 # (forward on the atrium, deferred on a glTF file) and forward against deferred; the
 # reconstruction against its CPU model at an odd size; checkerboard cuts and coverage;
-# quality scoring (SSAA, report rebuild); interrupts (their exception path leaked the GPU
+# quality scoring (SSAA, report rebuild); score-seq's sequences, gates and bad input (no
+# Vulkan: the global shift, the motion files, the report); interrupts (their exception path leaked the GPU
 # scene); the other commands' option errors. Left out: the other 72 reconstruction cases
 # (the same shader at other sizes and motions), the precision, stress, sweep and matrix
 # runs (minutes each under ASan), and tests asserting timing verdicts (Slowdown, Compare
@@ -46,6 +47,7 @@ render_subset+='|RenderGltf\.'
 render_subset+='|Deferred\.(SceneWithoutTransparency|ForwardAndDeferredFullAgree)'
 render_subset+='|Checkerboard\.(EveryPixelCentreShaded|CutResetsHistory|StaticUntextured)'
 render_subset+='|Quality\.'
+render_subset+='|ScoreSeq\.(ShiftOnOddFrames|Thresholds|BadInput)'
 render_subset+='|Interrupt\.'
 render_subset+='|Compare\.(Missing|Malformed)Baseline'
 render_subset+='|Sweep\.BadParameter|Matrix\.BadShard|Stress\.UnknownCase)'

@@ -16,9 +16,6 @@
 namespace cbr::variants {
 namespace {
 
-constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-
 // The quadrant (qx, qy) that sample/view `s` covers in a frame of `parity`.
 glm::ivec2 quadrantOf(int route, int parity, int s) {
     for (int q = 0; q < 4; ++q)

@@ -14,9 +14,6 @@
 namespace cbr::variants {
 namespace {
 
-constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;  // float depth + reversed Z
-
 enum class Mode { Native, Upscale, Taau };
 
 class ForwardVariant final : public VariantRenderer {

@@ -18,6 +18,10 @@ class Context;
 
 namespace cbr::variants {
 
+// The variants' linear colour targets, and depth: float, reversed Z.
+inline constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
 // Per-frame values a variant decides and the renderer writes into FrameUniforms.
 struct FrameParams {
     float lod_bias = 0;
