@@ -137,6 +137,8 @@ struct Fill {
     float depth_sum;   // view depths of the cardinal neighbours, for CSO
     int depth_count;
     vec3 lo, hi;       // YCoCg bounds of the shaded neighbours (full history's clip box)
+    float device_sum;  // device depths of the shaded neighbours (full history: p's own depth)
+    float farthest;    // the farthest one's
 };
 
 vec3 toYCoCg(vec3 c) {
@@ -159,6 +161,8 @@ void addNeighbour(inout Fill f, ivec2 n, ivec2 quadrant, ivec2 origin, ivec2 siz
     f.nearest_pixel = closer ? n : f.nearest_pixel;
     f.depth_sum += shaded ? viewDepth(depth, frame.depth_params.xy) : 0.0;
     f.depth_count += shaded ? 1 : 0;
+    f.device_sum += shaded ? depth : 0.0;
+    f.farthest = shaded ? min(f.farthest, depth) : f.farthest;
     if (FULL_HISTORY != 0) {
         vec3 y = toYCoCg(sample_.rgb);
         f.lo = shaded ? min(f.lo, y) : f.lo;
@@ -204,10 +208,26 @@ vec3 clipToBox(vec3 history, vec3 lo, vec3 hi, out bool moved) {
 
 vec3 fillColour(Fill f) { return f.sum.a > 0.0 ? f.sum.rgb / f.sum.a : vec3(0.0); }
 
+// Full history: an edge-directed fill. Each pair of opposite shaded neighbours is averaged
+// and the pairs are weighted by the inverse of their luma difference, so a pixel on an edge
+// takes the pair along the edge rather than the mean across it (as demosaicing does); the
+// plain fill where a neighbour is missing.
+vec3 directionalFill(ivec2 p, ivec2 qx, ivec2 qy, ivec2 origin, ivec2 size, Fill f) {
+    bool sl, sr, su, sd;
+    vec3 l = max(tile_sample[slotOf(p + ivec2(-1, 0), qx, origin, size, sl)].rgb, vec3(0.0));
+    vec3 r = max(tile_sample[slotOf(p + ivec2(1, 0), qx, origin, size, sr)].rgb, vec3(0.0));
+    vec3 u = max(tile_sample[slotOf(p + ivec2(0, -1), qy, origin, size, su)].rgb, vec3(0.0));
+    vec3 d = max(tile_sample[slotOf(p + ivec2(0, 1), qy, origin, size, sd)].rgb, vec3(0.0));
+    float gh = abs(luma(l) - luma(r)), gv = abs(luma(u) - luma(d));
+    float wh = 1.0 / (gh + 1e-3), wv = 1.0 / (gv + 1e-3);
+    vec3 c = (0.5 * (l + r) * wh + 0.5 * (u + d) * wv) / (wh + wv);
+    return sl && sr && su && sd ? c : fillColour(f);
+}
+
 // A pixel of a quadrant frame N did not shade: reused from frame N-1, or filled.
 vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls) {
     ivec2 qx = ivec2(quadrant.x ^ 1, quadrant.y), qy = ivec2(quadrant.x, quadrant.y ^ 1);
-    Fill f = Fill(vec4(0.0), -1.0, -1, ivec2(0), 0.0, 0, vec3(1e30), vec3(-1e30));
+    Fill f = Fill(vec4(0.0), -1.0, -1, ivec2(0), 0.0, 0, vec3(1e30), vec3(-1e30), 0.0, 2.0);
     addNeighbour(f, p + ivec2(-1, 0), qx, origin, size);
     addNeighbour(f, p + ivec2(1, 0), qx, origin, size);
     addNeighbour(f, p + ivec2(0, -1), qy, origin, size);
@@ -218,9 +238,17 @@ vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls
     // With moving objects only they write motion; kMotionFromDepth elsewhere asks for the
     // camera's motion (zero on the sky, as a cleared motion target said before), taken at
     // the neighbour's pixel as a motion target would have held it.
-    vec2 at = vec2(HAS_MOTION != 0 ? f.nearest_pixel : p) + 0.5;
+    // The full history reprojects the pixel itself (a full-res history has a value at every
+    // pixel, so the offset to the neighbour's pixel would land one pixel off); the quarter
+    // history keeps the neighbour's pixel, as the motion target the paper reads held it.
+    vec2 at = vec2(HAS_MOTION != 0 && FULL_HISTORY == 0 ? f.nearest_pixel : p) + 0.5;
     vec2 ndc = at / vec2(size) * 2.0 - 1.0;
-    vec4 prev = frame.reproject * vec4(ndc, f.nearest, 1.0);
+    // Full history: where the shaded neighbours lie on one surface (device depths within 2%),
+    // p's depth is their mean (exact on a plane, whose device depth is affine in screen
+    // space); else the nearest neighbour's, as the quarter history takes.
+    float d_here = f.depth_count > 0 && f.nearest - f.farthest < 0.02 * f.nearest && FULL_HISTORY != 0
+                       ? f.device_sum / float(f.depth_count) : f.nearest;
+    vec4 prev = frame.reproject * vec4(ndc, d_here, 1.0);
     vec2 motion = prev.w > 0.0 ? (prev.xy / prev.w * 0.5 + 0.5) * vec2(size) - at : vec2(1e9);
     if (HAS_MOTION != 0) {
         vec2 stored = tile_motion[max(f.nearest_slot, 0)];
@@ -266,7 +294,9 @@ vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls
         cls = occluded ? kOccluded : moved ? kClipped : kReused;
         cls = on_screen ? cls : kOffscreen;
         cls = frame.frame_info.y == 1u ? kReset : cls;
-        return cls == kReused || cls == kClipped ? clipped : fillColour(f);
+        // A history the clip moved is half trusted: averaged with the edge-directed fill.
+        vec3 df = directionalFill(p, qx, qy, origin, size, f);
+        return cls == kReused ? clipped : cls == kClipped ? mix(clipped, df, 0.5) : df;
     }
     // The class, the first rule that applies last (method/cbr.md, reconstruction steps 2-5).
     cls = occluded ? kOccluded : kReused;
@@ -286,7 +316,7 @@ vec3 shadedPixel(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, bool edge_gr
     vec3 colour = tile_sample[slot].rgb;
     if (edge_group) {
         ivec2 d = quadrant ^ 1;
-        Fill f = Fill(vec4(0.0), -1.0, -1, ivec2(0), 0.0, 0, vec3(1e30), vec3(-1e30));
+        Fill f = Fill(vec4(0.0), -1.0, -1, ivec2(0), 0.0, 0, vec3(1e30), vec3(-1e30), 0.0, 2.0);
         addNeighbour(f, p + ivec2(-1, -1), d, origin, size);
         addNeighbour(f, p + ivec2(1, -1), d, origin, size);
         addNeighbour(f, p + ivec2(-1, 1), d, origin, size);
