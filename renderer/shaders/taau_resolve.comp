@@ -1,12 +1,13 @@
 #version 460
 // Temporal anti-aliased upsampling (`taau_resolve`): the scaled, jittered render (Halton 2,3
-// sub-pixel offsets) accumulated into a full-res history. Per output pixel: the 3x3 render
-// samples around it, weighted by their distance to the pixel centre (Gaussian fit to
-// Blackman-Harris, as UE4's TAA: Karis, "High Quality Temporal Supersampling", SIGGRAPH
-// 2014); the history reprojected (motion target for moving objects, else depth + the
-// previous view-projection) and read with Catmull-Rom, clipped towards the centre of the
-// samples' YCoCg box (Playdead, "Temporal Reprojection Anti-Aliasing in INSIDE", GDC 2016),
-// blended exponentially. Reset on cuts and where the reprojection leaves the frame.
+// sub-pixel offsets) accumulated into a full-res history. Per output pixel: this frame's
+// estimate, a Catmull-Rom upsample of the jittered samples, counted by the nearest sample's
+// distance to the pixel centre (Gaussian fit to Blackman-Harris, as UE4's TAA: Karis, "High
+// Quality Temporal Supersampling", SIGGRAPH 2014); the history reprojected (motion target
+// for moving objects, else depth + the previous view-projection) and read with Catmull-Rom,
+// clipped towards the centre of the nearby samples' YCoCg box (Playdead, "Temporal
+// Reprojection Anti-Aliasing in INSIDE", GDC 2016), blended exponentially, trusted less as
+// the motion grows. Reset on cuts and where the reprojection leaves the frame.
 // Method notes: Yang, Liu, Salvi, "A Survey of Temporal Antialiasing Techniques" (2020), 5.
 #extension GL_GOOGLE_include_directive : require
 #include "display.glsl"
@@ -16,6 +17,15 @@ layout(local_size_x = 16, local_size_y = 16) in;
 
 layout(constant_id = 0) const int HAS_MOTION = 0;  // 0: camera motion from depth only
 layout(constant_id = 1) const int FUSED = 1;       // 1: the display image (tone map folded in), 0: linear colour
+// The clip box: this frame's samples within this many output pixels of the pixel centre
+// (per axis). 1.5 (the 3x3 output neighbourhood) kept stale history on the flythrough; 1.0
+// left too few samples in the box on a still camera (the history flickered). Measured in
+// the README (taau).
+const float kBoxReach = 1.25;
+// The history's weight falls as the motion grows: at least this much of this frame's
+// estimate per output pixel of motion (10 pixels a frame: none of the history). Every
+// frame's Catmull-Rom resample of a moving history softens it a little more.
+const float kMotionTrust = 0.1;
 const float kMotionFromDepth = -1.0e30;  // motion target: no moving object here (scene_pass.h)
 
 layout(set = 0, binding = 0) uniform Frame { FrameUniforms frame; };
@@ -73,6 +83,37 @@ vec3 clipToBox(vec3 history, vec3 lo, vec3 hi) {
     return m > 1.0 ? fromYCoCg(centre + v / m) : history;
 }
 
+vec4 catmullRomWeights(float f) {  // taps at -1, 0, 1, 2 of a point f in [0, 1)
+    return vec4(f * (-0.5 + f * (1.0 - 0.5 * f)), 1.0 + f * f * (-2.5 + 1.5 * f), f * (0.5 + f * (2.0 - 1.5 * f)),
+                f * f * (-0.5 + 0.5 * f));
+}
+
+// This frame's estimate at render position r: the drr upscale's Catmull-Rom filter on the
+// render's samples (which sit at their pixel centres plus the jitter), clamped to the range
+// of the nearest 2x2 against ringing. A Gaussian over the 3x3 samples (Karis' weights) is
+// softer: where the history is clipped or reset, as on a fast flythrough, taau then fell 2 dB
+// behind drr's single Catmull-Rom upscale.
+vec3 catmullRomCurrent(vec2 r) {
+    vec2 src = r - params.jitter - 0.5;  // sample i at i
+    vec2 b = floor(src);
+    vec2 f = src - b;
+    vec4 wx = catmullRomWeights(f.x), wy = catmullRomWeights(f.y);
+    ivec2 bi = ivec2(b);
+    vec3 c = vec3(0.0), lo = vec3(1e30), hi = vec3(-1e30);
+    for (int y = -1; y <= 2; ++y) {
+        vec3 row = vec3(0.0);
+        for (int x = -1; x <= 2; ++x) {
+            vec3 t = texelFetch(cur_color, clamp(bi + ivec2(x, y), ivec2(0), params.render_size - 1), 0).rgb;
+            row += wx[x + 1] * t;
+            bool inner = x >= 0 && x <= 1 && y >= 0 && y <= 1;
+            lo = inner ? min(lo, t) : lo;
+            hi = inner ? max(hi, t) : hi;
+        }
+        c += wy[y + 1] * row;
+    }
+    return clamp(c, lo, hi);
+}
+
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = ivec2(frame.frame_info.zw);
@@ -82,25 +123,22 @@ void main() {
     vec2 r = (vec2(p) + 0.5) * out_to_render;
     ivec2 base = ivec2(floor(r - 0.5 - params.jitter + 0.5));  // the nearest sample
 
-    vec3 sum = vec3(0.0);
-    float weight_sum = 0.0, nearest_weight = 0.0, nearest_depth = -1.0;
+    float nearest_weight = 0.0, nearest_depth = -1.0;
     ivec2 nearest_sample = base;
     vec3 lo = vec3(1e30), hi = vec3(-1e30);
     for (int y = -1; y <= 1; ++y) {
         for (int x = -1; x <= 1; ++x) {
             ivec2 i = clamp(base + ivec2(x, y), ivec2(0), params.render_size - 1);
             vec3 c = texelFetch(cur_color, i, 0).rgb;
-            // Distance in output pixels from the sample to this pixel's centre.
+            // Distance in output pixels from the sample to this pixel's centre; its weight
+            // (Karis' Gaussian fit to Blackman-Harris) sets how much this frame counts.
             vec2 d = (vec2(i) + 0.5 + params.jitter - r) / out_to_render;
-            float w = exp(-2.29 * dot(d, d));
-            sum += c * w;
-            weight_sum += w;
-            nearest_weight = max(nearest_weight, w);
-            // The clip box: the samples inside this pixel's 3x3 output neighbourhood (at
-            // least 2x2 of them at any scale >= 2/3), not the whole 3x3 of render pixels,
-            // which spans up to 4.5 output pixels and would keep stale history.
+            nearest_weight = max(nearest_weight, exp(-2.29 * dot(d, d)));
+            // The clip box: the samples within kBoxReach output pixels (the nearest one at
+            // least), not the whole 3x3 of render pixels, which spans up to 4.5 output pixels
+            // and would keep stale history.
             vec3 ycocg = toYCoCg(c);
-            bool in_box = max(abs(d.x), abs(d.y)) <= 1.5 || (x == 0 && y == 0);
+            bool in_box = max(abs(d.x), abs(d.y)) <= kBoxReach || (x == 0 && y == 0);
             lo = in_box ? min(lo, ycocg) : lo;
             hi = in_box ? max(hi, ycocg) : hi;
             // Motion of the nearest surface among the samples within one output pixel
@@ -112,7 +150,7 @@ void main() {
             nearest_sample = nearer ? i : nearest_sample;
         }
     }
-    vec3 current = sum / weight_sum;
+    vec3 current = catmullRomCurrent(r);
 
     vec2 at = vec2(p) + 0.5;
     vec2 ndc = at / vec2(size) * 2.0 - 1.0;  // unjittered: the jitter never enters motion
@@ -135,6 +173,7 @@ void main() {
     float accumulated = reset ? 0.0 : clamp(history.a, 0.0, 1.0 / params.blend);
     float total = min(accumulated + nearest_weight, 1.0 / params.blend);
     float alpha = reset ? 1.0 : clamp(nearest_weight / max(total, 1e-6), 0.0, 1.0);
+    alpha = max(alpha, clamp(length(motion) * kMotionTrust, 0.0, 1.0));
     // A select, not a mix: the history is undefined after a reset (NaN * 0 is NaN).
     vec3 colour = reset ? current : clipped + (current - clipped) * alpha;
     imageStore(history_out, p, vec4(colour, reset ? nearest_weight : total));
