@@ -79,10 +79,6 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
     if (desc.full_history && desc.impl == ResolveImpl::Reference)
         throw vk::Unsupported("--cbr-history full: the reference resolve keeps the quarter-res history; use "
                               "--resolve-impl fused or separate");
-    if (desc.full_history && !ctx.caps.storage_image_extended_formats)
-        throw vk::Unsupported("--cbr-history full: device " + ctx.description.name +
-                              " lacks shaderStorageImageExtendedFormats (the history is an rgb10_a2 storage image); "
-                              "use --cbr-history quarter");
     r.push.cso_tolerance = desc.cso_tolerance;
     r.push.exposure = desc.exposure;
     r.push.pass_through = desc.pass_through ? 1u : 0u;
@@ -96,11 +92,11 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
                                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
     for (int i = 0; i < 2; ++i)
         r.history_stand_ins[i] = vk::createImage(ctx, {"cbr_history_stand_in" + std::to_string(i),
-                                                       kCbrHistoryFormat, {1, 1},
+                                                       VK_FORMAT_R16G16B16A16_SFLOAT, {1, 1},
                                                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
     if (desc.full_history) {
         for (int i = 0; i < 2; ++i)
-            r.history[i] = vk::createImage(ctx, {"cbr_history" + std::to_string(i), kCbrHistoryFormat,
+            r.history[i] = vk::createImage(ctx, {"cbr_history" + std::to_string(i), VK_FORMAT_R16G16B16A16_SFLOAT,
                                                  desc.full_extent,
                                                  VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
         r.history_sampler = vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 0.0f);

@@ -77,17 +77,13 @@ struct CbrResolve {
     // 1x1 stand-ins bound to the outputs a kernel does not write: hdr, classes, display.
     vk::Image stand_ins[3];
     // Full history: [parity] frame N writes history[parity] and reads history[1 - parity]
-    // (kCbrHistoryFormat, output size); absent with the quarter-res history.
+    // (linear RGBA16F, output size); absent with the quarter-res history.
     bool full_history = false;
     vk::Image history[2];
     VkSampler history_sampler = VK_NULL_HANDLE;  // bilinear, clamped
     // 1x1 stand-ins for the history bindings (read, written) with the quarter-res history.
     vk::Image history_stand_ins[2];
 };
-
-// The full history's storage: 4 bytes a pixel in a display-aligned encoding (cbr_resolve.glsl,
-// encodeHistory); writing it needs shaderStorageImageExtendedFormats.
-inline constexpr VkFormat kCbrHistoryFormat = VK_FORMAT_A2B10G10R10_UNORM_PACK32;
 
 CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDescriptorSetLayout frame_layout,
                             CheckerboardSet (&sets)[2], const CbrResolveOutputs& out);

@@ -73,7 +73,7 @@ TaauResolve createTaauResolve(vk::Context& ctx, const TaauResolveDesc& desc, VkD
         auto storage = [&](uint32_t binding, const vk::Image& img) {
             vk::writeImage(ctx, set, binding, kStorage, img.view, VK_IMAGE_LAYOUT_GENERAL);
         };
-        sampled(0, color, r.nearest);
+        sampled(0, color, r.linear);  // texelFetch, and bilinear taps of this frame's estimate
         sampled(1, depth, r.nearest);
         sampled(2, motion_binding, r.nearest);
         sampled(3, r.history[1 - k], r.linear);

@@ -54,10 +54,10 @@ layout(std430, set = 0, binding = 2) buffer Stats { uint class_counts[8]; };
 layout(set = 1, binding = 5, rgba16f) uniform writeonly image2D out_color;
 layout(set = 1, binding = 6, r8ui) uniform writeonly uimage2D out_class;
 layout(set = 1, binding = 7, rgba8) uniform writeonly image2D out_display;
-// Full history: frame N-1's resolved colour (read), frame N's (written), 4 bytes a pixel in
-// the display-aligned encoding below; 1x1 stand-ins with the quarter-res history.
+// Full history: frame N-1's resolved linear colour (read), frame N's (written); 1x1
+// stand-ins with the quarter-res history.
 layout(set = 1, binding = 10) uniform sampler2D history_prev;
-layout(set = 1, binding = 11, rgb10_a2) uniform writeonly image2D history_out;
+layout(set = 1, binding = 11, rgba16f) uniform writeonly image2D history_out;
 
 // The layout the reference shader reads (cbr_resolve_reference.glsl); pattern unused here.
 layout(push_constant) uniform Params {
@@ -170,26 +170,6 @@ void addNeighbour(inout Fill f, ivec2 n, ivec2 quadrant, ivec2 origin, ivec2 siz
     }
 }
 
-// The full history is stored in 4 bytes a pixel (A2B10G10R10 UNORM), not as linear RGBA16F
-// (8 bytes): at 4K its write and read were most of what the full history adds to the
-// resolve. Each channel is e = sqrt(y / (0.5 + y)) of y = colour * exposure, a curve whose
-// 10-bit steps follow the display transform's 8-bit ones: at most 0.19 of a display code
-// anywhere (at y = 0.12; 0.5 everywhere would mean one code). Saturates at y = 500, far
-// past the display's white. The debug pixel-id mode stores its display values as they are.
-const float kHistoryKnee = 0.5;
-const float kHistoryStep = 1.0 / 1023.0;
-vec3 encodeHistory(vec3 c) {
-    if (params.pass_through != 0u) return clamp(c, vec3(0.0), vec3(1.0));
-    vec3 y = max(c, vec3(0.0)) * params.exposure;
-    return sqrt(y / (kHistoryKnee + y));
-}
-vec3 decodeHistory(vec3 e) {
-    if (params.pass_through != 0u) return e;
-    vec3 ec = clamp(e, vec3(0.0), vec3(1.0));  // Catmull-Rom's lobes reach outside [0, 1]
-    vec3 r = min(ec * ec, vec3(0.999));
-    return kHistoryKnee * r / ((1.0 - r) * params.exposure);
-}
-
 // Catmull-Rom history read with 5 bilinear taps (the corners' weights are dropped), so
 // repeated resampling does not blur the history frame after frame as bilinear does.
 vec3 sampleHistory(vec2 pos, vec2 size) {
@@ -208,7 +188,7 @@ vec3 sampleHistory(vec2 pos, vec2 size) {
              textureLod(history_prev, vec2(t3.x, t12.y), 0.0).rgb * (w3.x * w12.y) +
              textureLod(history_prev, vec2(t12.x, t3.y), 0.0).rgb * (w12.x * w3.y);
     float w = w12.x * w0.y + w0.x * w12.y + w12.x * w12.y + w3.x * w12.y + w12.x * w3.y;
-    return decodeHistory(c / w);  // filtered in the encoding, then decoded
+    return max(c / w, vec3(0.0));
 }
 
 // Clips `history` towards the centre of the box [lo, hi] (YCoCg) until it lies inside
@@ -309,12 +289,8 @@ vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls
         occluded = CHECK_OCCLUSION == 2 ? false : occluded;
         bool moved;
         vec3 history = HISTORY_CATMULL_ROM != 0 ? sampleHistory(prev_pos, vec2(size))
-                                                : decodeHistory(textureLod(history_prev, prev_pos / vec2(size), 0.0).rgb);
+                                                : textureLod(history_prev, prev_pos / vec2(size), 0.0).rgb;
         vec3 clipped = clipToBox(history, f.lo, f.hi, moved);
-        // Moved by less than the history's own precision (a step of its encoding) is reused: a
-        // flat neighbourhood's box is as thin as the colours' float steps.
-        moved = moved && any(greaterThan(abs(encodeHistory(clipped) - encodeHistory(history)), vec3(kHistoryStep)));
-        clipped = moved ? clipped : history;
         cls = occluded ? kOccluded : moved ? kClipped : kReused;
         cls = on_screen ? cls : kOffscreen;
         cls = frame.frame_info.y == 1u ? kReset : cls;
@@ -367,7 +343,7 @@ void resolvePixel(ivec2 block, ivec2 quadrant, ivec2 origin, ivec2 size, bool ed
     bool inside = all(lessThan(p, size));
     counts += classBit(cls, inside);
     if (!inside) return;
-    if (FULL_HISTORY != 0 && OUTPUT != 2) imageStore(history_out, p, vec4(encodeHistory(colour), 1.0));
+    if (FULL_HISTORY != 0 && OUTPUT != 2) imageStore(history_out, p, vec4(colour, 1.0));
     if (OUTPUT == 2)
         imageStore(out_class, p, uvec4(cls));
     else if (OUTPUT == 0)

@@ -51,8 +51,11 @@ vec3 toYCoCg(vec3 c) {
 }
 vec3 fromYCoCg(vec3 c) { return vec3(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z); }
 
-// Catmull-Rom history read with 5 bilinear taps (corners dropped), as cbr_resolve.glsl.
-vec4 sampleHistory(vec2 pos, vec2 size) {
+// Catmull-Rom with 5 bilinear taps (the corners' weights dropped) at texel position pos
+// (texel centres at +0.5), the taps kept inside [0, extent) texels: the history, and this
+// frame's samples, which fill only the render region at the top-left of their image.
+vec4 catmullRom5(sampler2D tex, vec2 pos, vec2 extent) {
+    vec2 size = vec2(textureSize(tex, 0));
     vec2 centre = floor(pos - 0.5) + 0.5;
     vec2 f = pos - centre;
     vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
@@ -60,15 +63,16 @@ vec4 sampleHistory(vec2 pos, vec2 size) {
     vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f));
     vec2 w3 = f * f * (-0.5 + 0.5 * f);
     vec2 w12 = w1 + w2;
-    vec2 t0 = (centre - 1.0) / size, t3 = (centre + 2.0) / size;
-    vec2 t12 = (centre + w2 / w12) / size;
-    vec4 middle = textureLod(history_prev, t12, 0.0);
-    vec3 c = textureLod(history_prev, vec2(t12.x, t0.y), 0.0).rgb * (w12.x * w0.y) +
-             textureLod(history_prev, vec2(t0.x, t12.y), 0.0).rgb * (w0.x * w12.y) + middle.rgb * (w12.x * w12.y) +
-             textureLod(history_prev, vec2(t3.x, t12.y), 0.0).rgb * (w3.x * w12.y) +
-             textureLod(history_prev, vec2(t12.x, t3.y), 0.0).rgb * (w12.x * w3.y);
+    vec2 inv = 1.0 / size;
+    vec2 t0 = clamp(centre - 1.0, vec2(0.5), extent - 0.5) * inv, t3 = clamp(centre + 2.0, vec2(0.5), extent - 0.5) * inv;
+    vec2 t12 = clamp(centre + w2 / w12, vec2(0.5), extent - 0.5) * inv;
+    vec4 middle = textureLod(tex, t12, 0.0);
+    vec3 c = textureLod(tex, vec2(t12.x, t0.y), 0.0).rgb * (w12.x * w0.y) +
+             textureLod(tex, vec2(t0.x, t12.y), 0.0).rgb * (w0.x * w12.y) + middle.rgb * (w12.x * w12.y) +
+             textureLod(tex, vec2(t3.x, t12.y), 0.0).rgb * (w3.x * w12.y) +
+             textureLod(tex, vec2(t12.x, t3.y), 0.0).rgb * (w12.x * w3.y);
     float w = w12.x * w0.y + w0.x * w12.y + w12.x * w12.y + w3.x * w12.y + w12.x * w3.y;
-    // The accumulated weight from the bilinear middle tap: never overshoots.
+    // The accumulated weight (the history's alpha) from the bilinear middle tap: never overshoots.
     return vec4(max(c / w, vec3(0.0)), middle.a);
 }
 
@@ -83,36 +87,6 @@ vec3 clipToBox(vec3 history, vec3 lo, vec3 hi) {
     return m > 1.0 ? fromYCoCg(centre + v / m) : history;
 }
 
-vec4 catmullRomWeights(float f) {  // taps at -1, 0, 1, 2 of a point f in [0, 1)
-    return vec4(f * (-0.5 + f * (1.0 - 0.5 * f)), 1.0 + f * f * (-2.5 + 1.5 * f), f * (0.5 + f * (2.0 - 1.5 * f)),
-                f * f * (-0.5 + 0.5 * f));
-}
-
-// This frame's estimate at render position r: the drr upscale's Catmull-Rom filter on the
-// render's samples (which sit at their pixel centres plus the jitter), clamped to the range
-// of the nearest 2x2 against ringing. A Gaussian over the 3x3 samples (Karis' weights) is
-// softer: where the history is clipped or reset, as on a fast flythrough, taau then fell 2 dB
-// behind drr's single Catmull-Rom upscale.
-vec3 catmullRomCurrent(vec2 r) {
-    vec2 src = r - params.jitter - 0.5;  // sample i at i
-    vec2 b = floor(src);
-    vec2 f = src - b;
-    vec4 wx = catmullRomWeights(f.x), wy = catmullRomWeights(f.y);
-    ivec2 bi = ivec2(b);
-    vec3 c = vec3(0.0), lo = vec3(1e30), hi = vec3(-1e30);
-    for (int y = -1; y <= 2; ++y) {
-        vec3 row = vec3(0.0);
-        for (int x = -1; x <= 2; ++x) {
-            vec3 t = texelFetch(cur_color, clamp(bi + ivec2(x, y), ivec2(0), params.render_size - 1), 0).rgb;
-            row += wx[x + 1] * t;
-            bool inner = x >= 0 && x <= 1 && y >= 0 && y <= 1;
-            lo = inner ? min(lo, t) : lo;
-            hi = inner ? max(hi, t) : hi;
-        }
-        c += wy[y + 1] * row;
-    }
-    return clamp(c, lo, hi);
-}
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -121,15 +95,29 @@ void main() {
     vec2 out_to_render = vec2(params.render_size) / vec2(size);
     // The pixel centre in render pixels; sample i sits at i + 0.5 + jitter (unjittered).
     vec2 r = (vec2(p) + 0.5) * out_to_render;
-    ivec2 base = ivec2(floor(r - 0.5 - params.jitter + 0.5));  // the nearest sample
+    // This frame's estimate: the drr upscale's Catmull-Rom filter on the render's samples
+    // (which sit at their pixel centres plus the jitter), read with 5 bilinear taps as the
+    // history is, and clamped to the range of the nearest 2x2 samples against ringing. A
+    // Gaussian over the 3x3 samples (Karis' weights) is softer: where the history is clipped
+    // or reset, as on a fast flythrough, taau then fell 2 dB behind drr's single upscale.
+    vec2 src = r - params.jitter - 0.5;  // sample i at i
+    ivec2 bi = ivec2(floor(src));        // the nearest 2x2 samples: bi .. bi + 1
+    ivec2 base = ivec2(floor(src + 0.5));  // the nearest sample
+    vec3 current = catmullRom5(cur_color, src + 0.5, vec2(params.render_size)).rgb;
 
+    // The 3x3 samples around the nearest one: how much this frame counts, the clip box, the
+    // anti-ringing range and the surface whose motion reprojects the pixel.
     float nearest_weight = 0.0, nearest_depth = -1.0;
     ivec2 nearest_sample = base;
-    vec3 lo = vec3(1e30), hi = vec3(-1e30);
+    vec3 lo = vec3(1e30), hi = vec3(-1e30), ring_lo = vec3(1e30), ring_hi = vec3(-1e30);
     for (int y = -1; y <= 1; ++y) {
         for (int x = -1; x <= 1; ++x) {
-            ivec2 i = clamp(base + ivec2(x, y), ivec2(0), params.render_size - 1);
+            ivec2 k = base + ivec2(x, y);
+            ivec2 i = clamp(k, ivec2(0), params.render_size - 1);
             vec3 c = texelFetch(cur_color, i, 0).rgb;
+            bool inner = all(greaterThanEqual(k, bi)) && all(lessThanEqual(k, bi + 1));
+            ring_lo = inner ? min(ring_lo, c) : ring_lo;
+            ring_hi = inner ? max(ring_hi, c) : ring_hi;
             // Distance in output pixels from the sample to this pixel's centre; its weight
             // (Karis' Gaussian fit to Blackman-Harris) sets how much this frame counts.
             vec2 d = (vec2(i) + 0.5 + params.jitter - r) / out_to_render;
@@ -150,7 +138,7 @@ void main() {
             nearest_sample = nearer ? i : nearest_sample;
         }
     }
-    vec3 current = catmullRomCurrent(r);
+    current = clamp(current, ring_lo, ring_hi);
 
     vec2 at = vec2(p) + 0.5;
     vec2 ndc = at / vec2(size) * 2.0 - 1.0;  // unjittered: the jitter never enters motion
@@ -165,7 +153,7 @@ void main() {
     bool on_screen = all(greaterThanEqual(prev_pos, vec2(0.0))) && all(lessThan(prev_pos, vec2(size)));
     bool reset = frame.frame_info.y == 1u || !on_screen;
 
-    vec4 history = sampleHistory(on_screen ? prev_pos : at, vec2(size));
+    vec4 history = catmullRom5(history_prev, on_screen ? prev_pos : at, vec2(size));
     vec3 clipped = clipToBox(history.rgb, lo, hi);
     // Exponential blend with the per-pixel weight of this frame's nearest sample; the
     // accumulated weight (alpha) makes the first frames after a reset a running mean

@@ -300,9 +300,6 @@ Context::Context(const ContextOptions& options) {
     VkPhysicalDeviceFeatures2 e2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &e11};
     e2.features.pipelineStatisticsQuery = f2.features.pipelineStatisticsQuery;
     e2.features.sampleRateShading = f2.features.sampleRateShading;
-    // The checkerboard's full history is an rgb10_a2 storage image (cbr_resolve_pass.h).
-    caps.storage_image_extended_formats = f2.features.shaderStorageImageExtendedFormats;
-    e2.features.shaderStorageImageExtendedFormats = f2.features.shaderStorageImageExtendedFormats;
     // The checkerboard scene pass blends colour but never its motion attachment.
     if (!f2.features.independentBlend) throw Unsupported("device " + description.name + " lacks independentBlend");
     e2.features.independentBlend = VK_TRUE;

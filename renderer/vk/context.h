@@ -36,7 +36,6 @@ struct DeviceCaps {
     uint32_t timestamp_valid_bits = 64;
     bool pipeline_statistics = false;
     bool sample_rate_shading = false;
-    bool storage_image_extended_formats = false;  // rgb10_a2 storage images (the full history)
     bool multiview = false;
     VkSampleCountFlags color_sample_counts = 0;
     VkSampleCountFlags depth_sample_counts = 0;

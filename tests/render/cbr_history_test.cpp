@@ -11,8 +11,7 @@ namespace {
 
 // A static camera over a static scene: after the first two frames (a reset, then one
 // frame whose other half comes from the history) every pixel holds what was shaded at its
-// own centre, so the image is the full-resolution one to the history's precision (10 bits
-// in a display-aligned encoding: 48.9-51.0 dB here, single 8-bit steps).
+// own centre, so the image is the full-resolution one.
 TEST(CbrHistory, StaticPathReconstructsExactlyWithFullHistory) {
     for (const char* pipeline : {"forward", "deferred"}) {
         const ValidatedRun run = runValidated(std::string("history-static-") + pipeline,
