@@ -72,7 +72,7 @@ TEST(Interrupt, SigintDuringAMatrixKeepsNothingOfIt) {
     auto work = cbr::test::scratchDir("interrupt-matrix");
     fs::path out = work / "m", err = work / "stderr.txt";
     int rc = interruptWhen({"run", "--scene", "blocks,atrium", "--path", "orbit", "--res", "96x64", "--frames", "100",
-                            "--repeat", "3", "--out", out.string()},
+                            "--repeat", "3", "--variants", "full,cbr-aso", "--out", out.string()},
                            err, SIGINT, [&] {
                                // The first job (atrium, in id order) is complete: the second is running.
                                if (!partialExists(out)) return false;
