@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (clang, ASan + UBSan) into build-fuzz/ and runs each from
-# tests/fuzz/corpus/<target> for its share of CBR_FUZZ_SECONDS (default 40). New inputs go
+# tests/fuzz/corpus/<target> for its share of CBR_FUZZ_SECONDS (default 30). New inputs go
 # to a scratch directory, or with --merge into the repository corpus (coverage-minimised).
 # Crash inputs land in build-fuzz/artifacts/. Exits non-zero when any target fails.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${CBR_FUZZ_BUILD_DIR:-$root/build-fuzz}
-total=${CBR_FUZZ_SECONDS:-40}
+total=${CBR_FUZZ_SECONDS:-30}
 merge=0
 case "${1:-}" in
   --merge) merge=1 ;;
