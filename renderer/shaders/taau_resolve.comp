@@ -64,7 +64,8 @@ vec4 catmullRom5(sampler2D tex, vec2 pos, vec2 extent) {
     vec2 w3 = f * f * (-0.5 + 0.5 * f);
     vec2 w12 = w1 + w2;
     vec2 inv = 1.0 / size;
-    vec2 t0 = clamp(centre - 1.0, vec2(0.5), extent - 0.5) * inv, t3 = clamp(centre + 2.0, vec2(0.5), extent - 0.5) * inv;
+    vec2 t0 = clamp(centre - 1.0, vec2(0.5), extent - 0.5) * inv;
+    vec2 t3 = clamp(centre + 2.0, vec2(0.5), extent - 0.5) * inv;
     vec2 t12 = clamp(centre + w2 / w12, vec2(0.5), extent - 0.5) * inv;
     vec4 middle = textureLod(tex, t12, 0.0);
     vec3 c = textureLod(tex, vec2(t12.x, t0.y), 0.0).rgb * (w12.x * w0.y) +
