@@ -51,6 +51,11 @@ vec3 toYCoCg(vec3 c) {
 }
 vec3 fromYCoCg(vec3 c) { return vec3(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z); }
 
+// A tap clamped to the last texel's centre still reaches past it by the rounding of its
+// coordinate: this frame's image holds stale memory beyond the render region (another
+// job's frames, a NaN or an Inf), so the taps stop this much short of that centre.
+const float kTapMargin = 1.0 / 512.0;
+
 // Catmull-Rom with 5 bilinear taps (the corners' weights dropped) at texel position pos
 // (texel centres at +0.5), the taps kept inside [0, extent) texels: the history, and this
 // frame's samples, which fill only the render region at the top-left of their image.
@@ -64,9 +69,10 @@ vec4 catmullRom5(sampler2D tex, vec2 pos, vec2 extent) {
     vec2 w3 = f * f * (-0.5 + 0.5 * f);
     vec2 w12 = w1 + w2;
     vec2 inv = 1.0 / size;
-    vec2 t0 = clamp(centre - 1.0, vec2(0.5), extent - 0.5) * inv;
-    vec2 t3 = clamp(centre + 2.0, vec2(0.5), extent - 0.5) * inv;
-    vec2 t12 = clamp(centre + w2 / w12, vec2(0.5), extent - 0.5) * inv;
+    vec2 last = extent - 0.5 - kTapMargin;
+    vec2 t0 = clamp(centre - 1.0, vec2(0.5), last) * inv;
+    vec2 t3 = clamp(centre + 2.0, vec2(0.5), last) * inv;
+    vec2 t12 = clamp(centre + w2 / w12, vec2(0.5), last) * inv;
     vec4 middle = textureLod(tex, t12, 0.0);
     vec3 c = textureLod(tex, vec2(t12.x, t0.y), 0.0).rgb * (w12.x * w0.y) +
              textureLod(tex, vec2(t0.x, t12.y), 0.0).rgb * (w0.x * w12.y) + middle.rgb * (w12.x * w12.y) +
