@@ -1,6 +1,5 @@
 // cbrbench's command line: devices, scenes, paths, variants, run.
 #include <cstdio>
-#include <malloc.h>
 #include <iostream>
 #include <stdexcept>
 
@@ -23,6 +22,7 @@
 #include "harness/matrix.h"
 #include "harness/stress.h"
 #include "harness/options.h"
+#include "harness/process.h"
 #include "harness/progress.h"
 #include "harness/score_seq.h"
 #include "harness/sequence_files.h"
@@ -149,23 +149,10 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_option("--far", o.far, "far plane of every keyframe, scene units (after placement)");
 }
 
-// glibc returns every freed block above its mmap threshold (128 KiB, rising to at most 32 MiB)
-// and the heap's free top above 128 KiB to the kernel, so the next large buffer (a decoded
-// texture, a vertex array, a frame read back) is faulted in again page by page. On a
-// virtual machine a page fault costs several microseconds: loading the 1M-triangle test
-// scene took 0.84 s here (0.69 s with this), 186k faults for 730 MiB touched. Kept memory is reused.
-// lavapipe allocates its per-frame memory with malloc too: its timed frames were 7-11%
-// faster with this (README, "Loading large scenes", session 11).
-void keepFreedMemory() {
-    mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest accepted value
-    mallopt(M_TRIM_THRESHOLD, 1 << 30);
-    mallopt(M_TOP_PAD, 64 << 20);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-    keepFreedMemory();
+    cbr::harness::setUpProcessMemory(argv);
     CLI::App app{"cbrbench: checkerboard rendering benchmark and quality analysis"};
     app.require_subcommand(1);
     auto* devices = app.add_subcommand("devices", "list Vulkan devices (index, name, driver, API version)");

@@ -7,6 +7,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "harness/process.h"
 #include "harness/outputs_internal.h"
 #include "harness/resolve_bandwidth.h"
 #include "harness/stats.h"
@@ -289,9 +290,7 @@ void writeRunJson(const std::filesystem::path& file, const RunContext& rc, const
     j["tool"] = {{"name", "cbrbench"}, {"version", CBR_VERSION}, {"commit", CBR_GIT_COMMIT}};
     j["date"] = isoDate();
     j["command_line"] = rc.options.argv;
-    char host[256] = {};
-    if (::gethostname(host, sizeof host - 1) != 0) host[0] = 0;
-    j["host"] = {{"name", std::string(host)}, {"cpus", std::thread::hardware_concurrency()}};
+    j["host"] = hostJson();
     j["wall_seconds"] = r.seconds;
     j["first_frame_wall_seconds"] = r.first_frame_seconds;
     j["device"] = deviceJson(rc);

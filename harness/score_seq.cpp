@@ -1,5 +1,6 @@
 // `cbrbench score-seq`: two image sequences scored frame by frame with the run's own scorer
 // (PSNR, SSIM, FLIP, edge crawl and flicker), into a run-shaped folder with a report.
+#include "harness/process.h"
 #include "harness/score_seq.h"
 
 #include <algorithm>
@@ -359,9 +360,7 @@ json runJson(const ScoreSeqOptions& o, const SeqInputs& in, const Scored& s, con
     j["tool"] = {{"name", "cbrbench"}, {"version", CBR_VERSION}, {"commit", CBR_GIT_COMMIT}};
     j["date"] = isoDate();
     j["command_line"] = o.argv;
-    char host[256] = {};
-    if (::gethostname(host, sizeof host - 1) != 0) host[0] = 0;
-    j["host"] = {{"name", std::string(host)}, {"cpus", std::thread::hardware_concurrency()}};
+    j["host"] = hostJson();
     j["wall_seconds"] = seconds;
     j["settings"] = {{"width", s.width}, {"height", s.height}, {"flip_ppd", o.flip_ppd}, {"exposure", o.exposure}};
     j["scene"] = {{"name", "captured sequence"}};

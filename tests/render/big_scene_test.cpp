@@ -51,6 +51,38 @@ TEST(BigScene, LoadFiguresInRunJsonReportAndStderr) {
     std::filesystem::remove_all(work);
 }
 
+// The kernel's transparent-huge-page mode, "" where unknown.
+std::string thpMode() {
+    const std::string line = slurp("/sys/kernel/mm/transparent_hugepage/enabled");
+    size_t open = line.find('['), close = line.find(']');
+    return open != std::string::npos && close > open ? line.substr(open + 1, close - open - 1) : "";
+}
+
+// cbrbench asks for huge pages where the kernel gives them only to memory that asks
+// ("madvise"), by starting itself again with glibc's tunable, and not when told not to.
+TEST(ProcessMemory, HeapHugePagesWhereTheKernelWantsThemAskedForAndOffOnRequest) {
+    const std::string mode = thpMode();
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+    const bool sanitized = true;  // the sanitizer's allocator, not glibc's: nothing to ask
+#else
+    const bool sanitized = false;
+#endif
+    const auto work = scratchDir("process-memory");
+    for (const bool off : {false, true}) {
+        const auto out = work / (off ? "off" : "on");
+        auto r = runBench({"run", "--scene", "blocks", "--res", "64x48", "--frames", "2", "--repeat", "1", "--warmup",
+                           "0", "--variants", "full", "--validate", "--quiet", "--out", out.string()},
+                          work, off ? std::vector<std::string>{"CBR_HUGE_PAGES=0"} : std::vector<std::string>{});
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        const auto m = readJson(out / "run.json")["host"]["memory"];
+        EXPECT_EQ(m["keeps_freed_memory"], true);
+        EXPECT_EQ(m["transparent_huge_pages"], mode.empty() ? "unknown" : mode);
+        const bool expected = mode == "always" || (mode == "madvise" && !off && !sanitized);
+        EXPECT_EQ(m["heap_huge_pages"], expected) << "THP mode " << mode << (off ? ", CBR_HUGE_PAGES=0" : "");
+    }
+    std::filesystem::remove_all(work);
+}
+
 // Not a check: writes the scene for the README's measurements and skips otherwise.
 TEST(BigScene, WriteForMeasurement) {
     const char* dir = std::getenv("CBR_BIG_SCENE_DIR");
