@@ -120,7 +120,11 @@ std::optional<std::string> settingText(const SweepPoint& p, const SweepSettingFi
 
 std::string sweepGroupDir(const std::string& path, const std::string& reference, bool paths_vary, bool references_vary) {
     std::string dir = paths_vary ? path : "";
-    if (references_vary) dir += (dir.empty() ? "" : "_") + std::string("ref=") + reference;
+    if (references_vary) {
+        if (!dir.empty()) dir += '_';
+        dir += "ref=";
+        dir += reference;
+    }
     return dir;
 }
 
@@ -177,7 +181,10 @@ void combineSweeps(const std::filesystem::path& dir, const std::vector<std::stri
                                         ": other columns than this cbrbench writes; expected one sweep's sweep.csv");
         auto line = [](const std::vector<std::string>& cells) {
             std::string out;
-            for (size_t i = 0; i < cells.size(); ++i) out += (i ? "," : "") + csvEscape(cells[i]);
+            for (size_t i = 0; i < cells.size(); ++i) {
+                if (i) out += ',';
+                out += csvEscape(cells[i]);
+            }
             return out + "\n";
         };
         if (text.empty()) text = line(csv.header);

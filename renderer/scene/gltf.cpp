@@ -539,7 +539,7 @@ Scene loadGltf(const std::filesystem::path& file) {
     Scene scene;
     scene.name = file.stem().string();
     scene.source = label;
-    GltfContext ctx{label, model, scene, {}, std::vector<int>(model.materials.size(), -1), -1,
+    GltfContext ctx{label, model, scene, {}, {}, std::vector<int>(model.materials.size(), -1), -1,
                 std::vector<std::optional<std::vector<int>>>(model.meshes.size()), 0};
     flattenNodes(ctx);
     // Said once, here and in run.json's scene warnings (and the report's notes).

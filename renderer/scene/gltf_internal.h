@@ -15,9 +15,10 @@ namespace cbr::scene {
 
 struct GltfContext {
     std::string file;
-    const tinygltf::Model& model;
+    tinygltf::Model& model;  // its decoded RGBA8 images are moved into the scene's textures
     Scene& scene;
     std::map<std::pair<int, bool>, int> textures;  // (image, sRGB) -> Scene texture
+    std::map<int, int> moved_images;               // image whose pixels a Scene texture took -> that texture
     std::vector<int> materials;                    // glTF material -> Scene material, -1 until used
     int default_material = -1;
     std::vector<std::optional<std::vector<int>>> meshes;  // glTF mesh -> Scene meshes

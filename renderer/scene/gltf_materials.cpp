@@ -146,7 +146,15 @@ int gltfTexture(GltfContext& ctx, int index, bool srgb, const std::string& used_
     // One image used both as colour (sRGB) and as data (linear) becomes two textures.
     if (auto it = ctx.textures.find({source, srgb}); it != ctx.textures.end()) return it->second;
 
-    const tinygltf::Image& image = ctx.model.images[size_t(source)];
+    // An image whose pixels the texture of the other colour space took: a copy of that one.
+    if (auto moved = ctx.moved_images.find(source); moved != ctx.moved_images.end()) {
+        Texture copy = ctx.scene.textures[size_t(moved->second)];
+        copy.srgb = srgb;
+        ctx.scene.textures.push_back(std::move(copy));
+        return ctx.textures[{source, srgb}] = int(ctx.scene.textures.size()) - 1;
+    }
+
+    tinygltf::Image& image = ctx.model.images[size_t(source)];
     const std::string pointer = gltfAt("images", size_t(source));
     const int w = image.width, h = image.height, channels = image.component, bits = image.bits;
     if (w <= 0 || h <= 0 || w > int(kMaxImageSide) || h > int(kMaxImageSide) || channels < 1 || channels > 4 || (bits != 8 && bits != 16))
@@ -171,7 +179,8 @@ int gltfTexture(GltfContext& ctx, int index, bool srgb, const std::string& used_
         return uint8_t((uint32_t(v) * 255u + 32767u) / 65535u);
     };
     const bool as_is = channels == 4 && bits == 8;  // what tinygltf's decoder gives for 8-bit files
-    if (as_is) texture.rgba8.assign(image.image.begin(), image.image.end());
+    // As is: the decoded pixels move (the scene and the model held a copy each at the peak).
+    if (as_is) texture.rgba8 = std::move(image.image);
     else texture.rgba8.resize(pixels * 4);
     for (size_t i = 0; i < pixels && !as_is; ++i) {
         uint8_t* out = &texture.rgba8[i * 4];
@@ -186,6 +195,7 @@ int gltfTexture(GltfContext& ctx, int index, bool srgb, const std::string& used_
     ctx.scene.textures.push_back(std::move(texture));
     const int result = int(ctx.scene.textures.size()) - 1;
     ctx.textures[{source, srgb}] = result;
+    if (as_is) ctx.moved_images[source] = result;
     return result;
 }
 

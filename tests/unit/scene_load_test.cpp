@@ -63,6 +63,36 @@ TEST(SceneLoad, TexturesAreTinygltfsPixelsInEveryContainer) {
     }
 }
 
+// One image used as colour (sRGB) and as data (linear): two textures with its pixels. The
+// first takes the decoded pixels over (no second copy at the load's peak), the second copies them.
+TEST(SceneLoad, AnImageUsedAsColourAndAsDataGivesTwoTexturesWithItsPixels) {
+    if (!fs::is_directory(kGltf2)) GTEST_SKIP() << "assimp-testmodels not installed at " << kGltf2;
+    const fs::path dir = fs::path(testing::TempDir()) / ("scene-load-twice-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    for (const char* f : {"BoxTextured0.bin", "CesiumLogoFlat.png"})
+        fs::copy_file(kGltf2 / "BoxTextured-glTF" / f, dir / f, fs::copy_options::overwrite_existing);
+    const auto bytes = readBytes(kGltf2 / "BoxTextured-glTF/BoxTextured.gltf");
+    std::string text(bytes.begin(), bytes.end());
+    const std::string colour = "\"baseColorTexture\"";
+    const size_t at = text.find(colour);
+    ASSERT_NE(at, std::string::npos);
+    text.insert(at, "\"metallicRoughnessTexture\": {\"index\": 0}, ");
+    std::ofstream(dir / "twice.gltf") << text;
+    const Scene s = loadScene((dir / "twice.gltf").string());
+    const std::vector<unsigned char> expected = tinygltfDecode(kGltf2 / "BoxTextured-glTF/CesiumLogoFlat.png");
+    ASSERT_EQ(s.textures.size(), 2u);
+    EXPECT_NE(s.textures[0].srgb, s.textures[1].srgb);
+    for (const auto& t : s.textures) {
+        EXPECT_EQ(t.width, 211);
+        EXPECT_TRUE(t.rgba8 == expected) << (t.srgb ? "sRGB" : "linear");
+    }
+    ASSERT_EQ(s.materials.size(), 1u);
+    EXPECT_GE(s.materials[0].base_color_texture, 0);
+    EXPECT_GE(s.materials[0].metallic_roughness_texture, 0);
+    EXPECT_NE(s.materials[0].base_color_texture, s.materials[0].metallic_roughness_texture);
+    fs::remove_all(dir);
+}
+
 class GeneratedScene : public ::testing::Test {
 protected:
     static constexpr int kMeshes = 9, kGrid = 6, kTextures = 7, kSize = 96;
