@@ -1,4 +1,5 @@
 // Instance and device creation, device listing and choice, validation message counting.
+#include <cstdlib>
 #include "renderer/vk/context.h"
 
 #include <algorithm>
@@ -220,6 +221,7 @@ Context::Context(const ContextOptions& options) {
     bool debug_utils = false;
     instance = createInstance(options.validate, &debug_utils);
     validation_enabled = options.validate;
+    if (const char* poison = std::getenv("CBR_POISON_IMAGES")) poison_images = std::string(poison) == "1";
     if (debug_utils) {
         VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
         info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |

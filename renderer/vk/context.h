@@ -70,6 +70,10 @@ public:
     DeviceCaps caps;
     bool validation_enabled = false;
     ValidationCounts validation;
+    // CBR_POISON_IMAGES=1 (a check for tests and debugging): every colour target and storage
+    // image starts filled with NaN (float formats) or an implausible value, so a pass that
+    // reads texels no pass wrote shows in the images instead of reading stale memory.
+    bool poison_images = false;
 
     // Runs `record` in a one-time command buffer and waits for it (uploads only).
     template <class F>

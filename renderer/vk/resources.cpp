@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
@@ -87,6 +88,59 @@ Buffer uploadBuffer(Context& ctx, const void* data, VkDeviceSize size, VkBufferU
     return b;
 }
 
+namespace {
+
+// What a poisoned image starts as (Context::poison_images): NaN where the format holds
+// floats, all bits set for integers, magenta for normalised formats (NaN has no UNORM value).
+VkClearColorValue poisonValue(VkFormat format) {
+    VkClearColorValue v{};
+    switch (format) {
+        case VK_FORMAT_R16G16B16A16_SFLOAT:
+        case VK_FORMAT_R32G32B32A32_SFLOAT:
+        case VK_FORMAT_R16G16_SFLOAT:
+        case VK_FORMAT_R32G32_SFLOAT:
+        case VK_FORMAT_R16_SFLOAT:
+        case VK_FORMAT_R32_SFLOAT:
+        case VK_FORMAT_B10G11R11_UFLOAT_PACK32:
+            for (float& c : v.float32) c = std::numeric_limits<float>::quiet_NaN();
+            return v;
+        case VK_FORMAT_R8_UINT:
+        case VK_FORMAT_R32_UINT:
+        case VK_FORMAT_R16_UINT:
+            for (uint32_t& c : v.uint32) c = ~0u;
+            return v;
+        default:
+            v.float32[0] = v.float32[2] = v.float32[3] = 1.0f;
+            return v;
+    }
+}
+
+void poison(Context& ctx, Image& img) {
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, img.mip_levels, 0, img.layers};
+    const VkClearColorValue value = poisonValue(img.format);
+    ctx.immediate([&](VkCommandBuffer cmd) {
+        VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+        b.dstStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
+        b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.image = img.image;
+        b.subresourceRange = all;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.imageMemoryBarrierCount = 1;
+        dep.pImageMemoryBarriers = &b;
+        vkCmdPipelineBarrier2(cmd, &dep);
+        vkCmdClearColorImage(cmd, img.image, VK_IMAGE_LAYOUT_GENERAL, &value, 1, &all);
+    });
+    // The graph's next barrier starts from here (a write it makes visible, in GENERAL).
+    img.layout = VK_IMAGE_LAYOUT_GENERAL;
+    img.stage = VK_PIPELINE_STAGE_2_CLEAR_BIT;
+    img.access = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+}
+
+}  // namespace
+
 Image createImage(Context& ctx, const ImageDesc& desc) {
     Image img;
     img.name = desc.name;
@@ -104,7 +158,9 @@ Image createImage(Context& ctx, const ImageDesc& desc) {
     info.arrayLayers = desc.layers;
     info.samples = desc.samples;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
-    info.usage = desc.usage;
+    const bool poisoned = ctx.poison_images && !isDepthFormat(desc.format) &&
+                          (desc.usage & (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT)) != 0;
+    info.usage = desc.usage | (poisoned ? VK_IMAGE_USAGE_TRANSFER_DST_BIT : 0);
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     VkResult r = vkCreateImage(ctx.device, &info, nullptr, &img.image);
     if (r == VK_ERROR_FORMAT_NOT_SUPPORTED || r == VK_ERROR_FEATURE_NOT_PRESENT)
@@ -129,6 +185,7 @@ Image createImage(Context& ctx, const ImageDesc& desc) {
             img.layer_views.push_back(v);
         }
     }
+    if (poisoned) poison(ctx, img);
     return img;
 }
 
