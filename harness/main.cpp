@@ -1,293 +1,24 @@
-// cbrbench's command line: devices, scenes, paths, variants, run.
+// cbrbench: parses the command line and runs the one subcommand given (cli.h defines them).
 #include <cstdio>
-#include <iostream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
-#include <cmath>
-#include <filesystem>
-
-#include "camera_paths/path.h"
-#include "metrics/cost.h"
-#include "metrics/image_io.h"
-#include "reports/report.h"
-#include "reports/sweep.h"
-#include "metrics/flip.h"
-#include "metrics/metrics.h"
-#include "harness/calibrate.h"
-#include "harness/compare.h"
-#include "harness/export.h"
+#include "harness/cli.h"
 #include "harness/interrupt.h"
-#include "harness/matrix.h"
-#include "harness/stress.h"
-#include "harness/options.h"
 #include "harness/process.h"
 #include "harness/progress.h"
-#include "harness/score_seq.h"
-#include "harness/sequence_files.h"
-#include "harness/run.h"
-#include "renderer/scene/scene.h"
-#include "renderer/variants/variants.h"
 #include "renderer/vk/check.h"
-#include "renderer/vk/context.h"
-
-namespace {
-
-constexpr int kExitBadInput = 2;
-constexpr const char* kFlipPpdHelp =
-    "FLIP's pixels per degree of visual angle (default 67.02: 0.7 m from a 0.7 m wide, 3840-pixel monitor)";
-
-int listDevices() {
-    auto devices = cbr::vk::listDevices();
-    std::printf("%-5s %-40s %-28s %s\n", "index", "name", "driver", "api");
-    for (const auto& d : devices)
-        std::printf("%-5d %-40s %-28s %s%s\n", d.index, d.name.c_str(),
-                    (d.driver_name + " " + d.driver_info).substr(0, 28).c_str(), d.api_version.c_str(),
-                    d.is_lavapipe ? "  (default)" : "");
-    return 0;
-}
-
-// `cbrbench score`: the suite's metrics on saved images, so any number can be recomputed.
-int scoreImages(const std::string& ref_file, const std::string& img_file, const std::string& crop, double flip_ppd,
-                float exposure) {
-    cbr::harness::checkFlipPpd(flip_ppd);
-    auto ref_in = cbr::metrics::readDisplayImage(ref_file, exposure);
-    auto img_in = cbr::metrics::readDisplayImage(img_file, exposure);
-    const auto& ref = ref_in.image;
-    const auto& img = img_in.image;
-    if (ref.width != img.width || ref.height != img.height)
-        throw std::invalid_argument(img_file + ": " + std::to_string(img.width) + "x" + std::to_string(img.height) +
-                                    "; expected the reference's size " + std::to_string(ref.width) + "x" +
-                                    std::to_string(ref.height));
-    int x = 0, y = 0, w = ref.width, h = ref.height;
-    if (!crop.empty() && (std::sscanf(crop.c_str(), "%d,%d,%d,%d", &x, &y, &w, &h) != 4 || x < 0 || y < 0 || w < 11 ||
-                          h < 11 || x + w > ref.width || y + h > ref.height))
-        throw std::invalid_argument("--crop " + crop + ": expected X,Y,W,H inside the image, W and H at least 11");
-    size_t stride = size_t(ref.width) * 4, offset = size_t(y) * stride + size_t(x) * 4;
-    auto a = cbr::metrics::fromRgba8(ref.pixels.data() + offset, w, h, stride);
-    auto b = cbr::metrics::fromRgba8(img.pixels.data() + offset, w, h, stride);
-    double psnr = cbr::metrics::psnr(a, b);
-    auto s = cbr::metrics::ssim(a, b);
-    auto f = cbr::metrics::flip(a, b, flip_ppd);
-    std::printf("psnr_db %s\nssim %.6f\nssim_luma %.6f\nflip_mean %.6f\nflip_q1 %.6f\nflip_median %.6f\nflip_q3 %.6f\n",
-                std::isinf(psnr) ? "inf" : std::to_string(psnr).c_str(), s.ssim, s.luma_ssim, f.mean, f.q1, f.median,
-                f.q3);
-    for (const auto* in : {&ref_in, &img_in})
-        if (!in->conversion.empty()) std::printf("note %s\n", in->conversion.c_str());
-    return 0;
-}
-
-// The options of `run` and `sweep` (a sweep is a run over configurations).
-void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& variant_list) {
-    cmd->add_option("--scene", o.scene, "procedural scene name or a .gltf/.glb file")->capture_default_str();
-    cmd->add_option("--path", o.path,
-                    "built-in path name, a path .json file, or gltf / gltf:NAME (the scene file's camera)")
-        ->capture_default_str();
-    cmd->add_option("--fps", o.fps, "frame rate of a --path gltf camera (frames over the animation's length)")
-        ->capture_default_str();
-    cmd->add_option("--animation", o.animation,
-                    "glTF animations to play: all, none, or a comma list of names or indices (looped)")
-        ->capture_default_str();
-    cmd->add_option("--variants", variant_list, "comma-separated variants (default: all; full always runs)");
-    cmd->add_option("--res", o.resolution, "output resolution WIDTHxHEIGHT")->capture_default_str();
-    cmd->add_option("--frames", o.frames,
-                    "frames sampled evenly over the path (0: the path's own length; --path gltf: default 0)")
-        ->capture_default_str()
-        ->each([&o](const std::string&) { o.frames_set = true; });
-    cmd->add_option("--repeat", o.repeat, "repetitions of the whole flythrough, variants interleaved")
-        ->capture_default_str();
-    cmd->add_option("--warmup", o.warmup, "untimed warm-up frames per variant and repetition")->capture_default_str();
-    cmd->add_option("--device", o.device, "device index or name substring (default: lavapipe, else the first)");
-    cmd->add_flag("--validate", o.validate, "enable the Khronos validation layer and count its messages");
-    cmd->add_flag("--save-frames", o.save_frames, "save display images as PNG (the scored quality pass)");
-    cmd->add_option("--export", o.exports, "also write the results as: gbench (gbench.json, Google Benchmark JSON)");
-    cmd->add_option("--out", o.out, "output directory (default out/<scene>-<path>-<date-time>)");
-    cmd->add_option("--drr-scale", o.drr_scale, "drr per-axis render scale in (0, 1]")->capture_default_str();
-    cmd->add_option("--drr-filter", o.drr_filter, "drr upscale filter: bilinear or catmull-rom")->capture_default_str();
-    cmd->add_option("--taau-scale", o.taau_scale, "taau per-axis render scale in (0, 1]")->capture_default_str();
-    cmd->add_option("--taau-phases", o.taau_phases, "taau Halton(2,3) jitter phases: 8 or 16")->capture_default_str();
-    cmd->add_option("--taau-blend", o.taau_blend, "taau history blend weight of a sample on the pixel centre, (0, 1]")
-        ->capture_default_str();
-    cmd->add_option("--drr-target-ms", o.drr_target_ms, "dynamic drr: target GPU frame time in ms (0: fixed scale)")
-        ->capture_default_str();
-    cmd->add_option("--shading-cost", o.shading_cost, "fragment shading about K times more expensive, same image")
-        ->capture_default_str();
-    cmd->add_option("--exposure", o.exposure, "exposure multiplier before tone mapping")->capture_default_str();
-    cmd->add_option("--cbr-route", o.cbr_route, "checkerboard route: auto, msaa-jitter, msaa-locations, multiview")
-        ->capture_default_str();
-    cmd->add_option("--cbr-history", o.cbr_history,
-                    "checkerboard history: quarter (frame N-1's quarter-res samples, the paper's) or full (the "
-                    "previous resolved frame, clipped to the neighbourhood)")
-        ->capture_default_str();
-    cmd->add_option("--history-filter", o.history_filter,
-                    "how --cbr-history full reads the history: catmull-rom or bilinear (blurs frame after frame)")
-        ->capture_default_str();
-    cmd->add_option("--cbr-lod-bias", o.cbr_lod_bias, "texture LOD bias of checkerboard scene passes")
-        ->capture_default_str();
-    cmd->add_option("--cso-tolerance", o.cso_tolerance, "cbr-cso depth tolerance (relative, or scene units)")
-        ->capture_default_str();
-    cmd->add_option("--debug-shading", o.debug_shading,
-                    "none, or pixel-id: colours encode the full-res pixel each sample lands on (tests)")
-        ->capture_default_str();
-    cmd->add_option("--debug-slowdown", o.debug_slowdown,
-                    "PASS=PCT: make one pass PCT percent slower with calibrated extra GPU work (tests the detector)");
-    cmd->add_option("--pipeline", o.pipeline, "forward or deferred (G-buffer, lighting resolve)")->capture_default_str();
-    cmd->add_option("--reference", o.reference, "what variants are scored against: full or ssaa")
-        ->capture_default_str();
-    cmd->add_option("--ssaa", o.ssaa, "samples per axis of the ssaa reference (box filter)")->capture_default_str();
-    cmd->add_option("--cso-mode", o.cso_mode, "cbr-cso tolerance mode: relative or absolute")->capture_default_str();
-    cmd->add_option("--resolve-impl", o.resolve_impl,
-                    "fused (resolve/upscale write the display image), separate (then a tonemap pass), or reference "
-                    "(the pre-issue-14 passes, for image and time comparisons)")
-        ->capture_default_str();
-    cmd->add_option("--scene-offset", o.scene_offset, "X,Y,Z: move the scene and the camera path by this (e.g. 1e6,1e6,1e6)");
-    cmd->add_option("--scene-scale", o.scene_scale, "scale the scene and the camera path about the origin (0.001: mm)")
-        ->capture_default_str();
-    cmd->add_option("--flip-ppd", o.flip_ppd, kFlipPpdHelp);
-    cmd->add_option("--near", o.near, "near plane of every keyframe, scene units (after placement)");
-    cmd->add_option("--far", o.far, "far plane of every keyframe, scene units (after placement)");
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
     cbr::harness::setUpProcessMemory(argv);
     CLI::App app{"cbrbench: checkerboard rendering benchmark and quality analysis"};
     app.require_subcommand(1);
-    auto* devices = app.add_subcommand("devices", "list Vulkan devices (index, name, driver, API version)");
-    auto* scenes = app.add_subcommand("scenes", "list the built-in procedural scenes");
-    auto* paths = app.add_subcommand("paths", "list the built-in camera paths");
-    auto* variants = app.add_subcommand("variants", "list the rendering variants");
-    auto* run = app.add_subcommand("run", "render a flythrough through the variants; write CSV and JSON");
-    auto* report = app.add_subcommand("report", "rebuild DIR/report.html from the files in DIR, without rendering");
-    std::string report_dir;
-    report->add_option("DIR", report_dir, "a run's output directory")->required();
-    auto* compare = app.add_subcommand("compare", "regression verdicts: CURRENT_DIR against BASELINE_DIR (exit 0 same, "
-                                                   "1 regression, 2 inconclusive with --strict, 3 bad input)");
-    cbr::harness::CompareOptions cmp;
-    compare->add_option("BASELINE_DIR", cmp.baseline_dir, "the baseline run's output directory")->required();
-    compare->add_option("CURRENT_DIR", cmp.current_dir, "the current run's output directory (gets compare.*)")->required();
-    compare->add_option("--threshold", cmp.threshold, "time change that counts (e.g. 3% or 0.03)")->capture_default_str();
-    compare->add_option("--alpha", cmp.alpha, "false discovery rate across cells")->capture_default_str();
-    compare->add_option("--psnr-threshold", cmp.psnr_db, "PSNR change that counts, dB")->capture_default_str();
-    compare->add_option("--ssim-threshold", cmp.ssim, "SSIM change that counts")->capture_default_str();
-    compare->add_option("--eci-threshold", cmp.eci, "relative ECI change that counts")->capture_default_str();
-    compare->add_option("--junit", cmp.junit,
-                        "also write the verdicts as JUnit XML to FILE (SLOWER/WORSE: failures, UNKNOWN: skipped)");
-    auto* export_cmd = app.add_subcommand("export", "write a run's results in another tool's format (gbench: Google "
-                                                     "Benchmark JSON, which compare.py and benchmark dashboards read)");
-    std::string export_dir, export_format, export_out;
-    export_cmd->add_option("RUN_DIR", export_dir, "a run's output directory")->required();
-    export_cmd->add_option("--format", export_format, "gbench")->required();
-    export_cmd->add_option("--out", export_out, "the file to write (default: RUN_DIR/gbench.json)");
-    compare->add_flag("--strict", cmp.strict, "UNKNOWN cells give exit code 2");
-    cbr::harness::RunOptions o;
-    std::string variant_list;
-    auto* calibrate = app.add_subcommand("calibrate", "false-alarm and detection rates of compare's time verdicts on "
-                                                       "this device: A/A pairs and injected slowdowns (calibrate.csv)");
-    cbr::harness::CalibrateOptions cal;
-    addRunOptions(calibrate, cal.run, variant_list);
-    calibrate->add_option("--pairs", cal.pairs, "A/A pairs (two runs of the same settings)")->capture_default_str();
-    calibrate->add_option("--slow-pairs", cal.slow_pairs, "pairs per injected slowdown")->capture_default_str();
-    calibrate->add_option("--slowdown", cal.slowdowns, "PASS=PCT[,PCT...]: slowdowns injected with --debug-slowdown "
-                                                       "(empty: A/A only)")->capture_default_str();
-    calibrate->add_option("--repeats", cal.repeats, "repetition counts judged, each >= 3 (runs use the largest)")
-        ->capture_default_str();
-    calibrate->add_option("--threshold", cal.threshold, "compare's --threshold")->capture_default_str();
-    calibrate->add_option("--alpha", cal.alpha, "compare's --alpha")->capture_default_str();
-    calibrate->add_option("--from", cal.from, "an earlier calibration's directory: judge its runs again (other "
-                                              "--threshold, --alpha or --repeats) without rendering");
-    auto* metric_cost = app.add_subcommand("metric-cost", "benchmark: PSNR, SSIM, ECI and FLIP milliseconds per frame");
-    std::string cost_res = "1920x1080";
-    int cost_frames = 10;
-    double cost_flip_ppd = cbr::metrics::kFlipDefaultPpd;
-    metric_cost->add_option("--res", cost_res, "frame size WIDTHxHEIGHT")->capture_default_str();
-    metric_cost->add_option("--frames", cost_frames, "timed frames (median reported)")->capture_default_str();
-    metric_cost->add_option("--flip-ppd", cost_flip_ppd, kFlipPpdHelp);
-    auto* score = app.add_subcommand("score", "PSNR, SSIM and FLIP of an image against a reference (any format "
-                                              "OpenImageIO reads; linear EXR/HDR tone-mapped as the renderer does)");
-    std::string score_ref, score_img, score_crop;
-    score->add_option("REFERENCE", score_ref, "reference image")->required();
-    score->add_option("IMAGE", score_img, "image to score (the same size)")->required();
-    score->add_option("--crop", score_crop, "score only X,Y,W,H (e.g. to leave out a border column)");
-    double score_flip_ppd = cbr::metrics::kFlipDefaultPpd;
-    score->add_option("--flip-ppd", score_flip_ppd, kFlipPpdHelp);
-    float score_exposure = 1.0f;
-    score->add_option("--exposure", score_exposure, "exposure of the display transform for linear (float) inputs")
-        ->capture_default_str();
-
-    auto* score_seq = app.add_subcommand(
-        "score-seq", "PSNR, SSIM, FLIP, edge crawl and flicker of an image sequence against a reference sequence, "
-                     "per frame, with a report; exit 0 pass, 1 --warn crossed, 2 --fail crossed, 3 sizes differ, "
-                     "4 a file missing or unreadable, 5 a bad option (idiff's convention)");
-    cbr::harness::ScoreSeqOptions seq;
-    seq.flip_ppd = cbr::metrics::kFlipDefaultPpd;
-    score_seq->add_option("REFERENCE", seq.reference, "reference frames: a folder (natural name order) or a pattern "
-                                                      "such as ref/frame_%04d.png")->required();
-    score_seq->add_option("TEST", seq.test, "frames to score, the same way (two patterns: matched by frame number, "
-                                            "else by position)")->required();
-    score_seq->add_option("--motion", seq.motion, "float images (EXR) of the reference's motion in pixels, matched like "
-                                                  "TEST: the surface at p in frame t was at p + (R,G) in frame t-1 "
-                                                  "(default: one global translation per frame by phase correlation)");
-    score_seq->add_option("--motion-scale", seq.motion_scale, "SX,SY multiplying the motion files' R and G into that "
-                                                              "convention")->capture_default_str();
-    score_seq->add_option("--cuts", seq.cuts, "frame numbers that start a new shot (no edge-crawl pair across them)")
-        ->delimiter(',');
-    score_seq->add_option("--name", seq.name, "label of the test sequence (default: its folder's name)");
-    score_seq->add_option("--out", seq.out, "output folder, must not exist (default out/score-seq-<date-time>)");
-    score_seq->add_option("--flip-ppd", seq.flip_ppd, kFlipPpdHelp)->capture_default_str();
-    score_seq->add_option("--exposure", seq.exposure, "exposure of the display transform for linear (float) inputs")
-        ->capture_default_str();
-    score_seq->add_option("--warn", seq.warn, "METRIC=VALUE (repeatable): exit 1 when the worst frame crosses it; "
-                                              "METRIC psnr or ssim (crossed below), flip, eci or flicker (above)");
-    score_seq->add_option("--fail", seq.fail, "METRIC=VALUE (repeatable): exit 2 when the worst frame crosses it");
-
-    addRunOptions(run, o, variant_list);
-    std::string shard_flag;
-    run->add_option("--shard", shard_flag,
-                    "I/N: run shard I (0-based) of N of a job matrix (comma lists in --scene, --path, --pipeline, "
-                    "--res); a matrix also reads SLURM_ARRAY_TASK_ID/COUNT or GTEST_SHARD_INDEX/TOTAL_SHARDS");
-    auto* plan = app.add_subcommand("plan", "print the job matrix (scene x path x pipeline x resolution) with stable "
-                                            "job ids and shards; takes run's options");
-    int plan_shards = 1;
-    addRunOptions(plan, o, variant_list);
-    plan->add_option("--shards", plan_shards, "number of shards to assign jobs to")->capture_default_str();
-    auto* merge = app.add_subcommand("merge", "merge shard outputs of one plan into one directory (refuses mixed "
-                                              "devices, plans and duplicate jobs)");
-    std::vector<std::string> merge_dirs;
-    std::string merge_out;
-    merge->add_option("DIR", merge_dirs, "shard output directories")->required();
-    merge->add_option("--out", merge_out, "the merged directory (must not exist)")->required();
-    auto* stress = app.add_subcommand("stress", "named extreme cases through every variant and both pipelines; exit 0 "
-                                                "only if every case's expectation holds (stress.csv, stress.html)");
-    cbr::harness::StressOptions so;
-    std::string stress_cases, stress_pipelines = "forward,deferred";
-    stress->add_option("--res", so.resolution, "frame size of every case")->capture_default_str();
-    stress->add_option("--out", so.out, "output directory (default out/stress-<date-time>)");
-    stress->add_option("--device", so.device, "device index or name substring");
-    stress->add_option("--cases", stress_cases, "comma-separated case names (default: all; `--list` names them)");
-    stress->add_option("--pipelines", stress_pipelines, "forward and/or deferred")->capture_default_str();
-    stress->add_option("--cbr-route", so.cbr_route, "checkerboard route of every run (default: auto)");
-    stress->add_flag("--validate", so.validate, "Khronos validation layer on in every run; any message fails the case");
-    stress->add_option("--static-frames", so.static_frames, "length of the static-camera case")->capture_default_str();
-    stress->add_option("--subpixel-frames", so.subpixel_frames, "length of the sub-pixel motion case")
-        ->capture_default_str();
-    bool stress_list = false;
-    stress->add_flag("--list", stress_list, "list the cases and their expectations");
-    auto* sweep = app.add_subcommand("sweep", "run the variants over swept settings, interleaved in one process; write "
-                                              "sweep.csv and sweep.html (recommended value per swept setting, quality at equal cost)");
-    addRunOptions(sweep, o, variant_list);
-    sweep->add_option("--param", o.params,
-                      "NAME=LO:HI:log|lin:N or NAME=V1,V2,... (repeatable); numeric NAME: cso-tolerance, drr-scale, "
-                      "taau-scale, taau-blend, shading-cost, cbr-lod-bias; word-valued NAME=W1,W2,...: cbr-route, "
-                      "cbr-history, cso-mode, drr-filter, and "
-                      "reference (full,ssaa: one run per value into OUT/ref=K/, as --path a,b runs one per path)")
-        ->required();
-
-    bool no_progress = false;
-    for (auto* c : {run, sweep, stress, merge, calibrate, score_seq})
-        c->add_flag("--quiet", no_progress, "no progress bar on the terminal (none is drawn when stderr is not one)");
+    bool quiet = false;
+    const std::vector<cbr::harness::Command> commands =
+        cbr::harness::addCommands(app, std::vector<std::string>(argv, argv + argc), quiet);
     cbr::harness::installInterruptHandler();
     try {
         app.parse(argc, argv);
@@ -297,109 +28,26 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "cbrbench: %s (see cbrbench --help)\n", e.what());
-        // compare's callers read exit 2 as "inconclusive": its bad input is 3; score-seq
-        // follows idiff, where 2 is a failed comparison.
-        if (score_seq->parsed()) return cbr::harness::kSeqBadOption;
-        return compare->parsed() ? cbr::harness::kCompareBadInput : kExitBadInput;
+        for (const auto& c : commands)
+            if (c.cli->parsed()) return c.bad_option_exit;
+        return cbr::harness::kExitBadInput;
     }
 
-    cbr::harness::setProgressQuiet(no_progress);
+    cbr::harness::setProgressQuiet(quiet);
     try {
-        if (*devices) return listDevices();
-        if (*scenes) {
-            for (const auto& s : cbr::scene::proceduralScenes())
-                std::printf("%-10s %s\n", s.name.c_str(), s.description.c_str());
-            return 0;
-        }
-        if (*paths) {
-            for (const auto& p : cbr::paths::builtinPaths())
-                std::printf("%-16s %s\n", p.name.c_str(), p.description.c_str());
-            return 0;
-        }
-        if (*variants) {
-            for (const auto& v : cbr::variants::allVariants())
-                std::printf("%-8s %s\n", std::string(v.name).c_str(), std::string(v.description).c_str());
-            return 0;
-        }
-        if (*compare) return cbr::harness::runCompare(cmp);
-        if (*export_cmd) return cbr::harness::runExport(export_dir, export_format, export_out);
-        if (*calibrate) {
-            cal.run.variants = cbr::harness::splitList(variant_list.empty() ? std::string("full") : variant_list);
-            cal.run.argv.assign(argv, argv + argc);
-            cal.out = cal.run.out;
-            return cbr::harness::runCalibrate(cal);
-        }
-        if (*score_seq) {
-            seq.argv.assign(argv, argv + argc);
-            try {
-                return cbr::harness::runScoreSeq(seq);
-            } catch (const cbr::harness::SequenceError& e) {
-                std::fprintf(stderr, "cbrbench: %s\n", e.what());
-                return e.code;
-            } catch (const std::invalid_argument& e) {
-                std::fprintf(stderr, "cbrbench: %s\n", e.what());
-                return cbr::harness::kSeqBadOption;
-            }
-        }
-        if (*score) return scoreImages(score_ref, score_img, score_crop, score_flip_ppd, score_exposure);
-        if (*report) {
-            if (!std::filesystem::is_directory(report_dir))
-                throw std::invalid_argument("report " + report_dir + ": not a directory; expected a run's output directory");
-            const std::filesystem::path dir(report_dir);
-            const bool sweep_dir = std::filesystem::exists(dir / "sweep.csv");
-            // A sweep's directory may be copied without its per-frame files: sweep.html alone.
-            if (!sweep_dir || std::filesystem::exists(dir / "summary.csv")) {
-                cbr::reports::writeReport(dir);
-                std::printf("report: %s\n", (dir / "report.html").c_str());
-            }
-            if (sweep_dir) {
-                cbr::reports::writeSweepReport(dir);
-                std::printf("sweep report: %s\n", (dir / "sweep.html").c_str());
-            }
-            return 0;
-        }
-        if (*metric_cost) {
-            uint32_t w = 0, h = 0;
-            cbr::harness::parseResolution(cost_res, w, h);
-            cbr::harness::checkFlipPpd(cost_flip_ppd);
-            auto c = cbr::metrics::measureMetricCost(int(w), int(h), cost_frames, cost_flip_ppd);
-            std::printf("metric cost per %ux%u frame (median of %d, %d threads): psnr %.1f ms, ssim %.1f ms, eci %.1f ms, "
-                        "flip %.1f ms, total %.1f ms\n",
-                        w, h, cost_frames, c.threads, c.psnr_ms, c.ssim_ms, c.eci_ms, c.flip_ms,
-                        c.psnr_ms + c.ssim_ms + c.eci_ms + c.flip_ms);
-            return 0;
-        }
-        o.variants = cbr::harness::splitList(variant_list);
-        o.argv.assign(argv, argv + argc);
-        o.sweep = sweep->parsed();
-        if (*merge) return cbr::harness::mergeRuns(merge_dirs, merge_out);
-        if (*stress) {
-            if (stress_list) {
-                for (const auto& c : cbr::harness::stressCases())
-                    std::printf("%-28s %s\n", c.name.c_str(), c.expectation.c_str());
-                return 0;
-            }
-            so.cases = cbr::harness::splitList(stress_cases);
-            so.pipelines = cbr::harness::splitList(stress_pipelines);
-            return cbr::harness::runStress(so);
-        }
-        if (*plan) return cbr::harness::printPlan(o, plan_shards);
-        if (*run && (cbr::harness::isMatrix(o) || !shard_flag.empty()))
-            return cbr::harness::runMatrix(o, cbr::harness::resolveShard(shard_flag));
-        if (cbr::harness::isMatrix(o))
-            throw std::invalid_argument("sweep: comma lists in --scene, --pipeline or --res; expected one of "
-                                        "each (a sweep is one job: its configurations are compared with each other; --path may list several)");
-        return cbr::harness::runBenchmark(o);
+        for (const auto& c : commands)
+            if (c.cli->parsed()) return c.run();
+        return cbr::harness::kExitBadInput;  // require_subcommand(1): not reached
     } catch (const cbr::harness::Interrupted&) {
         std::fprintf(stderr, "cbrbench: interrupted: stopped before the next frame; this run's partial output was "
                              "removed and nothing else was touched\n");
         return 130;
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "cbrbench: %s\n", e.what());
-        return kExitBadInput;
+        return cbr::harness::kExitBadInput;
     } catch (const cbr::vk::Unsupported& e) {
         std::fprintf(stderr, "cbrbench: unsupported: %s\n", e.what());
-        return kExitBadInput;
+        return cbr::harness::kExitBadInput;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "cbrbench: error: %s\n", e.what());
         return 1;

@@ -29,7 +29,7 @@ VkDeviceMemory allocate(Context& ctx, const VkMemoryRequirements& req, VkMemoryP
 
 void imageBarrier(VkCommandBuffer cmd, VkImage image, uint32_t base_mip, uint32_t mips, VkImageLayout from,
                   VkImageLayout to, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
-                  VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
+                  VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access, uint32_t layers = 1) {
     VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
     b.srcStageMask = src_stage;
     b.srcAccessMask = src_access;
@@ -39,7 +39,7 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, uint32_t base_mip, uint32_
     b.newLayout = to;
     b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, base_mip, mips, 0, 1};
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, base_mip, mips, 0, layers};
     VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dep.imageMemoryBarrierCount = 1;
     dep.pImageMemoryBarriers = &b;
@@ -119,18 +119,9 @@ void poison(Context& ctx, Image& img) {
     const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, img.mip_levels, 0, img.layers};
     const VkClearColorValue value = poisonValue(img.format);
     ctx.immediate([&](VkCommandBuffer cmd) {
-        VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-        b.dstStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
-        b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.image = img.image;
-        b.subresourceRange = all;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.imageMemoryBarrierCount = 1;
-        dep.pImageMemoryBarriers = &b;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        imageBarrier(cmd, img.image, 0, img.mip_levels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                     VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_CLEAR_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT, img.layers);
         vkCmdClearColorImage(cmd, img.image, VK_IMAGE_LAYOUT_GENERAL, &value, 1, &all);
     });
     // The graph's next barrier starts from here (a write it makes visible, in GENERAL).
