@@ -22,9 +22,12 @@ std::string thpMode() {
     return open != std::string::npos && close > open ? line.substr(open + 1, close - open - 1) : "";
 }
 
-bool hugePagesAsked() {
+// glibc's hugetlb tunable as the environment sets it: -1 unset, else its value (1: madvise
+// the heap, 2: hugetlbfs pages). A value the user set is kept.
+int hugeTunable() {
     const char* t = std::getenv("GLIBC_TUNABLES");
-    return t && std::strstr(t, kHugeTunable);
+    const char* at = t ? std::strstr(t, "glibc.malloc.hugetlb=") : nullptr;
+    return at ? std::atoi(at + std::strlen("glibc.malloc.hugetlb=")) : -1;
 }
 
 // Off on request, and in sanitizer builds, whose allocator is not glibc's.
@@ -47,15 +50,16 @@ bool hugePagesOff() {
 // were 7-11% faster once freed memory was kept (README, "Loading large scenes", sessions 11
 // and 14). Huge pages fault 2 MiB at a time: the same load in 0.20 s.
 void setUpProcessMemory(char** argv) {
-    if (!hugePagesOff() && !hugePagesAsked() && thpMode() == "madvise") {
-        const char* old = std::getenv("GLIBC_TUNABLES");
-        std::string tunables = old && *old ? old : "";
-        tunables.append(tunables.empty() ? "" : ":").append(kHugeTunable);
+    if (!hugePagesOff() && hugeTunable() < 0 && thpMode() == "madvise") {
+        const char* env = std::getenv("GLIBC_TUNABLES");
+        const bool had = env != nullptr;
+        const std::string old = had ? env : "";
+        const std::string tunables = old.empty() ? kHugeTunable : old + ":" + kHugeTunable;
         if (::setenv("GLIBC_TUNABLES", tunables.c_str(), 1) == 0) {
             ::execv("/proc/self/exe", argv);
             // No exec (no /proc): go on without huge pages, and say so in run.json.
-            if (old)
-                ::setenv("GLIBC_TUNABLES", old, 1);
+            if (had)
+                ::setenv("GLIBC_TUNABLES", old.c_str(), 1);
             else
                 ::unsetenv("GLIBC_TUNABLES");
         }
@@ -70,8 +74,9 @@ nlohmann::json hostJson() {
     if (::gethostname(host, sizeof host - 1) != 0) host[0] = 0;
     std::string thp = thpMode();
     // Huge pages for the heap: the kernel gives them to everything ("always"), or to what asks
-    // and cbrbench asked ("madvise" with the tunable), or not at all.
-    bool huge = thp == "always" || (thp == "madvise" && hugePagesAsked());
+    // and glibc asked ("madvise" with the tunable at 1), or glibc maps hugetlbfs pages (2).
+    const int tunable = hugeTunable();
+    bool huge = tunable == 2 || (tunable != 0 && thp == "always") || (tunable == 1 && thp == "madvise");
     return {{"name", std::string(host)},
             {"cpus", std::thread::hardware_concurrency()},
             {"memory",
