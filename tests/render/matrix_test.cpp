@@ -29,22 +29,20 @@ std::vector<std::string> with(std::vector<std::string> a, const std::vector<std:
 }
 
 // The rows that do not depend on timing: (job, variant, frame) -> quality and class shares.
-void addFrameRows(const fs::path& frames_csv, const std::string& job, std::map<std::string, std::string>& out) {
-    auto frames = readCsv(frames_csv);
-    for (size_t r = 0; r < frames.rows.size(); ++r) {
-        std::string key = job + "|" + frames.at(r, "variant") + "|" + frames.at(r, "repeat") + "|" + frames.at(r, "frame");
-        std::string value;
-        for (const char* c : {"status", "psnr_db", "ssim", "eci", "px_reused", "px_occluded", "render_width"})
-            value += std::string(c) + "=" + frames.at(r, c) + ";";
-        out[key] = value;
-    }
-}
-
-// The same for every job of a matrix's results.
 std::map<std::string, std::string> deterministicRows(const fs::path& dir) {
     std::map<std::string, std::string> out;
     auto jobs = readCsv(dir / "jobs.csv");
-    for (size_t j = 0; j < jobs.rows.size(); ++j) addFrameRows(dir / jobs.at(j, "job") / "frames.csv", jobs.at(j, "job"), out);
+    for (size_t j = 0; j < jobs.rows.size(); ++j) {
+        std::string id = jobs.at(j, "job");
+        auto frames = readCsv(dir / id / "frames.csv");
+        for (size_t r = 0; r < frames.rows.size(); ++r) {
+            std::string key = id + "|" + frames.at(r, "variant") + "|" + frames.at(r, "repeat") + "|" + frames.at(r, "frame");
+            std::string value;
+            for (const char* c : {"status", "psnr_db", "ssim", "eci", "px_reused", "px_occluded", "render_width"})
+                value += std::string(c) + "=" + frames.at(r, c) + ";";
+            out[key] = value;
+        }
+    }
     return out;
 }
 
