@@ -136,6 +136,10 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
                     "fused (resolve/upscale write the display image), separate (then a tonemap pass), or reference "
                     "(the pre-issue-14 passes, for image and time comparisons)")
         ->capture_default_str();
+    cmd->add_option("--target-clear", o.target_clear,
+                    "how scene passes clear colour targets: auto (compute on NVIDIA, load op elsewhere), load-op, or "
+                    "compute (a compute pass stores the clear value)")
+        ->capture_default_str();
     cmd->add_option("--scene-offset", o.scene_offset, "X,Y,Z: move the scene and the camera path by this (e.g. 1e6,1e6,1e6)");
     cmd->add_option("--scene-scale", o.scene_scale, "scale the scene and the camera path about the origin (0.001: mm)")
         ->capture_default_str();

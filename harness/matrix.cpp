@@ -178,6 +178,7 @@ std::string planHash(const RunOptions& o) {
               {"far", o.far ? json(*o.far) : json()}};
     // Only when set: plans made before --flip-ppd existed keep their hash.
     if (o.flip_ppd != metrics::kFlipDefaultPpd) j["flip_ppd"] = o.flip_ppd;
+    if (o.target_clear != "auto") j["target_clear"] = o.target_clear;
     // Likewise the settings added with the full history and taau (they change images and times).
     const RunOptions defaults;
     if (o.cbr_history != defaults.cbr_history) j["cbr_history"] = o.cbr_history;

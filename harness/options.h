@@ -40,6 +40,7 @@ struct RunOptions {
     double cso_tolerance = 0.05;
     std::string cso_mode = "relative";
     std::string resolve_impl = "fused";  // fused | separate | reference (renderer/settings.h)
+    std::string target_clear = "auto";   // auto | load-op | compute (renderer/settings.h)
     std::string debug_shading = "none";  // none | pixel-id
     std::string pipeline = "forward";    // forward | deferred
     std::string debug_slowdown;          // PASS=PCT: a known slowdown for testing regression detection

@@ -99,6 +99,14 @@ render::Settings settingsFromOptions(const RunOptions& o) {
         s.resolve_impl = render::ResolveImpl::Reference;
     else
         throw std::invalid_argument("--resolve-impl " + o.resolve_impl + ": expected fused, separate or reference");
+    if (o.target_clear == "auto")
+        s.target_clear = render::TargetClear::Auto;
+    else if (o.target_clear == "load-op")
+        s.target_clear = render::TargetClear::LoadOp;
+    else if (o.target_clear == "compute")
+        s.target_clear = render::TargetClear::Compute;
+    else
+        throw std::invalid_argument("--target-clear " + o.target_clear + ": expected auto, load-op or compute");
     if (o.drr_filter == "bilinear")
         s.drr_filter = render::DrrFilter::Bilinear;
     else if (o.drr_filter == "catmull-rom")

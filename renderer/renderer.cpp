@@ -27,6 +27,15 @@ double medianOf(std::vector<double> v) {
 
 }  // namespace
 
+const char* targetClearName(TargetClear clear) {
+    switch (clear) {
+        case TargetClear::LoadOp: return "load-op";
+        case TargetClear::Compute: return "compute";
+        case TargetClear::Auto: break;
+    }
+    return "auto";
+}
+
 const char* resolveImplName(ResolveImpl impl) {
     switch (impl) {
         case ResolveImpl::Fused: return "fused";
@@ -76,6 +85,9 @@ struct Renderer::Slot {
 Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants::Variant& variant,
                    const Settings& settings)
     : ctx_(ctx), scene_(scene), settings_(settings) {
+    // Before any target exists: whether colour targets are made storage images too.
+    passes::chooseTargetClear(ctx, settings.target_clear);
+    if (ctx.compute_clears) target_clear_ = std::make_unique<passes::TargetClearKernel>(ctx);
     variant_ = variant.build(ctx, scene, settings);
     scale_ = !variant_->scaled() ? 1.0 : variant_->dynamicScale() ? settings.drr_control.max_scale : variant_->fixedScale();
 
@@ -214,6 +226,7 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
     auto frame = std::make_shared<passes::SceneFrame>();
     frame->scene = &scene_;
     frame->frame_set = slot.frame_set;
+    frame->clear = target_clear_.get();
     // Camera-relative rendering: everything the GPU sees is relative to this frame's
     // camera position, subtracted in double, the previous frame's matrices included
     // (prev_view_proj in writeUniforms adds it back), so far from the origin nothing

@@ -7,6 +7,7 @@
 
 #include "renderer/gpu/gpu_scene.h"
 #include "renderer/passes/scene_pass.h"
+#include "renderer/passes/target_clear.h"
 #include "renderer/vk/pipelines.h"
 #include "renderer/settings.h"
 #include "renderer/shaders/shared.h"
@@ -59,6 +60,7 @@ private:
     vk::Context& ctx_;
     const gpu::GpuScene& scene_;
     Settings settings_;
+    std::unique_ptr<passes::TargetClearKernel> target_clear_;  // where ctx.compute_clears
     std::unique_ptr<variants::VariantRenderer> variant_;
     std::vector<shaders::GpuLight> lights_;        // records (lights x shading cost), positions unset
     std::vector<glm::dvec3> light_positions_;      // world position of each record's light

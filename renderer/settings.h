@@ -22,6 +22,11 @@ enum class ResolveImpl {
 };
 const char* resolveImplName(ResolveImpl impl);  // fused | separate | reference
 
+// How scene passes clear their colour targets (`--target-clear`): the attachment's load op,
+// or a compute pass that stores the clear value (passes/target_clear.h says why and when).
+enum class TargetClear { Auto, LoadOp, Compute };
+const char* targetClearName(TargetClear clear);  // auto | load-op | compute
+
 // Dynamic resolution controller (`--drr-target-ms`): steps the per-axis scale towards
 // the target frame time, holding inside a dead band, within bounds.
 struct DrrControl {
@@ -56,6 +61,7 @@ struct Settings {
     double cso_tolerance = 0.05;
     bool cso_absolute = false;       // false: relative to the mean neighbour depth
     ResolveImpl resolve_impl = ResolveImpl::Fused;
+    TargetClear target_clear = TargetClear::Auto;
     bool debug_pixel_id = false;     // colours encode the full-res pixel each sample lands on
     bool analysis = false;           // quality frames also read back motion and depths (edge crawl)
     int supersample = 1;             // the supersampled reference: k x k samples per output pixel

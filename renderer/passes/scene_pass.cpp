@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "renderer/passes/target_clear.h"
 #include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
 #include "renderer/vk/pipelines.h"
@@ -201,25 +202,44 @@ void drawItems(VkCommandBuffer cmd, const SceneFrame& f, const std::vector<gpu::
 // layer < 0: the whole image (or all views); else that layer's 2D view. clear: colour
 // and depth cleared; else both loaded, depth read-only, unless clear_colour_only (the CFB:
 // transparent colour from zero over the opaque depth).
+// The colour attachments of a scene pass in attachment order, each with the value it is
+// cleared to: colour (the background, or zero for the CFB), the G-buffer's extras, motion.
+std::vector<std::pair<const vk::Image*, glm::vec4>> colourClears(const SceneFrame& f, const SceneTargets& t,
+                                                                 bool checkerboard_forward_buffer) {
+    std::vector<std::pair<const vk::Image*, glm::vec4>> out;
+    out.push_back({t.color, checkerboard_forward_buffer ? glm::vec4(0.0f) : glm::vec4(glm::vec3(f.clear_color), 0.0f)});
+    for (const vk::Image* extra : t.extra)
+        if (extra) out.push_back({extra, glm::vec4(0.0f)});
+    // Sky: no motion; or, when only moving instances write it, "derive from depth".
+    bool moving_only = f.pipelines && f.pipelines->moving_only_motion;
+    if (t.motion) out.push_back({t.motion, moving_only ? glm::vec4(kMotionFromDepth, 0.0f, 0.0f, 0.0f) : glm::vec4(0.0f)});
+    return out;
+}
+
+bool clearedByCompute(const SceneFrame& f, const vk::Image& image) { return f.clear && image.compute_clearable; }
+
+// Before a pass that clears its colour targets: the compute clear of those that take it
+// (target_clear.h); beginScene then loads them.
+void clearByCompute(VkCommandBuffer cmd, const SceneFrame& f, const SceneTargets& t, bool checkerboard_forward_buffer) {
+    for (const auto& [img, value] : colourClears(f, t, checkerboard_forward_buffer))
+        if (clearedByCompute(f, *img)) f.clear->record(cmd, *img, value);
+}
+
 void beginScene(VkCommandBuffer cmd, const SceneFrame& f, const SceneTargets& t, bool clear, int layer,
                 bool clear_colour_only = false) {
     auto view = [layer](const vk::Image* img) { return layer < 0 ? img->view : img->layer_views[size_t(layer)]; };
     std::vector<VkRenderingAttachmentInfo> color_att;
-    auto attach = [&](const vk::Image* img, glm::vec4 clear_value) {
+    for (const auto& [img, clear_value] : colourClears(f, t, clear_colour_only)) {
         VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         a.imageView = view(img);
         a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        a.loadOp = clear || clear_colour_only ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+        // A target the pass cleared by compute (clearByCompute) is loaded.
+        bool cleared_here = (clear || clear_colour_only) && !clearedByCompute(f, *img);
+        a.loadOp = cleared_here ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
         a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
         a.clearValue.color = {{clear_value.r, clear_value.g, clear_value.b, clear_value.a}};
         color_att.push_back(a);
-    };
-    attach(t.color, clear_colour_only ? glm::vec4(0.0f) : glm::vec4(glm::vec3(f.clear_color), 0.0f));
-    for (const vk::Image* extra : t.extra)
-        if (extra) attach(extra, glm::vec4(0.0f));
-    // Sky: no motion; or, when only moving instances write it, "derive from depth".
-    bool moving_only = f.pipelines && f.pipelines->moving_only_motion;
-    if (t.motion) attach(t.motion, moving_only ? glm::vec4(kMotionFromDepth, 0.0f, 0.0f, 0.0f) : glm::vec4(0.0f));
+    }
     VkRenderingAttachmentInfo depth_att{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth_att.imageView = view(t.depth);
     depth_att.imageLayout = clear ? VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL;
@@ -318,6 +338,7 @@ void addClearedGeometryPass(graph::Graph& graph, const char* name, bool timed, c
         if (extra) pass.uses.push_back({extra, graph::Use::ColorWrite});
     if (targets.motion) pass.uses.push_back({targets.motion, graph::Use::ColorWrite});
     pass.record = [frame, targets](VkCommandBuffer cmd) {
+        clearByCompute(cmd, *frame, targets, false);
         forEachLayer(targets, [&](int layer) {
             beginScene(cmd, *frame, targets, true, layer);
             const gpu::GpuScene& s = *frame->scene;
@@ -375,6 +396,7 @@ void addTransparentPass(graph::Graph& graph, const SceneTargets& targets, std::s
         std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
         std::vector<gpu::DrawItem> items;
         for (const auto& [dist, d] : sorted) items.push_back(d);
+        if (checkerboard_forward_buffer) clearByCompute(cmd, *frame, targets, true);
         forEachLayer(targets, [&](int layer) {
             beginScene(cmd, *frame, targets, false, layer, checkerboard_forward_buffer);
             drawItems(cmd, *frame, items, frame->pipelines->blend);

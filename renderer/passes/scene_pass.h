@@ -16,6 +16,8 @@ class Context;
 
 namespace cbr::passes {
 
+class TargetClearKernel;  // target_clear.h
+
 constexpr VkFormat kMotionFormat = VK_FORMAT_R32G32_SFLOAT;  // full precision, never floored
 // What a motion target holds where no moving object was drawn (x; the resolve derives the
 // camera's motion from depth there). Matches kMotionFromDepth in cbr_resolve.glsl.
@@ -88,6 +90,9 @@ struct SceneFrame {
     bool sample_locations = false;
     glm::vec2 sample_positions[2] = {};
     PFN_vkCmdSetSampleLocationsEXT set_sample_locations = nullptr;
+    // The compute clear, where the context chose it (Context::compute_clears); colour
+    // targets that are compute_clearable are then cleared by it instead of the load op.
+    TargetClearKernel* clear = nullptr;
 };
 
 // Clears the targets, draws opaque then alpha-tested geometry.

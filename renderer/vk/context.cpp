@@ -302,6 +302,9 @@ Context::Context(const ContextOptions& options) {
     VkPhysicalDeviceFeatures2 e2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &e11};
     e2.features.pipelineStatisticsQuery = f2.features.pipelineStatisticsQuery;
     e2.features.sampleRateShading = f2.features.sampleRateShading;
+    caps.compute_clear = f2.features.shaderStorageImageWriteWithoutFormat && f2.features.shaderStorageImageMultisample;
+    e2.features.shaderStorageImageWriteWithoutFormat = caps.compute_clear;
+    e2.features.shaderStorageImageMultisample = caps.compute_clear;
     // The checkerboard scene pass blends colour but never its motion attachment.
     if (!f2.features.independentBlend) throw Unsupported("device " + description.name + " lacks independentBlend");
     e2.features.independentBlend = VK_TRUE;

@@ -41,6 +41,9 @@ struct DeviceCaps {
     VkSampleCountFlags depth_sample_counts = 0;
     uint32_t max_image_dimension_2d = 0;
     bool sample_locations_2x = false;  // VK_EXT_sample_locations enabled and allows 2 samples
+    // Storage writes without a format qualifier, to multisampled images too: what the compute
+    // clear of colour targets needs (passes/target_clear.h).
+    bool compute_clear = false;
 };
 
 struct ValidationCounts {
@@ -74,6 +77,11 @@ public:
     // image starts filled with NaN (float formats) or an implausible value, so a pass that
     // reads texels no pass wrote shows in the images instead of reading stale memory.
     bool poison_images = false;
+    // Colour targets cleared by a compute pass instead of the attachment's load op
+    // (`--target-clear`, decided by passes::chooseTargetClear before any target exists):
+    // colour attachments are then also created as storage images where the format allows.
+    bool compute_clears = false;
+    std::string target_clear_rule;  // why, for run.json
 
     // Runs `record` in a one-time command buffer and waits for it (uploads only).
     template <class F>

@@ -18,6 +18,13 @@ uint32_t findMemoryType(const Context& ctx, uint32_t type_bits, VkMemoryProperty
     throw Error("no memory type with properties " + std::to_string(want));
 }
 
+// Optimal-tiling storage images of this format are supported.
+bool storageFormat(Context& ctx, VkFormat format) {
+    VkFormatProperties props;
+    vkGetPhysicalDeviceFormatProperties(ctx.physical, format, &props);
+    return (props.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0;
+}
+
 VkDeviceMemory allocate(Context& ctx, const VkMemoryRequirements& req, VkMemoryPropertyFlags want) {
     VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     info.allocationSize = req.size;
@@ -152,6 +159,11 @@ Image createImage(Context& ctx, const ImageDesc& desc) {
     const bool poisoned = ctx.poison_images && !isDepthFormat(desc.format) &&
                           (desc.usage & (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT)) != 0;
     info.usage = desc.usage | (poisoned ? VK_IMAGE_USAGE_TRANSFER_DST_BIT : 0);
+    if (ctx.compute_clears && (desc.usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) && storageFormat(ctx, desc.format) &&
+        (ctx.properties.limits.storageImageSampleCounts & desc.samples)) {
+        info.usage |= VK_IMAGE_USAGE_STORAGE_BIT;
+        img.compute_clearable = true;
+    }
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     VkResult r = vkCreateImage(ctx.device, &info, nullptr, &img.image);
     if (r == VK_ERROR_FORMAT_NOT_SUPPORTED || r == VK_ERROR_FEATURE_NOT_PRESENT)

@@ -35,6 +35,9 @@ struct Image {
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
     VkPipelineStageFlags2 stage = VK_PIPELINE_STAGE_2_NONE;
     VkAccessFlags2 access = VK_ACCESS_2_NONE;
+    // A colour attachment also created as a storage image (Context::compute_clears and a
+    // format that allows it): scene passes clear it by a compute pass, not the load op.
+    bool compute_clearable = false;
 };
 
 // The layout an image is sampled in (graph::Use::Sampled): depth images stay in

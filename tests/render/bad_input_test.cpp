@@ -117,6 +117,7 @@ std::vector<Case> cases() {
         {"bad_drr_scale", {"--drr-scale", "1.5"}, {"--drr-scale"}},
         {"bad_drr_filter", {"--drr-filter", "lanczos9"}, {"--drr-filter", "bilinear"}},
         {"bad_flip_ppd", {"--flip-ppd", "0"}, {"--flip-ppd", "67.02"}},
+        {"bad_target_clear", {"--target-clear", "memset"}, {"--target-clear memset", "load-op", "compute"}},
         {"nan_flip_ppd", {"--flip-ppd", "nan"}, {"--flip-ppd"}},
         {"unknown_option", {"--frobnicate"}, {"--frobnicate"}},
     };
