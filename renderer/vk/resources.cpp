@@ -34,9 +34,12 @@ VkDeviceMemory allocate(Context& ctx, const VkMemoryRequirements& req, VkMemoryP
     return memory;
 }
 
+
+}  // namespace
+
 void imageBarrier(VkCommandBuffer cmd, VkImage image, uint32_t base_mip, uint32_t mips, VkImageLayout from,
                   VkImageLayout to, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
-                  VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access, uint32_t layers = 1) {
+                  VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access, uint32_t layers) {
     VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
     b.srcStageMask = src_stage;
     b.srcAccessMask = src_access;
@@ -52,8 +55,6 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, uint32_t base_mip, uint32_
     dep.pImageMemoryBarriers = &b;
     vkCmdPipelineBarrier2(cmd, &dep);
 }
-
-}  // namespace
 
 bool isDepthFormat(VkFormat f) {
     return f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_D24_UNORM_S8_UINT ||

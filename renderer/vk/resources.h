@@ -62,6 +62,12 @@ void destroyBuffer(Context& ctx, Buffer& buffer);
 // Device-local buffer filled through a staging copy.
 Buffer uploadBuffer(Context& ctx, const void* data, VkDeviceSize size, VkBufferUsageFlags usage);
 
+// One colour-aspect image barrier (synchronization2) over mips [base_mip, base_mip + mips)
+// and the first `layers` layers.
+void imageBarrier(VkCommandBuffer cmd, VkImage image, uint32_t base_mip, uint32_t mips, VkImageLayout from,
+                  VkImageLayout to, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                  VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access, uint32_t layers = 1);
+
 Image createImage(Context& ctx, const ImageDesc& desc);
 void destroyImage(Context& ctx, Image& image);
 bool isDepthFormat(VkFormat format);
