@@ -66,6 +66,8 @@ std::string provenanceSection(const RunData& d) {
                                  {"timestamp period (ns)", at(d, "/device/timestamp_period_ns")},
                                  {"timestamp valid bits", at(d, "/device/timestamp_valid_bits")},
                                  {"pipeline statistics", at(d, "/device/pipeline_statistics")},
+                                 {"target clears", joined(at(d, "/device/target_clear"),
+                                                          at(d, "/device/target_clear_rule"), ": ")},
                                  {"timing note", at(d, "/device/timing_note")},
                              });
     std::string res = at(d, "/settings/width") + "\u00d7" + at(d, "/settings/height");
