@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <initializer_list>
 #include <stdexcept>
 
 #include "harness/export.h"
@@ -67,6 +68,20 @@ void parseDebugSlowdown(const RunOptions& o, render::Settings& settings) {
 }
 
 // The render settings every configuration starts from.
+// The enum value an option names, or one line listing what it accepts
+// ("--drr-filter x: expected bilinear or catmull-rom").
+template <class E>
+E chooseOne(const char* option, const std::string& value, std::initializer_list<std::pair<const char*, E>> choices) {
+    std::string accepted;
+    size_t k = 0;
+    for (const auto& [name, e] : choices) {
+        if (value == name) return e;
+        accepted += (k == 0 ? "" : k + 1 == choices.size() ? " or " : ", ") + std::string(name);
+        ++k;
+    }
+    throw std::invalid_argument(std::string(option) + " " + value + ": expected " + accepted);
+}
+
 render::Settings settingsFromOptions(const RunOptions& o) {
     render::Settings s;
     parseResolution(o.resolution, s.width, s.height);
@@ -91,28 +106,17 @@ render::Settings settingsFromOptions(const RunOptions& o) {
     s.cbr_history_catmull_rom = o.history_filter == "catmull-rom";
     s.cso_tolerance = o.cso_tolerance;
     s.cso_absolute = o.cso_mode == "absolute";
-    if (o.resolve_impl == "fused")
-        s.resolve_impl = render::ResolveImpl::Fused;
-    else if (o.resolve_impl == "separate")
-        s.resolve_impl = render::ResolveImpl::Separate;
-    else if (o.resolve_impl == "reference")
-        s.resolve_impl = render::ResolveImpl::Reference;
-    else
-        throw std::invalid_argument("--resolve-impl " + o.resolve_impl + ": expected fused, separate or reference");
-    if (o.target_clear == "auto")
-        s.target_clear = render::TargetClear::Auto;
-    else if (o.target_clear == "load-op")
-        s.target_clear = render::TargetClear::LoadOp;
-    else if (o.target_clear == "compute")
-        s.target_clear = render::TargetClear::Compute;
-    else
-        throw std::invalid_argument("--target-clear " + o.target_clear + ": expected auto, load-op or compute");
-    if (o.drr_filter == "bilinear")
-        s.drr_filter = render::DrrFilter::Bilinear;
-    else if (o.drr_filter == "catmull-rom")
-        s.drr_filter = render::DrrFilter::CatmullRom;
-    else
-        throw std::invalid_argument("--drr-filter " + o.drr_filter + ": expected bilinear or catmull-rom");
+    s.resolve_impl = chooseOne<render::ResolveImpl>("--resolve-impl", o.resolve_impl,
+                                                    {{"fused", render::ResolveImpl::Fused},
+                                                     {"separate", render::ResolveImpl::Separate},
+                                                     {"reference", render::ResolveImpl::Reference}});
+    s.target_clear = chooseOne<render::TargetClear>("--target-clear", o.target_clear,
+                                                    {{"auto", render::TargetClear::Auto},
+                                                     {"load-op", render::TargetClear::LoadOp},
+                                                     {"compute", render::TargetClear::Compute}});
+    s.drr_filter = chooseOne<render::DrrFilter>(
+        "--drr-filter", o.drr_filter,
+        {{"bilinear", render::DrrFilter::Bilinear}, {"catmull-rom", render::DrrFilter::CatmullRom}});
     s.drr_scale = o.drr_scale;
     s.drr_control.target_ms = o.drr_target_ms;
     s.taau_scale = o.taau_scale;
