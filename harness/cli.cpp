@@ -118,6 +118,10 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_option("--history-filter", o.history_filter,
                     "how --cbr-history full reads the history: catmull-rom or bilinear (blurs frame after frame)")
         ->capture_default_str();
+    cmd->add_option("--history-format", o.history_format,
+                    "how --cbr-history full stores the history: b10g11r11 (4 bytes a pixel; rgba16f where the "
+                    "device cannot store it) or rgba16f (8 bytes, exact on a still camera)")
+        ->capture_default_str();
     cmd->add_option("--cbr-lod-bias", o.cbr_lod_bias, "texture LOD bias of checkerboard scene passes")
         ->capture_default_str();
     cmd->add_option("--cso-tolerance", o.cso_tolerance, "cbr-cso depth tolerance (relative, or scene units)")

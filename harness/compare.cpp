@@ -32,7 +32,7 @@ using reports::RunData;
 // (debug_slowdown is left out on purpose: it is how a detector test makes a known regression.)
 const std::vector<std::string> kKeySettings = {
     "shading_cost", "drr_scale",  "drr_filter", "cso_tolerance", "cso_mode",    "cbr_route",  "cbr_lod_bias",
-    "reference",    "resolve_impl", "cbr_history", "history_filter", "taau_scale", "taau_phases", "taau_blend"};
+    "reference",    "resolve_impl", "cbr_history", "history_filter", "history_format", "taau_scale", "taau_phases", "taau_blend"};
 
 struct Side {
     RunData data;

@@ -183,6 +183,7 @@ std::string planHash(const RunOptions& o) {
     const RunOptions defaults;
     if (o.cbr_history != defaults.cbr_history) j["cbr_history"] = o.cbr_history;
     if (o.history_filter != defaults.history_filter) j["history_filter"] = o.history_filter;
+    if (o.history_format != defaults.history_format) j["history_format"] = o.history_format;
     if (o.taau_scale != defaults.taau_scale) j["taau_scale"] = o.taau_scale;
     if (o.taau_phases != defaults.taau_phases) j["taau_phases"] = o.taau_phases;
     if (o.taau_blend != defaults.taau_blend) j["taau_blend"] = o.taau_blend;

@@ -126,6 +126,7 @@ json settingsJson(const RunContext& rc) {
             {"cbr_lod_bias", s.cbr_lod_bias},
             {"cbr_history", s.cbr_full_history ? "full" : "quarter"},
             {"history_filter", s.cbr_history_catmull_rom ? "catmull-rom" : "bilinear"},
+            {"history_format", render::historyFormatName(s.cbr_history_format)},
             {"cso_tolerance", s.cso_tolerance},
             {"cso_mode", s.cso_absolute ? "absolute" : "relative"},
             {"resolve_impl", render::resolveImplName(s.resolve_impl)},

@@ -104,6 +104,9 @@ render::Settings settingsFromOptions(const RunOptions& o) {
     if (o.history_filter != "catmull-rom" && o.history_filter != "bilinear")
         throw std::invalid_argument("--history-filter " + o.history_filter + ": expected catmull-rom or bilinear");
     s.cbr_history_catmull_rom = o.history_filter == "catmull-rom";
+    s.cbr_history_format = chooseOne<render::HistoryFormat>("--history-format", o.history_format,
+                                                            {{"b10g11r11", render::HistoryFormat::B10g11r11},
+                                                             {"rgba16f", render::HistoryFormat::Rgba16f}});
     s.cso_tolerance = o.cso_tolerance;
     s.cso_absolute = o.cso_mode == "absolute";
     s.resolve_impl = chooseOne<render::ResolveImpl>("--resolve-impl", o.resolve_impl,

@@ -36,6 +36,10 @@ const char* targetClearName(TargetClear clear) {
     return "auto";
 }
 
+const char* historyFormatName(HistoryFormat format) {
+    return format == HistoryFormat::Rgba16f ? "rgba16f" : "b10g11r11";
+}
+
 const char* resolveImplName(ResolveImpl impl) {
     switch (impl) {
         case ResolveImpl::Fused: return "fused";

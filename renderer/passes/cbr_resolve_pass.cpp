@@ -45,7 +45,8 @@ uint32_t texelBytes(VkFormat format) {
         case VK_FORMAT_R8_UINT: return 1;
         case VK_FORMAT_R8G8B8A8_UNORM:
         case VK_FORMAT_D32_SFLOAT:
-        case VK_FORMAT_R16G16_SFLOAT: return 4;
+        case VK_FORMAT_R16G16_SFLOAT:
+        case VK_FORMAT_B10G11R11_UFLOAT_PACK32: return 4;
         case VK_FORMAT_R16G16B16A16_SFLOAT:
         case VK_FORMAT_R32G32_SFLOAT: return 8;
         default: throw vk::Error("cbr_resolve bandwidth: no texel size for format " + std::to_string(int(format)));
@@ -90,13 +91,19 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
     for (int i = 0; i < 3; ++i)
         r.stand_ins[i] = vk::createImage(ctx, {"cbr_resolve_stand_in" + std::to_string(i), stand_in_formats[i], {1, 1},
                                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
-    for (int i = 0; i < 2; ++i)
+    // B10G11R11 where the device can store it (an optional format feature), else RGBA16F.
+    const bool small_storable = vk::storageFormat(ctx, VK_FORMAT_B10G11R11_UFLOAT_PACK32);
+    r.history_format = small_storable ? desc.history_format : render::HistoryFormat::Rgba16f;
+    const bool small = r.history_format == render::HistoryFormat::B10g11r11;
+    const VkFormat small_format = small_storable ? VK_FORMAT_B10G11R11_UFLOAT_PACK32 : VK_FORMAT_R16G16B16A16_SFLOAT;
+    for (int i = 0; i < 3; ++i)
         r.history_stand_ins[i] = vk::createImage(ctx, {"cbr_history_stand_in" + std::to_string(i),
-                                                       VK_FORMAT_R16G16B16A16_SFLOAT, {1, 1},
+                                                       i == 2 ? small_format : VK_FORMAT_R16G16B16A16_SFLOAT, {1, 1},
                                                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
     if (desc.full_history) {
         for (int i = 0; i < 2; ++i)
-            r.history[i] = vk::createImage(ctx, {"cbr_history" + std::to_string(i), VK_FORMAT_R16G16B16A16_SFLOAT,
+            r.history[i] = vk::createImage(ctx, {"cbr_history" + std::to_string(i),
+                                                 small ? VK_FORMAT_B10G11R11_UFLOAT_PACK32 : VK_FORMAT_R16G16B16A16_SFLOAT,
                                                  desc.full_extent,
                                                  VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
         r.history_sampler = vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 0.0f);
@@ -107,7 +114,8 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
     std::vector<vk::Binding> binding_list = {{0, kSampled, kComp}, {1, kSampled, kComp}, {2, kSampled, kComp},
                                              {3, kSampled, kComp}, {4, kSampled, kComp}, {5, kStorage, kComp},
                                              {6, kStorage, kComp},  {7, kStorage, kComp},
-                                             {10, kSampled, kComp}, {11, kStorage, kComp}};
+                                             {10, kSampled, kComp}, {11, kStorage, kComp},
+                                             {12, kStorage, kComp}};
     if (desc.deferred) binding_list.insert(binding_list.end(), {{8, kSampled, kComp}, {9, kSampled, kComp}});
     bool has_cfb = desc.deferred && sets[0].cfb.image;
     bool tiled = desc.impl != ResolveImpl::Reference;
@@ -121,6 +129,7 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
         s.push_back({/* PARITY= */ 6, parity});
         s.push_back({/* FULL_HISTORY= */ 7, desc.full_history ? 1 : 0});
         s.push_back({/* HISTORY_CATMULL_ROM= */ 8, desc.history_catmull_rom ? 1 : 0});
+        s.push_back({/* HISTORY_FORMAT= */ 9, small ? 0 : 1});
         s.push_back({/* GROUP= */ 20, desc.group});
         for (uint32_t i = 0; i < 8; ++i) s.push_back({/* PATTERN_i= */ 10 + i, r.push.pattern[i]});
         return s;
@@ -176,7 +185,8 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
         bindStandIn(ctx, set, 5, fused ? nullptr : out.hdr, r.stand_ins[0]);
         bindStandIn(ctx, set, 6, tiled ? nullptr : out.classes, r.stand_ins[1]);
         bindStandIn(ctx, set, 7, fused ? out.display : nullptr, r.stand_ins[2]);
-        bindStandIn(ctx, set, 11, r.full_history ? &r.history[cur] : nullptr, r.history_stand_ins[1]);
+        bindStandIn(ctx, set, 11, r.full_history && !small ? &r.history[cur] : nullptr, r.history_stand_ins[1]);
+        bindStandIn(ctx, set, 12, r.full_history && small ? &r.history[cur] : nullptr, r.history_stand_ins[2]);
         r.sets[cur] = set;
         if (!tiled) continue;
         VkDescriptorSet class_set = vk::allocateSet(ctx, r.pool, r.class_kernel[0].set_layout);
@@ -185,6 +195,7 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
         bindStandIn(ctx, class_set, 6, out.classes, r.stand_ins[1]);
         bindStandIn(ctx, class_set, 7, nullptr, r.stand_ins[2]);
         bindStandIn(ctx, class_set, 11, nullptr, r.history_stand_ins[1]);
+        bindStandIn(ctx, class_set, 12, nullptr, r.history_stand_ins[2]);
         r.class_sets[cur] = class_set;
     }
     return r;
@@ -223,7 +234,9 @@ void addDispatch(graph::Graph& graph, std::string name, bool timed, const vk::Co
     // The history bindings: real images with the full history, else their stand-ins (a
     // binding the shader references statically is an access to the synchronisation layer).
     pass.uses.push_back({r.full_history ? &r.history[1 - current] : &r.history_stand_ins[0], graph::Use::Sampled});
-    if (!r.full_history || !timed) pass.uses.push_back({&r.history_stand_ins[1], graph::Use::StorageWrite});
+    bool small = r.history_format == render::HistoryFormat::B10g11r11;
+    if (!r.full_history || !timed || small) pass.uses.push_back({&r.history_stand_ins[1], graph::Use::StorageWrite});
+    if (!r.full_history || !timed || !small) pass.uses.push_back({&r.history_stand_ins[2], graph::Use::StorageWrite});
     pass.uses.insert(pass.uses.end(), writes.begin(), writes.end());
     pass.record = [&kernel, frame_set, set, extent, &push, group](VkCommandBuffer cmd) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline);
@@ -284,8 +297,9 @@ double cbrResolveBytes(const CbrResolve& r, const CheckerboardSet& set, uint32_t
                       (r.check_occlusion ? imageBytes(set.depth) : 0.0);
     double written = double(width) * height * (r.impl == ResolveImpl::Fused ? 4 : 8);
     // Full history: frame N-1's resolved colour read once per unshaded pixel (half the
-    // image, RGBA16F) and frame N's written for every pixel.
-    if (r.full_history) written += double(width) * height * 8 + double(width) * height * 0.5 * 8;
+    // image) and frame N's written for every pixel.
+    double history_texel = r.history_format == render::HistoryFormat::Rgba16f ? 8 : 4;
+    if (r.full_history) written += double(width) * height * history_texel * 1.5;
     if (r.impl == ResolveImpl::Reference) written += double(width) * height;  // the class map, every frame
     return current + previous + written;
 }

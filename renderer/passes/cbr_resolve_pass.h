@@ -40,6 +40,7 @@ struct CbrResolveDesc {
     // else frame N-1's quarter-res samples.
     bool full_history = false;
     bool history_catmull_rom = true;  // the full history's read filter, else bilinear
+    render::HistoryFormat history_format = render::HistoryFormat::B10g11r11;  // the full history's storage
     VkExtent2D full_extent{};       // output size, for the full history images
     bool clip_only = false;         // `clip` (full history only): reuse wherever on screen, the clip rejects
 };
@@ -77,12 +78,16 @@ struct CbrResolve {
     // 1x1 stand-ins bound to the outputs a kernel does not write: hdr, classes, display.
     vk::Image stand_ins[3];
     // Full history: [parity] frame N writes history[parity] and reads history[1 - parity]
-    // (linear RGBA16F, output size); absent with the quarter-res history.
+    // (linear, output size, in `history_format`: B10G11R11 written through binding 12,
+    // RGBA16F through binding 11); absent with the quarter-res history.
     bool full_history = false;
+    render::HistoryFormat history_format = render::HistoryFormat::Rgba16f;
     vk::Image history[2];
     VkSampler history_sampler = VK_NULL_HANDLE;  // bilinear, clamped
-    // 1x1 stand-ins for the history bindings (read, written) with the quarter-res history.
-    vk::Image history_stand_ins[2];
+    // 1x1 stand-ins for the history bindings with the quarter-res history or where the other
+    // format is written: [0] read, [1] written as RGBA16F, [2] written as B10G11R11 (RGBA16F
+    // where the device cannot store B10G11R11: that binding is then never written).
+    vk::Image history_stand_ins[3];
 };
 
 CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDescriptorSetLayout frame_layout,

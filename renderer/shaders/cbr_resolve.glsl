@@ -38,6 +38,9 @@ layout(constant_id = 6) const int PARITY = 0;
 // neighbourhood in YCoCg (issue 17, --cbr-history full).
 layout(constant_id = 7) const int FULL_HISTORY = 0;
 layout(constant_id = 8) const int HISTORY_CATMULL_ROM = 1;  // full history read: 1 Catmull-Rom, 0 bilinear
+// How the full history is stored (render::HistoryFormat): 0 B10G11R11 (history_small), 1
+// RGBA16F (history_out).
+layout(constant_id = 9) const int HISTORY_FORMAT = 0;
 layout(constant_id = 10) const int PATTERN_0 = 0;
 layout(constant_id = 11) const int PATTERN_1 = 0;
 layout(constant_id = 12) const int PATTERN_2 = 0;
@@ -58,6 +61,7 @@ layout(set = 1, binding = 7, rgba8) uniform writeonly image2D out_display;
 // stand-ins with the quarter-res history.
 layout(set = 1, binding = 10) uniform sampler2D history_prev;
 layout(set = 1, binding = 11, rgba16f) uniform writeonly image2D history_out;
+layout(set = 1, binding = 12, r11f_g11f_b10f) uniform writeonly image2D history_small;
 
 // The layout the reference shader reads (cbr_resolve_reference.glsl); pattern unused here.
 layout(push_constant) uniform Params {
@@ -146,10 +150,26 @@ vec3 toYCoCg(vec3 c) {
 }
 vec3 fromYCoCg(vec3 c) { return vec3(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z); }
 
-void addNeighbour(inout Fill f, ivec2 n, ivec2 quadrant, ivec2 origin, ivec2 size) {
+// A neighbour of the pixel being reconstructed, read from the tile once and used by every
+// rule (the fill, the nearest surface, the clip box, the edge-directed fill).
+struct Neighbour {
+    vec4 sample_;  // rgb colour, a device depth
+    int slot;
     bool shaded;
-    int slot = slotOf(n, quadrant, origin, size, shaded);
-    vec4 sample_ = tile_sample[slot];
+    ivec2 pixel;
+};
+
+Neighbour readNeighbour(ivec2 n, ivec2 quadrant, ivec2 origin, ivec2 size) {
+    Neighbour nb;
+    nb.slot = slotOf(n, quadrant, origin, size, nb.shaded);
+    nb.sample_ = tile_sample[nb.slot];
+    nb.pixel = n;
+    return nb;
+}
+
+void addNeighbour(inout Fill f, Neighbour nb) {
+    bool shaded = nb.shaded;
+    vec4 sample_ = nb.sample_;
     // Fill terms: rgb max(colour, 0) * w, a w = 1 / (1 + luma).
     vec3 c = max(sample_.rgb, vec3(0.0));
     float w = 1.0 / (1.0 + luma(c));
@@ -157,8 +177,8 @@ void addNeighbour(inout Fill f, ivec2 n, ivec2 quadrant, ivec2 origin, ivec2 siz
     float depth = sample_.a;
     bool closer = shaded && depth > f.nearest;
     f.nearest = closer ? depth : f.nearest;
-    f.nearest_slot = closer ? slot : f.nearest_slot;
-    f.nearest_pixel = closer ? n : f.nearest_pixel;
+    f.nearest_slot = closer ? nb.slot : f.nearest_slot;
+    f.nearest_pixel = closer ? nb.pixel : f.nearest_pixel;
     f.depth_sum += shaded ? viewDepth(depth, frame.depth_params.xy) : 0.0;
     f.depth_count += shaded ? 1 : 0;
     f.device_sum += shaded ? depth : 0.0;
@@ -212,26 +232,27 @@ vec3 fillColour(Fill f) { return f.sum.a > 0.0 ? f.sum.rgb / f.sum.a : vec3(0.0)
 // and the pairs are weighted by the inverse of their luma difference, so a pixel on an edge
 // takes the pair along the edge rather than the mean across it (as demosaicing does); the
 // plain fill where a neighbour is missing.
-vec3 directionalFill(ivec2 p, ivec2 qx, ivec2 qy, ivec2 origin, ivec2 size, Fill f) {
-    bool sl, sr, su, sd;
-    vec3 l = max(tile_sample[slotOf(p + ivec2(-1, 0), qx, origin, size, sl)].rgb, vec3(0.0));
-    vec3 r = max(tile_sample[slotOf(p + ivec2(1, 0), qx, origin, size, sr)].rgb, vec3(0.0));
-    vec3 u = max(tile_sample[slotOf(p + ivec2(0, -1), qy, origin, size, su)].rgb, vec3(0.0));
-    vec3 d = max(tile_sample[slotOf(p + ivec2(0, 1), qy, origin, size, sd)].rgb, vec3(0.0));
+vec3 directionalFill(Neighbour nl, Neighbour nr, Neighbour nu, Neighbour nd, Fill f) {
+    vec3 l = max(nl.sample_.rgb, vec3(0.0)), r = max(nr.sample_.rgb, vec3(0.0));
+    vec3 u = max(nu.sample_.rgb, vec3(0.0)), d = max(nd.sample_.rgb, vec3(0.0));
     float gh = abs(luma(l) - luma(r)), gv = abs(luma(u) - luma(d));
     float wh = 1.0 / (gh + 1e-3), wv = 1.0 / (gv + 1e-3);
     vec3 c = (0.5 * (l + r) * wh + 0.5 * (u + d) * wv) / (wh + wv);
-    return sl && sr && su && sd ? c : fillColour(f);
+    return nl.shaded && nr.shaded && nu.shaded && nd.shaded ? c : fillColour(f);
 }
 
 // A pixel of a quadrant frame N did not shade: reused from frame N-1, or filled.
 vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls) {
     ivec2 qx = ivec2(quadrant.x ^ 1, quadrant.y), qy = ivec2(quadrant.x, quadrant.y ^ 1);
     Fill f = Fill(vec4(0.0), -1.0, -1, ivec2(0), 0.0, 0, vec3(1e30), vec3(-1e30), 0.0, 2.0);
-    addNeighbour(f, p + ivec2(-1, 0), qx, origin, size);
-    addNeighbour(f, p + ivec2(1, 0), qx, origin, size);
-    addNeighbour(f, p + ivec2(0, -1), qy, origin, size);
-    addNeighbour(f, p + ivec2(0, 1), qy, origin, size);
+    Neighbour nl = readNeighbour(p + ivec2(-1, 0), qx, origin, size);
+    Neighbour nr = readNeighbour(p + ivec2(1, 0), qx, origin, size);
+    Neighbour nu = readNeighbour(p + ivec2(0, -1), qy, origin, size);
+    Neighbour nd = readNeighbour(p + ivec2(0, 1), qy, origin, size);
+    addNeighbour(f, nl);
+    addNeighbour(f, nr);
+    addNeighbour(f, nu);
+    addNeighbour(f, nd);
 
     // Motion of the nearest cardinal neighbour: from the motion target, or for a static
     // scene the camera's motion from depth with the previous view-projection (the paper's).
@@ -295,7 +316,7 @@ vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls
         cls = on_screen ? cls : kOffscreen;
         cls = frame.frame_info.y == 1u ? kReset : cls;
         // A history the clip moved is half trusted: averaged with the edge-directed fill.
-        vec3 df = directionalFill(p, qx, qy, origin, size, f);
+        vec3 df = directionalFill(nl, nr, nu, nd, f);
         return cls == kReused ? clipped : cls == kClipped ? mix(clipped, df, 0.5) : df;
     }
     // The class, the first rule that applies last (method/cbr.md, reconstruction steps 2-5).
@@ -317,13 +338,25 @@ vec3 shadedPixel(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, bool edge_gr
     if (edge_group) {
         ivec2 d = quadrant ^ 1;
         Fill f = Fill(vec4(0.0), -1.0, -1, ivec2(0), 0.0, 0, vec3(1e30), vec3(-1e30), 0.0, 2.0);
-        addNeighbour(f, p + ivec2(-1, -1), d, origin, size);
-        addNeighbour(f, p + ivec2(1, -1), d, origin, size);
-        addNeighbour(f, p + ivec2(-1, 1), d, origin, size);
-        addNeighbour(f, p + ivec2(1, 1), d, origin, size);
+        addNeighbour(f, readNeighbour(p + ivec2(-1, -1), d, origin, size));
+        addNeighbour(f, readNeighbour(p + ivec2(1, -1), d, origin, size));
+        addNeighbour(f, readNeighbour(p + ivec2(-1, 1), d, origin, size));
+        addNeighbour(f, readNeighbour(p + ivec2(1, 1), d, origin, size));
         colour = shaded ? colour : fillColour(f);
     }
     return colour;
+}
+
+// B10G11R11 history: each channel rounded here to the nearest value the format holds (a
+// device's own conversion may truncate: lavapipe's does), so every device stores the same:
+// half a step added to the float's bits, the bits the format drops cleared (a carry moves into
+// the exponent, as it should). R and G keep 6 mantissa bits, B 5. Exact from 2^-14 to the
+// format's largest value (65024); below, the device's subnormal conversion rounds what is left.
+vec3 asB10g11r11(vec3 c) {
+    uvec3 bits = floatBitsToUint(max(c, vec3(0.0)));
+    const uvec3 half_step = uvec3(1u << 16, 1u << 16, 1u << 17);
+    const uvec3 kept = ~uvec3((1u << 17) - 1u, (1u << 17) - 1u, (1u << 18) - 1u);
+    return uintBitsToFloat((bits + half_step) & kept);
 }
 
 // Per class c < 8, one count in a 16-bit field.
@@ -343,7 +376,12 @@ void resolvePixel(ivec2 block, ivec2 quadrant, ivec2 origin, ivec2 size, bool ed
     bool inside = all(lessThan(p, size));
     counts += classBit(cls, inside);
     if (!inside) return;
-    if (FULL_HISTORY != 0 && OUTPUT != 2) imageStore(history_out, p, vec4(colour, 1.0));
+    if (FULL_HISTORY != 0 && OUTPUT != 2) {
+        if (HISTORY_FORMAT == 0)
+            imageStore(history_small, p, vec4(asB10g11r11(colour), 1.0));
+        else
+            imageStore(history_out, p, vec4(colour, 1.0));
+    }
     if (OUTPUT == 2)
         imageStore(out_class, p, uvec4(cls));
     else if (OUTPUT == 0)

@@ -16,6 +16,11 @@
 namespace cbr::variants {
 namespace {
 
+const char* historyStorage(render::HistoryFormat format) {
+    return format == render::HistoryFormat::Rgba16f ? "RGBA16F, 8 bytes"
+                                                    : "B10G11R11, 4 bytes, rounded to nearest by the resolve";
+}
+
 // The quadrant (qx, qy) that sample/view `s` covers in a frame of `parity`.
 glm::ivec2 quadrantOf(int route, int parity, int s) {
     for (int q = 0; q < 4; ++q)
@@ -123,6 +128,7 @@ public:
         rdesc.full_history = settings_.cbr_full_history;
         rdesc.full_extent = full;
         rdesc.history_catmull_rom = s.cbr_history_catmull_rom;
+        rdesc.history_format = s.cbr_history_format;
         resolve_ = passes::createCbrResolve(ctx, rdesc, scene.frame_layout, sets_, {&hdr_, &display_, &class_});
         if (!fused_) tonemap_ = passes::createTonemap(ctx, hdr_, display_);
         if (desc.sample_locations)
@@ -229,7 +235,8 @@ public:
                              "motion from depth reprojection in the resolve"},
             {"fill", "tone-mapped average of frame N's cardinal neighbours, weights 1/(1+luma)"},
             {"history", settings_.cbr_full_history
-                            ? std::string("full: the previous resolved frame (linear RGBA16F, output size), ") +
+                            ? std::string("full: the previous resolved frame (linear, output size, ") +
+                                  historyStorage(resolve_.history_format) + "), " +
                                   (settings_.cbr_history_catmull_rom ? "Catmull-Rom (5 bilinear taps)" : "bilinear") +
                                   " at the reprojected position, clipped towards the centre of the YCoCg box of this frame's "
                               "shaded cardinal neighbours; CSO compares frame N-1's quarter-res depth there"

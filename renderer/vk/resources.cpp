@@ -18,13 +18,6 @@ uint32_t findMemoryType(const Context& ctx, uint32_t type_bits, VkMemoryProperty
     throw Error("no memory type with properties " + std::to_string(want));
 }
 
-// Optimal-tiling storage images of this format are supported.
-bool storageFormat(Context& ctx, VkFormat format) {
-    VkFormatProperties props;
-    vkGetPhysicalDeviceFormatProperties(ctx.physical, format, &props);
-    return (props.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0;
-}
-
 VkDeviceMemory allocate(Context& ctx, const VkMemoryRequirements& req, VkMemoryPropertyFlags want) {
     VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     info.allocationSize = req.size;
@@ -36,6 +29,13 @@ VkDeviceMemory allocate(Context& ctx, const VkMemoryRequirements& req, VkMemoryP
 
 
 }  // namespace
+
+// Optimal-tiling storage images of this format are supported.
+bool storageFormat(Context& ctx, VkFormat format) {
+    VkFormatProperties props;
+    vkGetPhysicalDeviceFormatProperties(ctx.physical, format, &props);
+    return (props.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0;
+}
 
 void imageBarrier(VkCommandBuffer cmd, VkImage image, uint32_t base_mip, uint32_t mips, VkImageLayout from,
                   VkImageLayout to, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,

@@ -69,6 +69,7 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, uint32_t base_mip, uint32_
                   VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access, uint32_t layers = 1);
 
 Image createImage(Context& ctx, const ImageDesc& desc);
+bool storageFormat(Context& ctx, VkFormat format);  // optimal-tiling storage images of it are supported
 void destroyImage(Context& ctx, Image& image);
 bool isDepthFormat(VkFormat format);
 

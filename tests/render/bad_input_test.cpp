@@ -118,6 +118,7 @@ std::vector<Case> cases() {
         {"bad_drr_filter", {"--drr-filter", "lanczos9"}, {"--drr-filter", "bilinear"}},
         {"bad_flip_ppd", {"--flip-ppd", "0"}, {"--flip-ppd", "67.02"}},
         {"bad_target_clear", {"--target-clear", "memset"}, {"--target-clear memset", "load-op", "compute"}},
+        {"bad_history_format", {"--history-format", "rgb9e5"}, {"--history-format rgb9e5", "b10g11r11", "rgba16f"}},
         {"nan_flip_ppd", {"--flip-ppd", "nan"}, {"--flip-ppd"}},
         {"unknown_option", {"--frobnicate"}, {"--frobnicate"}},
     };

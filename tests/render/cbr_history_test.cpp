@@ -35,6 +35,46 @@ TEST(CbrHistory, StaticPathReconstructsExactlyWithFullHistory) {
     }
 }
 
+// The history's storage (--history-format): B10G11R11 (the default, 4 bytes a pixel) loses to
+// RGBA16F only its rounding on a still camera, where a reconstructed pixel is the value its
+// own sample had one frame earlier, stored: RGBA16F keeps it to 58-62 dB, B10G11R11's 6- and
+// 5-bit mantissas to about 46 dB (both above the 45 dB the issue asks). The bilinear history
+// read is as exact there (the reprojection lands on texel centres). run.json and the variant's
+// history line say which format ran.
+TEST(CbrHistory, StoresTheHistoryInTheFormatAskedAndBothReconstructAStillCamera) {
+    struct Case {
+        std::vector<std::string> extra;
+        const char* format;
+        double min_db, max_db;
+    };
+    const Case cases[] = {{{}, "b10g11r11", 45.0, 52.0},
+                          {{"--history-format", "rgba16f"}, "rgba16f", 55.0, 1e9},
+                          {{"--history-format", "rgba16f", "--history-filter", "bilinear"}, "rgba16f", 55.0, 1e9}};
+    for (const Case& c : cases) {
+        std::vector<std::string> args = {"--scene", "blocks", "--path",       "static", "--frames", "6",
+                                         "--res",   "320x180", "--variants", "cbr-cso", "--cbr-history", "full"};
+        args.insert(args.end(), c.extra.begin(), c.extra.end());
+        const ValidatedRun run =
+            runValidated(std::string("history-format-") + c.format + "-" + std::to_string(c.extra.size()), args);
+        ASSERT_EQ(run.result.exit_code, 0) << run.result.err;
+        EXPECT_EQ(run.run["settings"]["history_format"], c.format);
+        std::string history;
+        for (const auto& v : run.run["variants"])
+            if (v["name"] == "cbr-cso") history = v["history"].get<std::string>();
+        EXPECT_NE(history.find(std::string(c.format) == "rgba16f" ? "RGBA16F" : "B10G11R11"), std::string::npos) << history;
+        int checked = 0;
+        for (size_t i = 0; i < run.frames.rows.size(); ++i) {
+            if (run.frames.at(i, "variant") != "cbr-cso" || std::stoi(run.frames.at(i, "frame")) < 2) continue;
+            const std::string psnr = run.frames.at(i, "psnr_db");
+            const double db = psnr == "inf" ? 1e9 : std::stod(psnr);
+            EXPECT_GE(db, c.min_db) << c.format << " frame " << run.frames.at(i, "frame");
+            EXPECT_LE(db, c.max_db) << c.format << " frame " << run.frames.at(i, "frame");
+            ++checked;
+        }
+        EXPECT_EQ(checked, 4);
+    }
+}
+
 // On a moving camera the full history leaves no pixel missing by parity, and the clip
 // moves some reused pixels (px_clipped); the quarter history has no such class.
 TEST(CbrHistory, MovingCameraHasNoMissingParityAndSomeClippedPixels) {

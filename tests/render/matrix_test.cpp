@@ -179,6 +179,8 @@ TEST(Matrix, PlanHashFollowsHistoryAndTaauSettings) {
     EXPECT_EQ(hash({"--cbr-history", "quarter", "--taau-blend", "0.1"}), base);
     EXPECT_NE(hash({"--cbr-history", "full"}), base);
     EXPECT_NE(hash({"--history-filter", "bilinear"}), base);
+    EXPECT_EQ(hash({"--history-format", "b10g11r11"}), base);
+    EXPECT_NE(hash({"--history-format", "rgba16f"}), base);
     EXPECT_NE(hash({"--taau-scale", "0.5"}), base);
     EXPECT_NE(hash({"--taau-phases", "16"}), base);
 }
