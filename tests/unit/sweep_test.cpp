@@ -372,5 +372,26 @@ TEST(SweepExpand, TaauParametersApplyOnlyToTaau) {
     EXPECT_THROW(parseSweepParam("taau-scale=1.5"), std::invalid_argument);
 }
 
+// --param cbr-history=quarter,full (issue 17): one configuration per history for each
+// checkerboard variant that reads it; drr is not split, and cbr-clip (always the full
+// history) does not take the parameter.
+TEST(SweepExpand, CbrHistorySplitsTheCheckerboardVariantsOnly) {
+    auto configs = expandSweep({parseSweepParam("cbr-history=quarter,full")}, {"drr", "cbr-aso", "cbr-cso"});
+    std::vector<std::string> labels;
+    for (const auto& c : configs) labels.push_back(c.label);
+    EXPECT_EQ(labels, (std::vector<std::string>{"full", "drr", "cbr-aso_history=quarter", "cbr-aso_history=full",
+                                                "cbr-cso_history=quarter", "cbr-cso_history=full"}));
+    for (const auto& c : configs) {
+        if (c.variant != "cbr-aso" && c.variant != "cbr-cso") {
+            EXPECT_TRUE(c.settings.empty()) << c.label;
+            continue;
+        }
+        ASSERT_EQ(c.settings.size(), 1u) << c.label;
+        EXPECT_EQ(c.settings[0].name, "cbr-history") << c.label;
+        EXPECT_EQ(c.settings[0].text(), c.label.substr(c.label.find('=') + 1)) << c.label;
+    }
+    EXPECT_THROW(parseSweepParam("cbr-history=half"), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace cbr::harness
