@@ -215,12 +215,14 @@ std::vector<std::string> passNames(const RunData& d) {
     return out;
 }
 
-std::string variantColor(const RunData& d, const std::string& variant) {
+std::string variantColor(const RunData& d, const std::string& variant) { return variantColor(d.variants, variant); }
+
+std::string variantColor(const std::vector<std::string>& variants, const std::string& variant) {
     // Okabe-Ito, readable for colour-blind readers; the reference in dark grey.
     static const char* kPalette[] = {"#0072b2", "#e69f00", "#009e73", "#cc79a7", "#d55e00", "#56b4e9", "#a08c00"};
     if (variant == kReference) return "#404040";
     size_t k = 0;
-    for (const auto& v : d.variants) {
+    for (const auto& v : variants) {
         if (v == variant) break;
         if (v != kReference) ++k;
     }

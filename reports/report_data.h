@@ -59,6 +59,9 @@ std::vector<std::string> passNames(const RunData& d);
 
 // Stable colours: variants by position in summary.csv, passes and pixel classes by name.
 std::string variantColor(const RunData& d, const std::string& variant);
+// The same by position among `variants` (the order a run or sweep wrote them), so every page
+// colours the n-th variant alike and none needs to know variant names.
+std::string variantColor(const std::vector<std::string>& variants, const std::string& variant);
 std::string passColor(const std::string& pass, size_t index);
 
 // A JSON value as display text: strings as they are, numbers short, booleans yes/no,

@@ -9,6 +9,7 @@
 
 #include "reports/csv.h"
 #include "reports/html.h"
+#include "reports/report_data.h"
 #include "reports/report_sections.h"
 #include "reports/svg.h"
 #include "reports/sweep_detail.h"
@@ -18,13 +19,6 @@ namespace {
 
 using namespace sweep_detail;
 
-std::string variantColour(const std::string& v) {
-    if (v == "full") return "#404040";
-    if (v == "drr") return "#e69f00";
-    if (v == "cbr-aso") return "#0072b2";
-    if (v == "cbr-cso") return "#009e73";
-    return "#cc79a7";
-}
 // The variants the sweep ran, in the order of their rows (the harness writes them in the
 // variant table's order): reports never list variants themselves.
 std::vector<std::string> variantsOf(const std::vector<SweepPoint>& points) {
@@ -169,15 +163,16 @@ std::string paramsSection(const std::vector<SweepPoint>& points) {
         c.x = shadingCosts(points);
         c.x_integer = false;
         std::vector<Series> legend;
-        for (const auto& v : variantsOf(points)) {
+        const std::vector<std::string> variants = variantsOf(points);
+        for (const auto& v : variants) {
             // The first configuration of each variant per cost (the swept values' first).
-            Series s{v, variantColour(v), {}};
+            Series s{v, variantColor(variants, v), {}};
             for (double cost : c.x) {
                 const SweepPoint* p = findVariant(points, v, cost);
                 s.y.push_back(p ? p->gpu_ms : std::nullopt);
             }
             c.series.push_back(s);
-            legend.push_back({v, variantColour(v), {}});
+            legend.push_back({v, variantColor(variants, v), {}});
         }
         html += legendHtml(legend) + "<div class=\"chart-block\">" + lineChartSvg(c) + "</div></div>";
     }
@@ -238,7 +233,8 @@ std::string equalSection(const std::vector<SweepPoint>& points) {
 std::string planeSection(const std::vector<SweepPoint>& points) {
     std::string html = "<section id=\"plane\"><h2>Error against run time</h2>";
     std::vector<Series> legend;
-    for (const auto& v : variantsOf(points)) legend.push_back({v, variantColour(v), {}});
+    const std::vector<std::string> variants = variantsOf(points);
+    for (const auto& v : variants) legend.push_back({v, variantColor(variants, v), {}});
     for (double cost : shadingCosts(points)) {
         ScatterChart sc;
         sc.title = "PSNR against GPU time" + costSuffix(points, cost);
@@ -250,7 +246,7 @@ std::string planeSection(const std::vector<SweepPoint>& points) {
         sc.y_higher_is_better = true;
         for (const auto& p : points)
             if (p.shading_cost == cost && p.status == "ok" && p.gpu_ms)
-                sc.points.push_back({p.config, variantColour(p.variant), *p.gpu_ms, p.psnr_db});
+                sc.points.push_back({p.config, variantColor(variants, p.variant), *p.gpu_ms, p.psnr_db});
         html += "<h3>Sequence PSNR against median GPU time" + esc(costSuffix(points, cost)) + "</h3>" +
                 legendHtml(legend) +
                 "<div class=\"chart-block\" style=\"max-width:900px\">" + scatterChartSvg(sc) + "</div>";
@@ -269,8 +265,9 @@ std::string tableSection(const std::vector<SweepPoint>& points) {
                           "occluded %"};
     for (const char* h : head) html += std::string("<th") + (h == head[0] || h == head[1] ? ">" : " class=\"num\">") + h + "</th>";
     html += "</tr>";
+    const std::vector<std::string> variants = variantsOf(points);
     for (const auto& p : points) {
-        html += "<tr><td class=\"variant\" style=\"color:" + variantColour(p.variant) + "\">" + esc(p.config) +
+        html += "<tr><td class=\"variant\" style=\"color:" + variantColor(variants, p.variant) + "\">" + esc(p.config) +
                 "</td><td>" + esc(p.status) + "</td><td class=\"num\">" + fmt(p.gpu_ms, 2) + "</td><td class=\"num\">" +
                 (p.gpu_ms_low ? fmt(p.gpu_ms_low, 2) + "\u2013" + fmt(p.gpu_ms_high, 2) : std::string(kDash)) +
                 "</td><td class=\"num\">" + fmt(p.speedup, 2) + "</td><td class=\"num\">" + fmt(p.psnr_db, 2) +

@@ -2,6 +2,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -12,6 +13,7 @@
 #include "reports/base64.h"
 #include "reports/csv_read.h"
 #include "reports/report.h"
+#include "reports/report_data.h"
 #include "reports/report_sections.h"
 #include "reports/svg.h"
 
@@ -164,6 +166,21 @@ TEST(ReportSvg, ParetoFrontAndTicks) {
     auto err_front = paretoFront({{"a", "", 1, 0.3}, {"b", "", 2, 0.1}, {"c", "", 3, 0.2}}, false);
     EXPECT_EQ(err_front, (std::vector<size_t>{0, 1}));
     EXPECT_EQ(niceTicks(0, 10, 5), (std::vector<double>{0, 2, 4, 6, 8, 10}));
+}
+
+// Variant colours come from a variant's position in the run (or sweep), not its name: the
+// reference is dark grey and every other variant of a run gets its own colour (the sweep
+// page once gave taau and cbr-clip the same fallback colour).
+TEST(ReportColours, EveryVariantOfARunGetsItsOwnColour) {
+    const std::vector<std::string> variants = {"full", "drr", "cbr-aso", "cbr-cso", "cbr-clip", "taau"};
+    std::set<std::string> seen;
+    for (const auto& v : variants) {
+        const std::string c = variantColor(variants, v);
+        EXPECT_EQ(c.size(), 7u) << v;
+        EXPECT_TRUE(seen.insert(c).second) << v << " shares " << c;
+    }
+    EXPECT_EQ(variantColor(variants, "full"), "#404040");
+    EXPECT_EQ(variantColor(std::vector<std::string>{"full", "taau"}, "taau"), variantColor(variants, "drr"));
 }
 
 TEST(ReportSentence, NoVariantFasterThanFull) {
