@@ -453,9 +453,9 @@ int runCompare(const CompareOptions& o) {
             cell.cur_reps = repetitionMedians(c->data, v);
             if (!cell.base_reps.empty()) cell.base_ms = median(cell.base_reps);
             if (!cell.cur_reps.empty()) cell.cur_ms = median(cell.cur_reps);
-            auto quality = [&](Cell::Quality& q, const char* column) {
-                q.base = reports::summaryNum(b->data, v, column);
-                q.cur = reports::summaryNum(c->data, v, column);
+            auto quality = [&, base_side = b, cur_side = c](Cell::Quality& q, const char* column) {
+                q.base = reports::summaryNum(base_side->data, v, column);
+                q.cur = reports::summaryNum(cur_side->data, v, column);
             };
             quality(cell.psnr, "psnr_db_mean");
             quality(cell.ssim, "ssim_mean");

@@ -7,6 +7,8 @@
 #include <thread>
 #include <unistd.h>
 
+#include "renderer/vk/sanitizers.h"
+
 namespace cbr::harness {
 namespace {
 
@@ -32,7 +34,7 @@ int hugeTunable() {
 
 // Off on request, and in sanitizer builds, whose allocator is not glibc's.
 bool hugePagesOff() {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if defined(CBR_SANITIZED)
     return true;
 #else
     const char* v = std::getenv("CBR_HUGE_PAGES");

@@ -227,6 +227,31 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
         calibrateSlowdown(done.back());
     }
 
+    variants::FrameSetup setup;
+    setup.scene_frame = prepareSceneFrame(slot, request);
+    setup.request = &request;
+    setup.render_scale = scale_;
+    graph::Graph graph;
+    variant_->declare(graph, setup);
+    graph.setOutputs({&variant_->display()});
+    if (request.readback) addReadbacks(graph, slot, setup.scene_frame);
+    writeUniforms(slot, request, setup.params);
+    if (spin_.pipeline) addSlowdownSpin(graph, request);
+    recordFrame(slot, graph);
+
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &slot.cmd;
+    VK_CHECK(vkQueueSubmit(ctx_.queue, 1, &submit, slot.fence));
+    slot.in_flight = true;
+    slot.has_readback = request.readback;
+    slot.request = request;
+    slot.render = variant_->renderExtent(scale_);
+    slot.scale = scale_;
+    return done;
+}
+
+std::shared_ptr<passes::SceneFrame> Renderer::prepareSceneFrame(Slot& slot, const FrameRequest& request) {
     auto frame = std::make_shared<passes::SceneFrame>();
     frame->scene = &scene_;
     frame->frame_set = slot.frame_set;
@@ -251,122 +276,107 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
         lights[i] = lights_[i];
         if (lights_[i].position.w != 0.0f) lights[i].position = glm::vec4(glm::vec3(light_positions_[i] - eye), 1.0f);
     }
-    variants::FrameSetup setup;
-    setup.scene_frame = frame;
-    setup.request = &request;
-    setup.render_scale = scale_;
-    graph::Graph graph;
-    variant_->declare(graph, setup);
-    graph.setOutputs({&variant_->display()});
-    vk::Image* diagnostic = variant_->diagnosticImage();
-    if (request.readback) {
-        passes::addReadbackPass(graph, variant_->display(), slot.readback.buffer);
-        if (diagnostic) passes::addReadbackPass(graph, *diagnostic, slot.diagnostic.buffer);
-        if (settings_.analysis) {
-            // Unjittered, full size, after every timed pass: never part of a frame's GPU time.
-            auto analysis_frame = std::make_shared<passes::SceneFrame>(*frame);
-            analysis_frame->pipelines = &analysis_pipelines_;
-            analysis_frame->viewport = {settings_.width, settings_.height};
-            analysis_frame->viewport_size = glm::vec2(0.0f);
-            analysis_frame->sample_locations = false;
-            analysis_frame->clear_color = glm::vec4(0.0f);  // no surface: depth 0
-            passes::SceneTargets targets{&analysis_, nullptr, &analysis_depth_, 0, false, true};
-            passes::addAnalysisPass(graph, targets, analysis_frame);
-            passes::addReadbackPass(graph, analysis_, slot.analysis.buffer);
-        }
-    }
-    writeUniforms(slot, request, setup.params);
-    if (spin_.pipeline) {
-        // Warm-up frames time the spin on its own (a pass kept despite writing no image);
-        // measured frames run the calibrated amount inside the chosen pass.
-        // Calibration is the first warm-up frames only: every repetition then applies the
-        // same amount (re-estimating per repetition made the slowdown itself noisy).
-        bool calibrating = request.index < 0 && calibration_frames_ < kSpinCalibrationFrames;
-        uint32_t iterations =
-            calibrating ? kSpinCalibration * uint32_t(1 + (calibration_frames_++ & 1)) : spin_iterations_;
-        auto spin = [this, iterations](VkCommandBuffer cmd) {
-            // The sink is rewritten every frame: order the writes (no image, so not the graph's).
-            // And the spin waits for all of the pass's work: lavapipe otherwise runs the
-            // dispatch on its compute thread while its rasterizer threads are still drawing
-            // the pass, and a 30% opaque slowdown measured +9% at 640x360.
-            VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-            b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-            b.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-            b.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-            b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-            dep.memoryBarrierCount = 1;
-            dep.pMemoryBarriers = &b;
-            vkCmdPipelineBarrier2(cmd, &dep);
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, spin_.pipeline);
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, spin_.layout, 0, 1, &spin_set_, 0, nullptr);
-            vkCmdPushConstants(cmd, spin_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(iterations), &iterations);
-            vkCmdDispatch(cmd, 1, 1, 1);
-        };
-        if (calibrating) {
-            graph::Pass pass;
-            pass.name = iterations == kSpinCalibration ? "debug_spin_1" : "debug_spin_2";
-            pass.graphics = false;
-            pass.keep = true;
-            pass.record = spin;
-            graph.addPass(std::move(pass));
-        } else if (iterations > 0) {
-            graph.addWorkAfter(settings_.debug_slowdown_pass, spin);
-        }
-    }
+    return frame;
+}
 
+// A quality frame copies its display (and diagnostic) image for the host, and renders the
+// untimed analysis pass.
+void Renderer::addReadbacks(graph::Graph& graph, Slot& slot, const std::shared_ptr<passes::SceneFrame>& frame) {
+    passes::addReadbackPass(graph, variant_->display(), slot.readback.buffer);
+    if (vk::Image* diagnostic = variant_->diagnosticImage()) passes::addReadbackPass(graph, *diagnostic, slot.diagnostic.buffer);
+    if (!settings_.analysis) return;
+    // Unjittered, full size, after every timed pass: never part of a frame's GPU time.
+    auto analysis_frame = std::make_shared<passes::SceneFrame>(*frame);
+    analysis_frame->pipelines = &analysis_pipelines_;
+    analysis_frame->viewport = {settings_.width, settings_.height};
+    analysis_frame->viewport_size = glm::vec2(0.0f);
+    analysis_frame->sample_locations = false;
+    analysis_frame->clear_color = glm::vec4(0.0f);  // no surface: depth 0
+    passes::SceneTargets targets{&analysis_, nullptr, &analysis_depth_, 0, false, true};
+    passes::addAnalysisPass(graph, targets, analysis_frame);
+    passes::addReadbackPass(graph, analysis_, slot.analysis.buffer);
+}
+
+// --debug-slowdown: warm-up frames time the spin on its own (a pass kept despite writing no
+// image); measured frames run the calibrated amount inside the chosen pass. Calibration is
+// the first warm-up frames only: every repetition then applies the same amount
+// (re-estimating per repetition made the slowdown itself noisy).
+void Renderer::addSlowdownSpin(graph::Graph& graph, const FrameRequest& request) {
+    bool calibrating = request.index < 0 && calibration_frames_ < kSpinCalibrationFrames;
+    uint32_t iterations = calibrating ? kSpinCalibration * uint32_t(1 + (calibration_frames_++ & 1)) : spin_iterations_;
+    auto spin = [this, iterations](VkCommandBuffer cmd) {
+        // The sink is rewritten every frame: order the writes (no image, so not the graph's).
+        // And the spin waits for all of the pass's work: lavapipe otherwise runs the
+        // dispatch on its compute thread while its rasterizer threads are still drawing
+        // the pass, and a 30% opaque slowdown measured +9% at 640x360.
+        VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        b.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+        b.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+        b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &b;
+        vkCmdPipelineBarrier2(cmd, &dep);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, spin_.pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, spin_.layout, 0, 1, &spin_set_, 0, nullptr);
+        vkCmdPushConstants(cmd, spin_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(iterations), &iterations);
+        vkCmdDispatch(cmd, 1, 1, 1);
+    };
+    if (calibrating) {
+        graph::Pass pass;
+        pass.name = iterations == kSpinCalibration ? "debug_spin_1" : "debug_spin_2";
+        pass.graphics = false;
+        pass.keep = true;
+        pass.record = spin;
+        graph.addPass(std::move(pass));
+    } else if (iterations > 0) {
+        graph.addWorkAfter(settings_.debug_slowdown_pass, spin);
+    }
+}
+
+// The slot's command buffer: the class counters zeroed, the graph, the counters copied for
+// the host, and the host's reads made visible.
+void Renderer::recordFrame(Slot& slot, graph::Graph& graph) {
     VK_CHECK(vkResetCommandBuffer(slot.cmd, 0));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(slot.cmd, &begin));
-    auto statsBarrier = [&](VkPipelineStageFlags2 src, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst,
-                            VkAccessFlags2 dst_access) {
-        VkBufferMemoryBarrier2 b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2, nullptr, src, src_access, dst, dst_access};
-        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.buffer = slot.stats_gpu.buffer;
-        b.size = VK_WHOLE_SIZE;
+    auto barrier = [&](VkPipelineStageFlags2 src, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst,
+                       VkAccessFlags2 dst_access, const VkBuffer* stats) {
+        VkBufferMemoryBarrier2 bb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2, nullptr, src, src_access, dst, dst_access};
+        bb.srcQueueFamilyIndex = bb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, nullptr, src, src_access, dst, dst_access};
         VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.bufferMemoryBarrierCount = 1;
-        dep.pBufferMemoryBarriers = &b;
+        if (stats) {
+            bb.buffer = *stats;
+            bb.size = VK_WHOLE_SIZE;
+            dep.bufferMemoryBarrierCount = 1;
+            dep.pBufferMemoryBarriers = &bb;
+        } else {
+            dep.memoryBarrierCount = 1;
+            dep.pMemoryBarriers = &mb;
+        }
         vkCmdPipelineBarrier2(slot.cmd, &dep);
     };
     // The counters are zeroed before the graph's first timestamp and copied for the host
     // after its last: neither is part of the frame.
     vkCmdFillBuffer(slot.cmd, slot.stats_gpu.buffer, 0, VK_WHOLE_SIZE, 0);
-    statsBarrier(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                 VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    barrier(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, &slot.stats_gpu.buffer);
     slot.recorded = graph.record(slot.cmd, slot.queries);
     // From the fill too: in a variant without a resolve it is the last write.
-    statsBarrier(VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                 VK_ACCESS_2_TRANSFER_READ_BIT);
+    barrier(VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+            VK_ACCESS_2_TRANSFER_READ_BIT, &slot.stats_gpu.buffer);
     VkBufferCopy stats_region{0, 0, slot.stats.size};
     vkCmdCopyBuffer(slot.cmd, slot.stats_gpu.buffer, slot.stats.buffer, 1, &stats_region);
     if (slot.recorded.extra_work_recorded) slowdown_applied_ = true;
-    {
-        // The host reads copies and counters after the fence: make the writes visible to it.
-        VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        b.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-        b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_WRITE_BIT;
-        b.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-        b.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &b;
-        vkCmdPipelineBarrier2(slot.cmd, &dep);
-    }
+    // The host reads copies and counters after the fence: make the writes visible to it.
+    barrier(VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+            VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+            VK_ACCESS_2_HOST_READ_BIT, nullptr);
     VK_CHECK(vkEndCommandBuffer(slot.cmd));
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &slot.cmd;
-    VK_CHECK(vkQueueSubmit(ctx_.queue, 1, &submit, slot.fence));
-    slot.in_flight = true;
-    slot.has_readback = request.readback;
-    slot.request = request;
-    slot.render = variant_->renderExtent(scale_);
-    slot.scale = scale_;
-    return done;
 }
 
 std::vector<FrameResult> Renderer::finish() {

@@ -40,6 +40,12 @@ private:
     void updateScale(const FrameResult& result);
     void writeUniforms(Slot& slot, const FrameRequest& request, const variants::FrameParams& params);
     void calibrateSlowdown(const FrameResult& warmup);
+    // The steps of submit(): instance matrices and lights for the frame, the quality frame's
+    // readbacks and analysis pass, --debug-slowdown's spin, and the command buffer.
+    std::shared_ptr<passes::SceneFrame> prepareSceneFrame(Slot& slot, const FrameRequest& request);
+    void addReadbacks(graph::Graph& graph, Slot& slot, const std::shared_ptr<passes::SceneFrame>& frame);
+    void addSlowdownSpin(graph::Graph& graph, const FrameRequest& request);
+    void recordFrame(Slot& slot, graph::Graph& graph);
 
     // --debug-slowdown: the spin kernel and its calibration from warm-up frames.
     vk::ComputeKernel spin_;

@@ -11,7 +11,7 @@ cbr_packages=(
 )
 if [[ "${CBR_WITH_TESTS:-0}" == 1 ]]; then
   cbr_packages+=(vulkan-validationlayers libgtest-dev assimp-testmodels chromium libxml2-utils libbenchmark-tools python3-scipy)
-  # scripts/fuzz.sh: clang with libFuzzer and the sanitizer runtimes. On Debian 12 those
+  # scripts/sanitize.sh and scripts/fuzz.sh: clang with libFuzzer and the sanitizer runtimes. On Debian 12 those
   # archives are in libclang-rt-14-dev, only recommended by clang-14's libclang-common-14-dev
   # (and recommendations are not installed here), so it is named explicitly.
   cbr_packages+=(clang libclang-rt-dev)

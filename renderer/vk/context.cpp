@@ -8,8 +8,9 @@
 #include <stdexcept>
 
 #include "renderer/vk/check.h"
+#include "renderer/vk/sanitizers.h"
 
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(CBR_SANITIZED)
 #include <dlfcn.h>
 #include <link.h>
 #include <string>
@@ -19,7 +20,7 @@
 namespace cbr::vk {
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(CBR_SANITIZED)
 // Sanitizer builds only (scripts/sanitize.sh). The loader unloads layers and drivers at
 // vkDestroyInstance, and LeakSanitizer names a leak's library from the mappings at exit:
 // an unloaded one is "unknown" or, worse, blamed on whatever was mapped there later. Kept
@@ -161,7 +162,7 @@ VkInstance createInstance(bool validate, bool* debug_utils) {
         throw Unsupported("no Vulkan 1.3 driver found (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER); "
                           "expected Mesa's lavapipe (mesa-vulkan-drivers) or a GPU driver");
     VK_CHECK(r);
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(CBR_SANITIZED)
     pinLoadedLibraries();
 #endif
     return instance;
@@ -217,6 +218,59 @@ std::vector<DeviceDescription> listDevices() {
     return out;
 }
 
+namespace {
+
+// A queue family with graphics, compute and timestamps; its timestamp bits.
+uint32_t graphicsComputeQueue(VkPhysicalDevice physical, const std::string& device_name, uint32_t& timestamp_bits) {
+    uint32_t nq = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical, &nq, nullptr);
+    std::vector<VkQueueFamilyProperties> families(nq);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical, &nq, families.data());
+    const VkQueueFlags wanted = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+    for (uint32_t i = 0; i < nq; ++i)
+        if ((families[i].queueFlags & wanted) == wanted && families[i].timestampValidBits > 0) {
+            timestamp_bits = families[i].timestampValidBits;
+            return i;
+        }
+    throw Unsupported("device " + device_name + " has no graphics+compute queue with timestamps");
+}
+
+// Subgroup operations: the resolve's class counts (compute: arithmetic, ballot) and the
+// material read in every scene fragment shader (surface.glsl: ballot).
+void requireSubgroupOperations(VkPhysicalDevice physical, const std::string& device_name) {
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
+    vkGetPhysicalDeviceProperties2(physical, &p2);
+    const VkSubgroupFeatureFlags ops = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT |
+                                       VK_SUBGROUP_FEATURE_BALLOT_BIT;
+    const VkShaderStageFlags stages = VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    if ((subgroup.supportedOperations & ops) != ops || (subgroup.supportedStages & stages) != stages)
+        throw Unsupported("device " + device_name +
+                          " lacks subgroup basic, arithmetic and ballot operations in compute and fragment "
+                          "shaders; cbrbench needs them (class counts, material reads)");
+}
+
+// VK_EXT_sample_locations: the `msaa-locations` checkerboard route, where it allows 2 samples.
+// Adds the extension to `extensions` when it does.
+bool enableSampleLocations2x(VkPhysicalDevice physical, std::vector<const char*>& extensions) {
+    uint32_t n = 0;
+    vkEnumerateDeviceExtensionProperties(physical, nullptr, &n, nullptr);
+    std::vector<VkExtensionProperties> available(n);
+    vkEnumerateDeviceExtensionProperties(physical, nullptr, &n, available.data());
+    for (const auto& e : available)
+        if (std::strcmp(e.extensionName, VK_EXT_SAMPLE_LOCATIONS_EXTENSION_NAME) == 0) {
+            VkPhysicalDeviceSampleLocationsPropertiesEXT sl{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SAMPLE_LOCATIONS_PROPERTIES_EXT};
+            VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &sl};
+            vkGetPhysicalDeviceProperties2(physical, &p2);
+            if (!(sl.sampleLocationSampleCounts & VK_SAMPLE_COUNT_2_BIT)) return false;
+            extensions.push_back(VK_EXT_SAMPLE_LOCATIONS_EXTENSION_NAME);
+            return true;
+        }
+    return false;
+}
+
+}  // namespace
+
 Context::Context(const ContextOptions& options) {
     bool debug_utils = false;
     instance = createInstance(options.validate, &debug_utils);
@@ -248,21 +302,7 @@ Context::Context(const ContextOptions& options) {
         throw Unsupported("device " + description.name + " offers Vulkan " + description.api_version +
                           "; cbrbench needs 1.3 (dynamic rendering, synchronization2)");
 
-    uint32_t nq = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(physical, &nq, nullptr);
-    std::vector<VkQueueFamilyProperties> families(nq);
-    vkGetPhysicalDeviceQueueFamilyProperties(physical, &nq, families.data());
-    bool found = false;
-    for (uint32_t i = 0; i < nq && !found; ++i) {
-        if ((families[i].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) ==
-                (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT) &&
-            families[i].timestampValidBits > 0) {
-            queue_family = i;
-            caps.timestamp_valid_bits = families[i].timestampValidBits;
-            found = true;
-        }
-    }
-    if (!found) throw Unsupported("device " + description.name + " has no graphics+compute queue with timestamps");
+    queue_family = graphicsComputeQueue(physical, description.name, caps.timestamp_valid_bits);
 
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &f13};
@@ -271,18 +311,7 @@ Context::Context(const ContextOptions& options) {
     if (!f13.dynamicRendering || !f13.synchronization2)
         throw Unsupported("device " + description.name + " lacks dynamicRendering or synchronization2");
 
-    // Subgroup operations: the resolve's class counts (compute: arithmetic, ballot) and the
-    // material read in every scene fragment shader (surface.glsl: ballot).
-    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
-    VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
-    vkGetPhysicalDeviceProperties2(physical, &p2);
-    const VkSubgroupFeatureFlags ops = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT |
-                                       VK_SUBGROUP_FEATURE_BALLOT_BIT;
-    const VkShaderStageFlags stages = VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-    if ((subgroup.supportedOperations & ops) != ops || (subgroup.supportedStages & stages) != stages)
-        throw Unsupported("device " + description.name +
-                          " lacks subgroup basic, arithmetic and ballot operations in compute and fragment "
-                          "shaders; cbrbench needs them (class counts, material reads)");
+    requireSubgroupOperations(physical, description.name);
 
     caps.timestamp_period_ns = properties.limits.timestampPeriod;
     caps.pipeline_statistics = f2.features.pipelineStatisticsQuery;
@@ -309,25 +338,8 @@ Context::Context(const ContextOptions& options) {
     if (!f2.features.independentBlend) throw Unsupported("device " + description.name + " lacks independentBlend");
     e2.features.independentBlend = VK_TRUE;
 
-    // VK_EXT_sample_locations: the `msaa-locations` checkerboard route, where it allows 2 samples.
     std::vector<const char*> extensions;
-    {
-        uint32_t n = 0;
-        vkEnumerateDeviceExtensionProperties(physical, nullptr, &n, nullptr);
-        std::vector<VkExtensionProperties> available(n);
-        vkEnumerateDeviceExtensionProperties(physical, nullptr, &n, available.data());
-        for (const auto& e : available)
-            if (std::strcmp(e.extensionName, VK_EXT_SAMPLE_LOCATIONS_EXTENSION_NAME) == 0) {
-                VkPhysicalDeviceSampleLocationsPropertiesEXT sl{
-                    VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SAMPLE_LOCATIONS_PROPERTIES_EXT};
-                VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &sl};
-                vkGetPhysicalDeviceProperties2(physical, &p2);
-                if (sl.sampleLocationSampleCounts & VK_SAMPLE_COUNT_2_BIT) {
-                    extensions.push_back(VK_EXT_SAMPLE_LOCATIONS_EXTENSION_NAME);
-                    caps.sample_locations_2x = true;
-                }
-            }
-    }
+    caps.sample_locations_2x = enableSampleLocations2x(physical, extensions);
 
     float priority = 1.0f;
     VkDeviceQueueCreateInfo qinfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "renderer/vk/sanitizers.h"
 #include "tests/render/bench_runner.h"
 #include "tests/support/big_scene.h"
 
@@ -62,7 +63,7 @@ std::string thpMode() {
 // ("madvise"), by starting itself again with glibc's tunable, and not when told not to.
 TEST(ProcessMemory, HeapHugePagesWhereTheKernelWantsThemAskedForAndOffOnRequest) {
     const std::string mode = thpMode();
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if defined(CBR_SANITIZED)
     const bool sanitized = true;  // the sanitizer's allocator, not glibc's: nothing to ask
 #else
     const bool sanitized = false;
