@@ -432,9 +432,9 @@ const std::vector<StressCaseInfo>& stressCases() {
     return info;
 }
 
-int runStress(const StressOptions& o) {
-    uint32_t w = 0, h = 0;
-    parseResolution(o.resolution, w, h);
+namespace {
+
+void checkStressOptions(const StressOptions& o) {
     if (o.static_frames < 2 || o.subpixel_frames < 101)
         throw std::invalid_argument("stress: --static-frames >= 2 and --subpixel-frames >= 101 expected");
     for (const auto& p : o.pipelines)
@@ -448,12 +448,121 @@ int runStress(const StressOptions& o) {
             for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
             throw std::invalid_argument("--cases " + want + ": unknown case; expected some of " + list);
         }
+}
+
+// One pipeline's runs of the selected cases, each sub-run once (the shared flythrough
+// baseline too), and each case judged as its runs come in.
+class StressPipeline {
+public:
+    StressPipeline(const StressOptions& o, const reports::OutputDir& out, const std::string& pipeline, ProgressBar& bar)
+        : o_(o), out_(out), pipeline_(pipeline), bar_(bar) {}
+
+    // The case's runs (started where not run yet) and their links, "pipeline/id".
+    Children runCase(const Case& c, std::string& links) {
+        Children ch;
+        for (const auto& [key, args] : c.runs) {
+            std::string id = key == "base" ? "base" : c.name + "-" + key;
+            auto it = children_.find(id);
+            if (it == children_.end()) it = children_.emplace(id, startChild(c, id, args)).first;
+            ch[key] = &it->second;
+            links += (links.empty() ? "" : " ") + pipeline_ + "/" + id;
+        }
+        return ch;
+    }
+
+    // The case's check, validation messages counted against it, and paths as they will be.
+    Verdict judge(const Case& c, Children& ch) const {
+        Verdict v;
+        try {
+            v = c.check(ch);
+        } catch (const std::exception& e) {
+            v.held = false;
+            v.detail = std::string("checking failed: ") + e.what();
+        }
+        if (o_.validate)
+            for (auto& [key, child] : ch)
+                if (child->loaded && child->run.contains("validation") && child->run["validation"].value("messages", 0) != 0) {
+                    v.held = false;
+                    v.detail += "; " + key + ": " + std::to_string(child->run["validation"].value("messages", 0)) +
+                                " validation messages";
+                }
+        // Messages name inputs under the partial directory; say where they will be.
+        for (std::string* text : {&v.detail, &v.quality}) {
+            const std::string from = out_.path().string(), to = out_.finalPath().string();
+            for (size_t at = text->find(from); at != std::string::npos; at = text->find(from, at + to.size()))
+                text->replace(at, from.size(), to);
+        }
+        return v;
+    }
+
+    std::string rowHtml(const Case& c, const Verdict& v, const Children& ch) const {
+        const bool ok = v.finite && v.held;
+        std::string run_links;
+        for (const auto& [key, child] : ch) {
+            std::string rel = pipeline_ + "/" + fs::relative(child->dir, out_.path() / pipeline_).string();
+            run_links += fs::exists(child->dir / "report.html")
+                             ? "<a href=\"" + reports::esc(rel) + "/report.html\">" + reports::esc(key) + "</a> "
+                             : reports::esc(key) + " ";
+        }
+        return "<tr><td class=\"variant\">" + reports::esc(c.name) + "</td><td>" + pipeline_ + "</td><td>" +
+               reports::esc(c.expectation) + "</td><td class=\"" + (ok ? "ok" : "bad") + "\">" +
+               (ok ? "held" : (v.finite ? "did not hold" : "NOT FINITE / FAILED")) + "</td><td>" + reports::esc(v.detail) +
+               "</td><td>" + reports::esc(v.quality) + "</td><td>" + run_links + "</td></tr>";
+    }
+
+private:
+    Child startChild(const Case& c, const std::string& id, const std::vector<std::string>& args) {
+        Child child;
+        child.args = args;
+        auto no_save = std::find(child.args.begin(), child.args.end(), "--no-save");
+        if (no_save != child.args.end()) child.args.erase(no_save), child.save_frames = false;
+        child.dir = out_.path() / pipeline_ / id;
+        fs::create_directories(child.dir.parent_path());
+        std::vector<std::string> common = {"--res", o_.resolution, "--repeat", "1", "--warmup", "1", "--pipeline", pipeline_};
+        if (!o_.device.empty()) common.insert(common.end(), {"--device", o_.device});
+        if (o_.validate) common.push_back("--validate");
+        if (!o_.cbr_route.empty()) common.insert(common.end(), {"--cbr-route", o_.cbr_route});
+        if (!bar_.shown()) std::fprintf(stderr, "stress: %s %s (%s)\n", pipeline_.c_str(), c.name.c_str(), id.c_str());
+        runChild(fs::read_symlink("/proc/self/exe"), child, common);
+        bar_.step("stress " + pipeline_ + " " + id);
+        throwIfInterrupted();  // the child had the signal too: stop, keep nothing
+        return child;
+    }
+
+    const StressOptions& o_;
+    const reports::OutputDir& out_;
+    const std::string pipeline_;
+    ProgressBar& bar_;
+    std::map<std::string, Child> children_;  // by sub-run id
+};
+
+void writeStressPage(const StressOptions& o, const reports::OutputDir& out, int total, int failed,
+                     const std::string& rows_html) {
+    std::string html = reports::pageStart("cbrbench stress");
+    html += "<h1>cbrbench stress</h1><div class=\"sub\">" + std::to_string(total - failed) + " of " +
+            std::to_string(total) + " cases held \u00b7 " + reports::esc(o.resolution) + " \u00b7 " +
+            (o.validate ? "validation layer on" : "validation layer off") + "</div>";
+    html += std::string("<p class=\"answer\"><b>") + (failed ? "Not every case held." : "Every case held.") +
+            "</b> Each case runs every variant (full, drr, cbr-aso, cbr-cso) through `cbrbench run` in a child "
+            "process, so a crash or device loss is that case's failure; finite means every number in its files is "
+            "finite (PSNR's inf for identical images aside) and every variant ran.</p>";
+    html += "<div class=\"scroll\"><table><tr><th>case</th><th>pipeline</th><th>expectation</th><th>result</th>"
+            "<th>measured</th><th>quality vs full</th><th>runs</th></tr>" + rows_html + "</table></div>";
+    html += reports::pageEnd();
+    reports::writeTextAtomically(out.path() / "stress.html", html);
+}
+
+}  // namespace
+
+int runStress(const StressOptions& o) {
+    uint32_t w = 0, h = 0;
+    parseResolution(o.resolution, w, h);
+    checkStressOptions(o);
     fs::path final_dir = o.out.empty() ? fs::path("out") / ("stress-" + timestampForName()) : fs::path(o.out);
     reports::OutputDir out(final_dir);
     fs::path paths_dir = out.path() / "inputs";
     fs::create_directories(paths_dir);
     std::vector<Case> cases = buildCases(paths_dir, o, w, h);
-    const fs::path self = fs::read_symlink("/proc/self/exe");
 
     reports::CsvTable table({"case", "pipeline", "expectation", "finite", "held", "quality", "detail", "runs"});
     int failed = 0, total = 0;
@@ -467,57 +576,12 @@ int runStress(const StressOptions& o) {
     ProgressBar bar("runs", int(run_ids.size() * o.pipelines.size()));
     std::string rows_html;
     for (const auto& pipeline : o.pipelines) {
-        std::map<std::string, Child> children;  // shared sub-runs (the flythrough baseline) run once per pipeline
+        StressPipeline runs(o, out, pipeline, bar);
         for (const auto& c : cases) {
             if (!selected(c)) continue;
-            Children ch;
             std::string links;
-            for (const auto& [key, args] : c.runs) {
-                std::string id = key == "base" ? "base" : c.name + "-" + key;
-                auto it = children.find(id);
-                if (it == children.end()) {
-                    Child child;
-                    child.args = args;
-                    auto no_save = std::find(child.args.begin(), child.args.end(), "--no-save");
-                    if (no_save != child.args.end()) child.args.erase(no_save), child.save_frames = false;
-                    child.dir = out.path() / pipeline / id;
-                    fs::create_directories(child.dir.parent_path());
-                    std::vector<std::string> common = {"--res", o.resolution, "--repeat", "1", "--warmup", "1",
-                                                       "--pipeline", pipeline};
-                    if (!o.device.empty()) common.insert(common.end(), {"--device", o.device});
-                    if (o.validate) common.push_back("--validate");
-                    if (!o.cbr_route.empty()) common.insert(common.end(), {"--cbr-route", o.cbr_route});
-                    if (!bar.shown())
-                        std::fprintf(stderr, "stress: %s %s (%s)\n", pipeline.c_str(), c.name.c_str(), id.c_str());
-                    runChild(self, child, common);
-                    bar.step("stress " + pipeline + " " + id);
-                    throwIfInterrupted();  // the child had the signal too: stop, keep nothing
-                    it = children.emplace(id, std::move(child)).first;
-                }
-                ch[key] = &it->second;
-                links += (links.empty() ? "" : " ") + pipeline + "/" + id;
-            }
-            Verdict v;
-            try {
-                v = c.check(ch);
-            } catch (const std::exception& e) {
-                v.held = false;
-                v.detail = std::string("checking failed: ") + e.what();
-            }
-            if (o.validate)
-                for (auto& [key, child] : ch)
-                    if (child->loaded && child->run.contains("validation") &&
-                        child->run["validation"].value("messages", 0) != 0) {
-                        v.held = false;
-                        v.detail += "; " + key + ": " + std::to_string(child->run["validation"].value("messages", 0)) +
-                                    " validation messages";
-                    }
-            // Messages name inputs under the partial directory; say where they will be.
-            for (std::string* text : {&v.detail, &v.quality}) {
-                const std::string from = out.path().string(), to = out.finalPath().string();
-                for (size_t at = text->find(from); at != std::string::npos; at = text->find(from, at + to.size()))
-                    text->replace(at, from.size(), to);
-            }
+            Children ch = runs.runCase(c, links);
+            const Verdict v = runs.judge(c, ch);
             const bool ok = v.finite && v.held;
             ++total;
             failed += !ok;
@@ -530,33 +594,11 @@ int runStress(const StressOptions& o) {
                           {"detail", v.detail},
                           {"runs", links}});
             std::printf("%-28s %-9s %-4s %s\n", c.name.c_str(), pipeline.c_str(), ok ? "held" : "FAIL", v.detail.c_str());
-            std::string run_links;
-            for (const auto& [key, child] : ch) {
-                std::string rel = pipeline + "/" + fs::relative(child->dir, out.path() / pipeline).string();
-                run_links += fs::exists(child->dir / "report.html")
-                                 ? "<a href=\"" + reports::esc(rel) + "/report.html\">" + reports::esc(key) + "</a> "
-                                 : reports::esc(key) + " ";
-            }
-            rows_html += "<tr><td class=\"variant\">" + reports::esc(c.name) + "</td><td>" + pipeline + "</td><td>" +
-                         reports::esc(c.expectation) + "</td><td class=\"" + (ok ? "ok" : "bad") + "\">" +
-                         (ok ? "held" : (v.finite ? "did not hold" : "NOT FINITE / FAILED")) + "</td><td>" +
-                         reports::esc(v.detail) + "</td><td>" + reports::esc(v.quality) + "</td><td>" + run_links +
-                         "</td></tr>";
+            rows_html += runs.rowHtml(c, v, ch);
         }
     }
     table.write(out.path() / "stress.csv");
-    std::string html = reports::pageStart("cbrbench stress");
-    html += "<h1>cbrbench stress</h1><div class=\"sub\">" + std::to_string(total - failed) + " of " +
-            std::to_string(total) + " cases held \u00b7 " + reports::esc(o.resolution) + " \u00b7 " +
-            (o.validate ? "validation layer on" : "validation layer off") + "</div>";
-    html += std::string("<p class=\"answer\"><b>") + (failed ? "Not every case held." : "Every case held.") +
-            "</b> Each case runs every variant (full, drr, cbr-aso, cbr-cso) through `cbrbench run` in a child "
-            "process, so a crash or device loss is that case's failure; finite means every number in its files is "
-            "finite (PSNR's inf for identical images aside) and every variant ran.</p>";
-    html += "<div class=\"scroll\"><table><tr><th>case</th><th>pipeline</th><th>expectation</th><th>result</th>"
-            "<th>measured</th><th>quality vs full</th><th>runs</th></tr>" + rows_html + "</table></div>";
-    html += reports::pageEnd();
-    reports::writeTextAtomically(out.path() / "stress.html", html);
+    writeStressPage(o, out, total, failed, rows_html);
     out.commit();
     std::printf("stress: %d of %d cases held; %s\n", total - failed, total, (out.finalPath() / "stress.html").c_str());
     return failed ? 1 : 0;

@@ -49,12 +49,9 @@ void flatten(const nlohmann::json& j, const std::string& prefix, const std::set<
     }
 }
 
-}  // namespace
-
-std::string provenanceSection(const RunData& d) {
-    std::string out = "<section id=\"provenance\"><h2>Provenance and settings</h2>";
-    out += "<div class=\"kv-grid\">";
-    out += kvTable("Device", {
+// Key-value tables of where and how the run ran: device, build and run, benchmark settings.
+std::string runTables(const RunData& d) {
+    std::string out = kvTable("Device", {
                                  {"name", at(d, "/device/name")},
                                  {"type", at(d, "/device/type")},
                                  {"driver", joined(at(d, "/device/driver_name"), at(d, "/device/driver_info"), ", ")},
@@ -103,7 +100,12 @@ std::string provenanceSection(const RunData& d) {
                          "variant_order", "shading_cost", "cbr_route"},
                 other);
     if (!other.empty()) out += kvTable("Other settings", other);
-    out += kvTable("Scene", {
+    return out;
+}
+
+// Key-value tables of what it rendered: scene, camera path, and the validation layer's count.
+std::string contentTables(const RunData& d) {
+    std::string out = kvTable("Scene", {
                                 {"name", at(d, "/scene/name")},
                                 {"source", at(d, "/scene/source")},
                                 {"content hash", at(d, "/scene/hash")},
@@ -143,15 +145,23 @@ std::string provenanceSection(const RunData& d) {
                                            {"warnings", at(d, "/validation/warnings")},
                                            {"messages", at(d, "/validation/messages")},
                                        });
-    out += "</div>";
+    return out;
+}
 
+std::string validationMessages(const RunData& d) {
+    std::string out;
     if (const auto* m = jsonAt(d.run, "/validation/first_messages"); m && m->is_array() && !m->empty()) {
         out += "<h3>First validation messages</h3><ul class=\"messages\">";
         for (const auto& msg : *m) out += "<li><code>" + esc(jsonText(&msg)) + "</code></li>";
         out += "</ul>";
     }
+    return out;
+}
 
-    // Per checkerboard variant: the route the device allowed, and why.
+// Per checkerboard variant: the resolve's bandwidth and class statistics, and the route the
+// device allowed, and why.
+std::string checkerboardTables(const RunData& d) {
+    std::string out;
     std::string routes;
     for (const auto& v : d.variants) {
         const auto* vj = variantJson(d, v);
@@ -186,8 +196,12 @@ std::string provenanceSection(const RunData& d) {
                "<th>reason</th><th>quarter res (px)</th><th>occlusion rule</th><th>motion</th><th>lost border</th>"
                "<th class=\"num\">LOD bias</th></tr>" +
                routes + "</table></div>";
+    return out;
+}
 
-    // Frame alignment (metrics.md): PSNR against the same reference frame must beat the neighbours'.
+// Frame alignment (metrics.md): PSNR against the same reference frame must beat the neighbours'.
+std::string alignmentTable(const RunData& d) {
+    std::string out;
     std::string align;
     for (const auto& v : d.variants) {
         const auto* vj = variantJson(d, v);
@@ -209,7 +223,11 @@ std::string provenanceSection(const RunData& d) {
                "<th class=\"num\">PSNR same (dB)</th><th class=\"num\">PSNR previous (dB)</th>"
                "<th class=\"num\">PSNR next (dB)</th><th>result</th></tr>" +
                align + "</table>";
+    return out;
+}
 
+std::string metricConventions(const RunData& d) {
+    std::string out;
     if (const auto* m = jsonAt(d.run, "/metrics"); m && m->is_object()) {
         Rows rows;
         flatten(*m, "", {"image_io"}, rows);
@@ -219,7 +237,15 @@ std::string provenanceSection(const RunData& d) {
             out += "</table>";
         }
     }
-    return out + "</section>";
+    return out;
+}
+
+}  // namespace
+
+std::string provenanceSection(const RunData& d) {
+    return "<section id=\"provenance\"><h2>Provenance and settings</h2><div class=\"kv-grid\">" + runTables(d) +
+           contentTables(d) + "</div>" + validationMessages(d) +
+           checkerboardTables(d) + alignmentTable(d) + metricConventions(d) + "</section>";
 }
 
 }  // namespace cbr::reports

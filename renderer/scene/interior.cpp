@@ -252,20 +252,8 @@ Interior notEnclosed(Interior out, const std::string& reason) {
     return out;
 }
 
-}  // namespace
-
-Interior findInterior(const Scene& scene) {
-    Interior out;
-    const glm::dvec3 bmin = scene.bounds_min, bmax = scene.bounds_max;
-    for (int k = 0; k < 3; ++k)
-        if (!std::isfinite(bmin[k]) || !std::isfinite(bmax[k]) || bmin[k] > bmax[k])
-            return notEnclosed(out, "no usable bounds");
-    if (scene.indices.empty() || scene.instances.empty()) return notEnclosed(out, "no triangles");
-
-    // The grid: the bounds grown by 1% of their longest side so geometry on them lies inside.
-    const glm::dvec3 extent = bmax - bmin;
-    const double longest = std::max({extent.x, extent.y, extent.z});
-    if (!(longest > 0)) return notEnclosed(out, "the scene is a single point");
+// The grid: the bounds grown by 1% of their longest side so geometry on them lies inside.
+Grid makeGrid(const glm::dvec3& bmin, const glm::dvec3& extent, double longest) {
     const glm::dvec3 pad(0.01 * longest);
     Grid g;
     g.origin = bmin - pad;
@@ -275,28 +263,15 @@ Interior findInterior(const Scene& scene) {
     g.n.y = std::clamp(g.n.y, kMinLayers, kCellsLongest);
     g.cell = size / glm::dvec3(g.n);
     g.bits.assign(size_t(g.n.x) * size_t(g.n.y) * size_t(g.n.z), 0);
-    out.grid = g.n;
-    const std::string grid_text = format("grid %gx%gx%g", g.n.x, g.n.y, g.n.z);
+    return g;
+}
 
-    Floor floor;
-    voxelise(scene, g, floor);
-
-    // The floor: the lowest layer holding at least half as much up-facing area as the layer
-    // with the most (a ground plane, not a table top; the ground floor, not a gallery).
-    const double most = *std::max_element(floor.area.begin(), floor.area.end());
-    if (!(most > 0)) return notEnclosed(out, "no floor: no upward-facing triangles (" + grid_text + ")");
-    size_t floor_layer = 0;
-    while (floor.area[floor_layer] < 0.5 * most) ++floor_layer;
-    out.floor_y = floor.area_y[floor_layer] / floor.area[floor_layer];
-    // The first layer of air: clear of the floor by at least a quarter of a cell.
-    const int air = int(std::ceil((out.floor_y - g.origin.y) / g.cell.y + 0.25));
-    if (air >= g.n.y) return notEnclosed(out, format("no free space above the floor at y = %g", out.floor_y) + " (" + grid_text + ")");
-
-    // Columns a camera can stand in: floor just below the air layer, air layer free. Their
-    // clear height runs up to the first occupied cell, or to the bounds' top where open.
+// Columns a camera can stand in: floor just below the air layer, air layer free. Each one's
+// first occupied layer >= air (n.y where open up to the bounds), -1 where no camera stands;
+// `clear` gets each standing column's clear height above floor_y.
+std::vector<int> standingColumns(const Grid& g, int air, double floor_y, double top_y, std::vector<double>& clear) {
     const int nx = g.n.x, nz = g.n.z;
-    std::vector<int> ceiling(size_t(nx) * size_t(nz), -1);  // first occupied layer >= air; n.y if open; -1 not standing
-    std::vector<double> clear;
+    std::vector<int> ceiling(size_t(nx) * size_t(nz), -1);
     for (int z = 0; z < nz; ++z)
         for (int x = 0; x < nx; ++x) {
             bool on_floor = false;
@@ -305,30 +280,26 @@ Interior findInterior(const Scene& scene) {
             int top = air;
             while (top < g.n.y && !(g.at(x, top, z) & kOccupied)) ++top;
             ceiling[size_t(z) * size_t(nx) + size_t(x)] = top;
-            clear.push_back((top < g.n.y ? g.origin.y + top * g.cell.y : bmax.y) - out.floor_y);
+            clear.push_back((top < g.n.y ? g.origin.y + top * g.cell.y : top_y) - floor_y);
         }
-    if (clear.empty()) return notEnclosed(out, format("nowhere to stand on the floor at y = %g", out.floor_y) + " (" + grid_text + ")");
-    std::nth_element(clear.begin(), clear.begin() + std::ptrdiff_t(clear.size() / 2), clear.end());
-    const double clear_median = clear[clear.size() / 2];
-    out.eye_y = out.floor_y + std::min(kEyeHeight, kEyeOfClear * clear_median);
-    const int eye_layer = std::clamp(int(std::floor((out.eye_y - g.origin.y) / g.cell.y)), air, g.n.y - 1);
-    // Free from the air layer to one layer above the eye: head room.
-    const int head_layer = std::min(eye_layer + 1, g.n.y - 1);
+    return ceiling;
+}
 
-    std::vector<uint8_t> candidate(ceiling.size(), 0);
-    int candidates = 0;
-    for (size_t i = 0; i < ceiling.size(); ++i)
-        if (ceiling[i] > head_layer) candidate[i] = 1, ++candidates;  // open columns: n.y
-    if (candidates == 0)
-        return notEnclosed(out, format("no head room at eye height %g above the floor at y = %g", out.eye_y - out.floor_y,
-                                       out.floor_y) + " (" + grid_text + ")");
-
-    // Rays from one spot per block of block x block columns, shared by the block's columns.
-    const int block = std::max(1, int(std::ceil(std::sqrt(candidates / kProbedSpots))));
-    std::vector<RayTally> tally(ceiling.size());
-    std::vector<uint8_t> enclosed(ceiling.size(), 0);
+// Rays from one spot per block of block x block candidate columns, shared by the block's
+// columns: each column's tally, and the most enclosed spot.
+struct Probes {
+    std::vector<RayTally> tally;
+    std::vector<uint8_t> enclosed;
     RayTally best;
-    glm::dvec2 best_at(0);
+    glm::dvec2 best_at{0};
+};
+
+Probes probeColumns(const Grid& g, const std::vector<uint8_t>& candidate, int candidates, int eye_layer) {
+    const int nx = g.n.x, nz = g.n.z;
+    const int block = std::max(1, int(std::ceil(std::sqrt(candidates / kProbedSpots))));
+    Probes p;
+    p.tally.resize(candidate.size());
+    p.enclosed.assign(candidate.size(), 0);
     for (int bz = 0; bz < nz; bz += block)
         for (int bx = 0; bx < nx; bx += block) {
             bool probed = false;
@@ -341,22 +312,25 @@ Interior findInterior(const Scene& scene) {
                         const double px = g.origin.x + (x + 0.5) * g.cell.x, pz = g.origin.z + (z + 0.5) * g.cell.z;
                         t = castRays(g, eye_layer, px, pz);
                         probed = true;
-                        if (t.front - t.back > best.front - best.back || best.rays == 0) best = t, best_at = {px, pz};
+                        if (t.front - t.back > p.best.front - p.best.back || p.best.rays == 0) p.best = t, p.best_at = {px, pz};
                     }
-                    tally[i] = t;
-                    enclosed[i] = t.enclosed();
+                    p.tally[i] = t;
+                    p.enclosed[i] = t.enclosed();
                 }
         }
+    return p;
+}
 
-    // The largest rectangle of enclosed columns, at least 2 x 2 (the maximal-rectangle
-    // histogram walk: each row's column heights, a stack of rising heights).
+// The largest rectangle of set cells in an nx x nz mask, at least 2 x 2 (the
+// maximal-rectangle histogram walk: each row's column heights, a stack of rising heights).
+// Its area, 0 when there is none.
+int largestRectangle(const std::vector<uint8_t>& mask, int nx, int nz, glm::ivec2& rect_min, glm::ivec2& rect_max) {
     int best_area = 0;
-    glm::ivec2 rect_min(0), rect_max(-1);
     std::vector<int> heights(size_t(nx), 0);
     for (int z = 0; z < nz; ++z) {
         for (int x = 0; x < nx; ++x) {
             const size_t i = size_t(z) * size_t(nx) + size_t(x);
-            heights[size_t(x)] = enclosed[i] ? heights[size_t(x)] + 1 : 0;
+            heights[size_t(x)] = mask[i] ? heights[size_t(x)] + 1 : 0;
         }
         std::vector<int> stack;
         for (int x = 0; x <= nx; ++x) {
@@ -375,15 +349,76 @@ Interior findInterior(const Scene& scene) {
             stack.push_back(x);
         }
     }
-    out.enclosed_share = best.frontShare();
-    int footprint = 0, enclosed_columns = 0;
-    for (int z = 0; z < nz; ++z)
-        for (int x = 0; x < nx; ++x) {
+    return best_area;
+}
+
+// Columns with any geometry in them.
+int footprintColumns(const Grid& g) {
+    int footprint = 0;
+    for (int z = 0; z < g.n.z; ++z)
+        for (int x = 0; x < g.n.x; ++x) {
             bool any = false;
             for (int y = 0; y < g.n.y && !any; ++y) any = g.at(x, y, z) & kOccupied;
             footprint += any;
-            enclosed_columns += enclosed[size_t(z) * size_t(nx) + size_t(x)];
         }
+    return footprint;
+}
+
+}  // namespace
+
+Interior findInterior(const Scene& scene) {
+    Interior out;
+    const glm::dvec3 bmin = scene.bounds_min, bmax = scene.bounds_max;
+    for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(bmin[k]) || !std::isfinite(bmax[k]) || bmin[k] > bmax[k])
+            return notEnclosed(out, "no usable bounds");
+    if (scene.indices.empty() || scene.instances.empty()) return notEnclosed(out, "no triangles");
+    const glm::dvec3 extent = bmax - bmin;
+    const double longest = std::max({extent.x, extent.y, extent.z});
+    if (!(longest > 0)) return notEnclosed(out, "the scene is a single point");
+    Grid g = makeGrid(bmin, extent, longest);
+    out.grid = g.n;
+    const std::string grid_text = format("grid %gx%gx%g", g.n.x, g.n.y, g.n.z);
+
+    Floor floor;
+    voxelise(scene, g, floor);
+
+    // The floor: the lowest layer holding at least half as much up-facing area as the layer
+    // with the most (a ground plane, not a table top; the ground floor, not a gallery).
+    const double most = *std::max_element(floor.area.begin(), floor.area.end());
+    if (!(most > 0)) return notEnclosed(out, "no floor: no upward-facing triangles (" + grid_text + ")");
+    size_t floor_layer = 0;
+    while (floor.area[floor_layer] < 0.5 * most) ++floor_layer;
+    out.floor_y = floor.area_y[floor_layer] / floor.area[floor_layer];
+    // The first layer of air: clear of the floor by at least a quarter of a cell.
+    const int air = int(std::ceil((out.floor_y - g.origin.y) / g.cell.y + 0.25));
+    if (air >= g.n.y) return notEnclosed(out, format("no free space above the floor at y = %g", out.floor_y) + " (" + grid_text + ")");
+
+    std::vector<double> clear;
+    const std::vector<int> ceiling = standingColumns(g, air, out.floor_y, bmax.y, clear);
+    if (clear.empty()) return notEnclosed(out, format("nowhere to stand on the floor at y = %g", out.floor_y) + " (" + grid_text + ")");
+    std::nth_element(clear.begin(), clear.begin() + std::ptrdiff_t(clear.size() / 2), clear.end());
+    const double clear_median = clear[clear.size() / 2];
+    out.eye_y = out.floor_y + std::min(kEyeHeight, kEyeOfClear * clear_median);
+    const int eye_layer = std::clamp(int(std::floor((out.eye_y - g.origin.y) / g.cell.y)), air, g.n.y - 1);
+    // Free from the air layer to one layer above the eye: head room.
+    const int head_layer = std::min(eye_layer + 1, g.n.y - 1);
+
+    std::vector<uint8_t> candidate(ceiling.size(), 0);
+    int candidates = 0;
+    for (size_t i = 0; i < ceiling.size(); ++i)
+        if (ceiling[i] > head_layer) candidate[i] = 1, ++candidates;  // open columns: n.y
+    if (candidates == 0)
+        return notEnclosed(out, format("no head room at eye height %g above the floor at y = %g", out.eye_y - out.floor_y,
+                                       out.floor_y) + " (" + grid_text + ")");
+
+    const Probes probes = probeColumns(g, candidate, candidates, eye_layer);
+    const int nx = g.n.x;
+    glm::ivec2 rect_min(0), rect_max(-1);
+    const int best_area = largestRectangle(probes.enclosed, nx, g.n.z, rect_min, rect_max);
+    out.enclosed_share = probes.best.frontShare();
+    const int footprint = footprintColumns(g);
+    const int enclosed_columns = int(std::count(probes.enclosed.begin(), probes.enclosed.end(), uint8_t(1)));
     if (best_area > 0 && enclosed_columns < kMinFootprintShare * footprint)
         return notEnclosed(out, format("a cavity: enclosed spots at eye height %g cover %g%% of the scene's "
                                        "footprint (an interior needs >= 25%%)",
@@ -393,7 +428,8 @@ Interior findInterior(const Scene& scene) {
         return notEnclosed(
             out, format("open: from the most enclosed spot (x %g, z %g) %g%% of level rays at eye height %g hit "
                         "surfaces facing it and %g%% the back of one (an interior needs >= 90%% and <= 10%%)",
-                        best_at.x, best_at.y, 100 * best.frontShare(), out.eye_y, 100 * best.backShare()) +
+                        probes.best_at.x, probes.best_at.y, 100 * probes.best.frontShare(), out.eye_y,
+                        100 * probes.best.backShare()) +
                      " (" + grid_text + ")");
 
     out.enclosed = true;
@@ -405,7 +441,7 @@ Interior findInterior(const Scene& scene) {
         for (int x = rect_min.x; x <= rect_max.x; ++x) {
             const size_t i = size_t(z) * size_t(nx) + size_t(x);
             lowest = std::min(lowest, ceiling[i]);
-            share += tally[i].frontShare();
+            share += probes.tally[i].frontShare();
         }
     out.ceiling_y = lowest < g.n.y ? g.origin.y + lowest * g.cell.y : bmax.y;
     out.enclosed_share = share / best_area;
