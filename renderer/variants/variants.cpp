@@ -15,7 +15,7 @@ constexpr Variant kVariants[] = {
     {"cbr-aso", "checkerboard, assume shading occluded on quarter-res motion", buildCheckerboardAso, true},
     {"cbr-cso", "checkerboard, check shading occlusion with a view-space depth test", buildCheckerboardCso, true},
     {"cbr-clip", "checkerboard with the full-res history, reused wherever on screen, the colour clip its only "
-                 "rejection (TAA's rule)", buildCheckerboardClip, true},
+                 "rejection (TAA's rule)", buildCheckerboardClip, true, true},
     {"taau", "temporal upsampling: jittered scaled render accumulated into a full-res history", buildTaau},
 };
 

@@ -68,6 +68,7 @@ struct Variant {
     std::string_view description;
     BuildFn build;
     bool checkerboard = false;     // takes the checkerboard settings (route, LOD bias, history)
+    bool full_history = false;     // keeps the full-res history whatever --cbr-history asks
 };
 
 std::span<const Variant> allVariants();
