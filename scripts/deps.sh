@@ -6,7 +6,7 @@ set -euo pipefail
 cbr_packages=(
   cmake g++ make pkg-config git
   libvulkan-dev mesa-vulkan-drivers glslang-tools
-  libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libcli11-dev
+  libglm-dev libtinygltf-dev libstb-dev libdeflate-dev nlohmann-json3-dev libcli11-dev
   libopenimageio-dev libopencv-imgproc-dev
 )
 if [[ "${CBR_WITH_TESTS:-0}" == 1 ]]; then

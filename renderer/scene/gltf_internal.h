@@ -85,10 +85,12 @@ struct GltfImages {
 };
 bool gltfLoadImage(tinygltf::Image* image, int image_index, std::string* err, std::string* warn, int req_width,
                    int req_height, const unsigned char* bytes, int size, void* images);
-// Decodes the recorded images into model.images with tinygltf's own decoder (RGBA, 8 or 16
-// bits), one image per task on up to hardware_concurrency threads (CBR_DECODE_THREADS=N
-// overrides, for measurements). Returns tinygltf's error text for the lowest-numbered image
-// that fails, empty when all decode.
+// Decodes the recorded images into model.images (RGBA, 8 or 16 bits), one image per task on
+// up to hardware_concurrency threads (CBR_DECODE_THREADS=N overrides, for measurements):
+// 8-bit PNGs by decodePngRgba8 (png_decode.h) where it takes them, the rest by tinygltf's
+// own decoder, whose pixels are the same (CBR_PNG_DECODER=stb sends every image there, for
+// measurements). Returns tinygltf's error text for the lowest-numbered image that fails,
+// empty when all decode.
 std::string gltfDecodeImages(GltfImages& images, tinygltf::Model& model);
 
 // Scene texture for a glTF texture index, decoded to RGBA8; sRGB for colour, linear for data.

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "renderer/scene/gltf_internal.h"
+#include "renderer/scene/png_decode.h"
 
 namespace cbr::scene {
 namespace {
@@ -101,6 +102,28 @@ std::string gltfDecodeImages(GltfImages& images, tinygltf::Model& model) {
         threads = size_t(n);
     }
     threads = std::min(threads, count);
+    bool fast_png = true;
+    if (const char* env = std::getenv("CBR_PNG_DECODER")) {
+        const std::string v = env;
+        if (v != "fast" && v != "stb")
+            throw std::invalid_argument("CBR_PNG_DECODER=" + v + ": expected fast (libdeflate, the default) or stb");
+        fast_png = v == "fast";
+    }
+    // tinygltf's LoadImageData for what decodePngRgba8 takes: RGBA8, the size checked against
+    // the one asked for (a mismatch goes to tinygltf for its own error text).
+    auto decodeFast = [](const GltfImages::Encoded& e, tinygltf::Image& image) {
+        int w = 0, h = 0;
+        std::vector<unsigned char> pixels;
+        if (!decodePngRgba8(e.bytes.data(), e.bytes.size(), w, h, pixels)) return false;
+        if ((e.req_width > 0 && e.req_width != w) || (e.req_height > 0 && e.req_height != h)) return false;
+        image.width = w;
+        image.height = h;
+        image.component = 4;
+        image.bits = 8;
+        image.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+        image.image = std::move(pixels);
+        return true;
+    };
     std::vector<std::string> errors(count);
     std::atomic<size_t> next{0};
     auto work = [&] {
@@ -110,6 +133,8 @@ std::string gltfDecodeImages(GltfImages& images, tinygltf::Model& model) {
                 std::string warn;  // tinygltf's decoder never warns
                 if (e.index < 0 || size_t(e.index) >= model.images.size()) {
                     errors[i] = "image[" + std::to_string(e.index) + "] is missing after the parse";
+                } else if (fast_png && decodeFast(e, model.images[size_t(e.index)])) {
+                    // decoded
                 } else if (!tinygltf::LoadImageData(&model.images[size_t(e.index)], e.index, &errors[i], &warn, e.req_width,
                                                     e.req_height, e.bytes.data(), int(e.bytes.size()), nullptr) &&
                            errors[i].empty()) {
