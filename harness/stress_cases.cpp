@@ -91,9 +91,26 @@ std::string caseVariants() {
     for (const auto& v : kVariants) every += (every.empty() ? "" : ",") + v;
     return every;
 }
+namespace {
 
-std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, uint32_t w, uint32_t h) {
-    (void)w;
+// The inputs the cases read, written once: camera paths and glTF files.
+struct Inputs {
+    double fov = 60.0;
+    int n_sub = 0, n_cancel = 0;  // frames of the sub-pixel and parity-cancelling paths
+    fs::path sub, cancel, turn, cut;
+    fs::path bad_normals, infinites, zero_area, no_texture, bright, dim;
+    fs::path blocks_near, blocks_far, pan_near, pan_far;
+};
+
+std::vector<std::string> plus(std::vector<std::string> a, const std::vector<std::string>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+}
+
+const std::vector<std::string> kFly = {"--scene", "atrium", "--path", "flythrough", "--frames", "8"};
+
+Inputs writeInputs(const fs::path& paths_dir, const StressOptions& o, uint32_t w, uint32_t h) {
+    Inputs in;
     // Poses from the atrium flythrough's start: inside the scene, looking down the aisle.
     scene::Scene atrium = scene::buildProcedural("atrium");
     const paths::BuiltinContext bctx = builtinContext(atrium, "flythrough", int(w), int(h));
@@ -102,16 +119,16 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
     const glm::dquat q0 = p0.orientation;
 
     // Sub-pixel motion: a yaw pan moving the screen centre 0.01 px per frame.
-    const double fov = 60.0, f_px = (h / 2.0) / std::tan(glm::radians(fov) / 2);
-    const int n_sub = o.subpixel_frames;
+    const double fov = in.fov, f_px = (h / 2.0) / std::tan(glm::radians(fov) / 2);
+    const int n_sub = in.n_sub = o.subpixel_frames;
     const double d_sub = std::atan(0.01 / f_px);
-    fs::path sub = writePath(paths_dir, "subpixel-0.01px", fov,
+    in.sub = writePath(paths_dir, "subpixel-0.01px", fov,
                              {{0, p0.position, q0, false}, {n_sub - 1, p0.position, q0 * yaw(d_sub * (n_sub - 1)), false}});
     // Jitter-cancelling motion: 1 px per frame with a 10-degree field of view (within 0.8%
     // of 1 px across the frame), so last frame's samples land on this frame's parity.
     const double fov_narrow = 10.0, f_narrow = (h / 2.0) / std::tan(glm::radians(fov_narrow) / 2);
-    const int n_cancel = 24;
-    fs::path cancel = writePath(paths_dir, "parity-cancel-1px", fov_narrow,
+    const int n_cancel = in.n_cancel = 24;
+    in.cancel = writePath(paths_dir, "parity-cancel-1px", fov_narrow,
                                 {{0, p0.position, q0, false},
                                  {n_cancel - 1, p0.position, q0 * yaw(std::atan(1.0 / f_narrow) * (n_cancel - 1)), false}});
     // 180 degrees between frames 10 and 11, still before and after; and the same with a cut.
@@ -121,16 +138,17 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
                           {11, p0.position, q0 * yaw(glm::pi<double>()), cut},
                           {21, p0.position, q0 * yaw(glm::pi<double>()), false}});
     };
-    fs::path turn = turnPath("turn-180", false), cut = turnPath("cut-180", true);
+    in.turn = turnPath("turn-180", false);
+    in.cut = turnPath("cut-180", true);
     // Debian's assimp-testmodels; CBR_ASSIMP_MODELS points elsewhere (a GPU host without it).
     const char* models_env = std::getenv("CBR_ASSIMP_MODELS");
     const fs::path models = models_env && *models_env ? fs::path(models_env) : fs::path("/usr/share/assimp/models");
-    fs::path bad_normals = models / "glTF2/BoxBadNormals-glTF-Binary/BoxBadNormals.glb";
-    fs::path infinites = models / "glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb";
-    fs::path zero_area = writeDegenerateGltf(paths_dir, "zero-area-triangle", false);
-    fs::path no_texture = writeDegenerateGltf(paths_dir, "missing-texture", true);
-    fs::path bright = writeDegenerateGltf(paths_dir, "emissive-1e4", false, {{"strength", 1e4}});
-    fs::path dim = writeDegenerateGltf(paths_dir, "emissive-1e-6", false, {{"factor", {1e-6, 1e-6, 1e-6}}});
+    in.bad_normals = models / "glTF2/BoxBadNormals-glTF-Binary/BoxBadNormals.glb";
+    in.infinites = models / "glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb";
+    in.zero_area = writeDegenerateGltf(paths_dir, "zero-area-triangle", false);
+    in.no_texture = writeDegenerateGltf(paths_dir, "missing-texture", true);
+    in.bright = writeDegenerateGltf(paths_dir, "emissive-1e4", false, {{"strength", 1e4}});
+    in.dim = writeDegenerateGltf(paths_dir, "emissive-1e-6", false, {{"factor", {1e-6, 1e-6, 1e-6}}});
 
     // Vertices baked 1e6 from the origin (survey or georeferenced data) against the same
     // file near the origin, seen from the same camera path moved with them: a slow pan and
@@ -138,40 +156,42 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
     // crawl. Both sets of coordinates are exact floats (writeBlocksGltf).
     const glm::dquat look = glm::angleAxis(-0.2, glm::dvec3(1, 0, 0));
     const glm::dvec3 cam0(-1.3, 1.6, 4.1), cam1(1.1, 1.9, 3.3), far(1e6);
-    fs::path blocks_near = writeBlocksGltf(paths_dir, "blocks-near-origin", glm::dvec3(0));
-    fs::path blocks_far = writeBlocksGltf(paths_dir, "blocks-baked-at-1e6", far);
-    fs::path pan_near = writePath(paths_dir, "blocks-pan", fov, {{0, cam0, look, false}, {39, cam1, look, false}});
-    fs::path pan_far = writePath(paths_dir, "blocks-pan-at-1e6", fov,
+    in.blocks_near = writeBlocksGltf(paths_dir, "blocks-near-origin", glm::dvec3(0));
+    in.blocks_far = writeBlocksGltf(paths_dir, "blocks-baked-at-1e6", far);
+    in.pan_near = writePath(paths_dir, "blocks-pan", fov, {{0, cam0, look, false}, {39, cam1, look, false}});
+    in.pan_far = writePath(paths_dir, "blocks-pan-at-1e6", fov,
                                  {{0, cam0 + far, look, false}, {39, cam1 + far, look, false}});
+    return in;
+}
 
-    const std::vector<std::string> fly = {"--scene", "atrium", "--path", "flythrough", "--frames", "8"};
-    auto plus = [](std::vector<std::string> a, const std::vector<std::string>& b) {
-        a.insert(a.end(), b.begin(), b.end());
-        return a;
-    };
-    std::vector<Case> cases;
+// Far from the origin, extreme clip planes, tiny and huge units: the same images.
+void addPrecisionCases(std::vector<Case>& cases, const Inputs& in) {
     cases.push_back({"extreme-planes", "near 1e-4 / far 1e7: images >= 40 dB of default planes, class shares within 0.01",
-                     {{"base", fly}, {"planes", plus(fly, {"--near", "1e-4", "--far", "1e7"})}},
+                     {{"base", kFly}, {"planes", plus(kFly, {"--near", "1e-4", "--far", "1e7"})}},
                      [](Children& c) { return sameAsBase(c, "planes", 40, 0.01); }});
     cases.push_back({"far-from-origin", "scene and path moved by (1e6, 1e6, 1e6): the same images (>= 60 dB), same class shares",
-                     {{"base", fly}, {"offset", plus(fly, {"--scene-offset", "1e6,1e6,1e6"})}},
+                     {{"base", kFly}, {"offset", plus(kFly, {"--scene-offset", "1e6,1e6,1e6"})}},
                      [](Children& c) { return sameAsBase(c, "offset", 60, 0.001); }});
     cases.push_back({"far-baked-vertices",
                      "a glTF whose vertex positions are baked at (1e6, 1e6, 1e6), camera path moved with it: the same "
                      "images as the file near the origin (>= 60 dB), same class shares",
-                     {{"near", {"--scene", blocks_near.string(), "--path", pan_near.string(), "--frames", "40"}},
-                      {"baked", {"--scene", blocks_far.string(), "--path", pan_far.string(), "--frames", "40"}}},
+                     {{"near", {"--scene", in.blocks_near.string(), "--path", in.pan_near.string(), "--frames", "40"}},
+                      {"baked", {"--scene", in.blocks_far.string(), "--path", in.pan_far.string(), "--frames", "40"}}},
                      [](Children& c) { return sameAsBase(c, "baked", 60, 0.001, "near"); }});
     cases.push_back({"tiny-scene", "millimetre units (scale 0.001, planes scaled): images >= 40 dB of unscaled, shares within 0.01",
-                     {{"base", fly}, {"mm", plus(fly, {"--scene-scale", "0.001"})}},
+                     {{"base", kFly}, {"mm", plus(kFly, {"--scene-scale", "0.001"})}},
                      [](Children& c) { return sameAsBase(c, "mm", 40, 0.01); }});
     cases.push_back({"huge-scene", "kilometre units (scale 1000): images >= 40 dB of unscaled, shares within 0.01",
-                     {{"base", fly}, {"km", plus(fly, {"--scene-scale", "1000"})}},
+                     {{"base", kFly}, {"km", plus(kFly, {"--scene-scale", "1000"})}},
                      [](Children& c) { return sameAsBase(c, "km", 40, 0.01); }});
+}
+
+// Motion the reconstruction must survive: sub-pixel drift, motion that cancels the jitter.
+void addMotionCases(std::vector<Case>& cases, const Inputs& in) {
     cases.push_back(
-        {"subpixel-motion", "0.01 px per frame for " + std::to_string(n_sub) +
+        {"subpixel-motion", "0.01 px per frame for " + std::to_string(in.n_sub) +
                                 " frames: checkerboard PSNR of the last 50 frames within 0.5 dB of frames 1-50 (no drift)",
-         {{"subpixel", {"--scene", "atrium", "--path", sub.string(), "--frames", std::to_string(n_sub)}}},
+         {{"subpixel", {"--scene", "atrium", "--path", in.sub.string(), "--frames", std::to_string(in.n_sub)}}},
          [](Children& c) {
              Verdict v = base(c);
              if (!v.finite) return v;
@@ -192,7 +212,7 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
     cases.push_back({"parity-cancelling-motion",
                      "1 px per frame, cancelling the jitter: with the quarter history most pixels missing by parity, "
                      "reconstructed spatially; finite, PSNR >= 12 dB, SSIM >= 0.3 (no garbage)",
-                     {{"cancel", {"--scene", "atrium", "--path", cancel.string(), "--frames", std::to_string(n_cancel)}}},
+                     {{"cancel", {"--scene", "atrium", "--path", in.cancel.string(), "--frames", std::to_string(in.n_cancel)}}},
                      [](Children& c) {
                          Verdict v = base(c);
                          if (!v.finite) return v;
@@ -212,13 +232,17 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
                          v.quality = qualityLine(r);
                          return v;
                      }});
+}
+
+// History that must be dropped (a turn, a cut) or kept forever (a still camera).
+void addHistoryCases(std::vector<Case>& cases, const Inputs& in, const StressOptions& o) {
     auto frame11 = [](const Child& r, const std::string& var, const char* col) { return frameValue(r, var, 11, col); };
     cases.push_back(
         {"180-degree-turn",
          "a 180-degree turn in one frame: the next frame reuses nothing (< 1%) and matches a history reset at the "
          "same pose (PSNR within 0.5 dB)",
-         {{"turn", {"--scene", "atrium", "--path", turn.string(), "--frames", "22"}},
-          {"cut", {"--scene", "atrium", "--path", cut.string(), "--frames", "22"}}},
+         {{"turn", {"--scene", "atrium", "--path", in.turn.string(), "--frames", "22"}},
+          {"cut", {"--scene", "atrium", "--path", in.cut.string(), "--frames", "22"}}},
          [frame11](Children& c) {
              Verdict v = base(c);
              if (!v.finite) return v;
@@ -235,7 +259,7 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
     cases.push_back(
         {"camera-cut", "a cut: history resets on the cut frame (reset share >= 40%, nothing reused), no smear from the "
                        "old shot (PSNR within 3 dB of the first frame's, the other reset, or of the run's median)",
-         {{"cut", {"--scene", "atrium", "--path", cut.string(), "--frames", "22"}}},
+         {{"cut", {"--scene", "atrium", "--path", in.cut.string(), "--frames", "22"}}},
          [frame11](Children& c) {
              Verdict v = base(c);
              if (!v.finite) return v;
@@ -295,10 +319,14 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
              v.quality = qualityLine(r);
              return v;
          }});
+}
+
+// Thin geometry and the extremes of the image: black, white, emitters, exposure.
+void addImageCases(std::vector<Case>& cases, const Inputs& in) {
     cases.push_back({"thin-geometry-and-foliage",
                      "atrium's 1 cm cables, chain-link fence and alpha-tested foliage: finite; checkerboard crawls less "
                      "than drr (ECI)",
-                     {{"base", fly}},
+                     {{"base", kFly}},
                      [](Children& c) {
                          Verdict v = base(c);
                          if (!v.finite) return v;
@@ -346,8 +374,8 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
     cases.push_back({"emissive-extremes",
                      "a glTF emitter of strength 1e4 (KHR_materials_emissive_strength) and one of 1e-6 through the "
                      "tone map: finite output, every variant ran, the bright one saturates to white",
-                     {{"emit-high", {"--scene", bright.string(), "--path", "orbit", "--frames", "4"}},
-                      {"emit-low", {"--scene", dim.string(), "--path", "orbit", "--frames", "4"}}},
+                     {{"emit-high", {"--scene", in.bright.string(), "--path", "orbit", "--frames", "4"}},
+                      {"emit-low", {"--scene", in.dim.string(), "--path", "orbit", "--frames", "4"}}},
                      [](Children& c) {
                          Verdict v = base(c);
                          v.held = v.finite;
@@ -365,7 +393,7 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
                      }});
     cases.push_back({"exposure-extremes",
                      "radiance scaled by 1e4 and by 1e-6 (exposure) through the tone map: finite output, every variant ran",
-                     {{"hdr-high", plus(fly, {"--exposure", "1e4"})}, {"hdr-low", plus(fly, {"--exposure", "1e-6"})}},
+                     {{"hdr-high", plus(kFly, {"--exposure", "1e4"})}, {"hdr-low", plus(kFly, {"--exposure", "1e-6"})}},
                      [](Children& c) {
                          Verdict v = base(c);
                          v.held = v.finite;
@@ -374,6 +402,10 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
                                  "1e4: " + qualityLine(*c.at("hdr-high")) + "; 1e-6: " + qualityLine(*c.at("hdr-low"));
                          return v;
                      }});
+}
+
+// Damaged glTF files: a warning in run.json or one line and exit 2, never a crash.
+void addGltfCases(std::vector<Case>& cases, const Inputs& in) {
     auto gltfCase = [&](const std::string& name, const fs::path& file, const std::string& expect,
                         const std::string& warning) {
         std::vector<std::string> args = {"--scene", file.string(), "--path", "orbit", "--frames", "4"};
@@ -407,12 +439,24 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
                          }});
     };
     const std::string either = "rendered with a warning in run.json, or refused with one line and exit 2; never a crash";
-    gltfCase("gltf-zero-length-normals", bad_normals, "assimp-testmodels BoxBadNormals: " + either, "zero-length normal");
-    gltfCase("gltf-non-finite-positions", infinites, "assimp-testmodels BoxWithInfinites: " + either, "non-finite");
-    gltfCase("gltf-zero-area-triangles", zero_area, "a degenerate (collinear) triangle beside a quad: " + either,
+    gltfCase("gltf-zero-length-normals", in.bad_normals, "assimp-testmodels BoxBadNormals: " + either, "zero-length normal");
+    gltfCase("gltf-non-finite-positions", in.infinites, "assimp-testmodels BoxWithInfinites: " + either, "non-finite");
+    gltfCase("gltf-zero-area-triangles", in.zero_area, "a degenerate (collinear) triangle beside a quad: " + either,
              "zero-area triangle");
-    gltfCase("gltf-missing-texture", no_texture, "a base colour texture whose image file is missing: " + either,
+    gltfCase("gltf-missing-texture", in.no_texture, "a base colour texture whose image file is missing: " + either,
              "texture");
+}
+
+}  // namespace
+
+std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, uint32_t w, uint32_t h) {
+    const Inputs in = writeInputs(paths_dir, o, w, h);
+    std::vector<Case> cases;
+    addPrecisionCases(cases, in);
+    addMotionCases(cases, in);
+    addHistoryCases(cases, in, o);
+    addImageCases(cases, in);
+    addGltfCases(cases, in);
     return cases;
 }
 
