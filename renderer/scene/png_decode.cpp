@@ -85,8 +85,8 @@ bool decodePngRgba8(const uint8_t* bytes, size_t size, int& width, int& height, 
     const size_t stride = size_t(w) * channels;
     const size_t raw_size = size_t(h) * (stride + 1);
 
-    // The IDAT chunks, in order and consecutive; a tRNS chunk (a colour key) is left to stb_image.
-    // One chunk is inflated where it lies; several are joined first.
+    // The IDAT chunks, in order and consecutive: one is inflated where it lies, several are
+    // joined first.
     std::vector<uint8_t> stream;
     const uint8_t* single = nullptr;
     size_t single_size = 0, chunks = 0;
@@ -116,6 +116,9 @@ bool decodePngRgba8(const uint8_t* bytes, size_t size, int& width, int& height, 
     }
     if (chunks == 0 || !seen_end) return false;
     if (chunks > 1) single = stream.data(), single_size = stream.size();
+    // Deflate expands at most 1032:1: a header claiming more pixels than its data could hold
+    // is turned down before the buffer for them is allocated.
+    if (single_size * 1032 + 64 < raw_size) return false;
 
     // The whole image's filtered rows; exactly raw_size bytes, as stb_image requires.
     std::unique_ptr<uint8_t[]> raw(new uint8_t[raw_size]);

@@ -113,6 +113,12 @@ TEST(PngDecode, DamagedFilesAreTurnedDown) {
     std::vector<unsigned char> wider = bytes;
     wider[8 + 8 + 3] ^= 0x01;  // IHDR width, low byte
     EXPECT_FALSE(decodePngRgba8(wider.data(), wider.size(), w, h, pixels));
+    // One claiming 16384 x 16384 pixels (1 GiB) for 7.5 KB of data: turned down (and before
+    // a buffer for them is allocated, since deflate expands at most 1032:1).
+    std::vector<unsigned char> huge = bytes;
+    for (size_t at : {size_t(8 + 8), size_t(8 + 12)}) huge[at] = 0, huge[at + 1] = 0, huge[at + 2] = 0x40, huge[at + 3] = 0;
+    EXPECT_FALSE(decodePngRgba8(huge.data(), huge.size(), w, h, pixels));
+    EXPECT_TRUE(pixels.empty());
 }
 
 }  // namespace
