@@ -309,15 +309,8 @@ void Renderer::addSlowdownSpin(graph::Graph& graph, const FrameRequest& request)
         // And the spin waits for all of the pass's work: lavapipe otherwise runs the
         // dispatch on its compute thread while its rasterizer threads are still drawing
         // the pass, and a 30% opaque slowdown measured +9% at 640x360.
-        VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-        b.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-        b.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-        b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &b;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, spin_.pipeline);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, spin_.layout, 0, 1, &spin_set_, 0, nullptr);
         vkCmdPushConstants(cmd, spin_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(iterations), &iterations);
@@ -342,40 +335,25 @@ void Renderer::recordFrame(Slot& slot, graph::Graph& graph) {
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(slot.cmd, &begin));
-    auto barrier = [&](VkPipelineStageFlags2 src, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst,
-                       VkAccessFlags2 dst_access, const VkBuffer* stats) {
-        VkBufferMemoryBarrier2 bb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2, nullptr, src, src_access, dst, dst_access};
-        bb.srcQueueFamilyIndex = bb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, nullptr, src, src_access, dst, dst_access};
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        if (stats) {
-            bb.buffer = *stats;
-            bb.size = VK_WHOLE_SIZE;
-            dep.bufferMemoryBarrierCount = 1;
-            dep.pBufferMemoryBarriers = &bb;
-        } else {
-            dep.memoryBarrierCount = 1;
-            dep.pMemoryBarriers = &mb;
-        }
-        vkCmdPipelineBarrier2(slot.cmd, &dep);
-    };
     // The counters are zeroed before the graph's first timestamp and copied for the host
     // after its last: neither is part of the frame.
     vkCmdFillBuffer(slot.cmd, slot.stats_gpu.buffer, 0, VK_WHOLE_SIZE, 0);
-    barrier(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, &slot.stats_gpu.buffer);
+    vk::bufferBarrier(slot.cmd, slot.stats_gpu.buffer, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     slot.recorded = graph.record(slot.cmd, slot.queries);
     // From the fill too: in a variant without a resolve it is the last write.
-    barrier(VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-            VK_ACCESS_2_TRANSFER_READ_BIT, &slot.stats_gpu.buffer);
+    vk::bufferBarrier(slot.cmd, slot.stats_gpu.buffer,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                      VK_ACCESS_2_TRANSFER_READ_BIT);
     VkBufferCopy stats_region{0, 0, slot.stats.size};
     vkCmdCopyBuffer(slot.cmd, slot.stats_gpu.buffer, slot.stats.buffer, 1, &stats_region);
     if (slot.recorded.extra_work_recorded) slowdown_applied_ = true;
     // The host reads copies and counters after the fence: make the writes visible to it.
-    barrier(VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-            VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-            VK_ACCESS_2_HOST_READ_BIT, nullptr);
+    vk::memoryBarrier(slot.cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                      VK_ACCESS_2_HOST_READ_BIT);
     VK_CHECK(vkEndCommandBuffer(slot.cmd));
 }
 

@@ -68,6 +68,12 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, uint32_t base_mip, uint32_
                   VkImageLayout to, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
                   VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access, uint32_t layers = 1);
 
+// A global memory barrier, and one over a whole buffer (synchronization2).
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                   VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
+void bufferBarrier(VkCommandBuffer cmd, VkBuffer buffer, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                   VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
+
 Image createImage(Context& ctx, const ImageDesc& desc);
 bool storageFormat(Context& ctx, VkFormat format);  // optimal-tiling storage images of it are supported
 void destroyImage(Context& ctx, Image& image);
