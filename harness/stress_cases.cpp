@@ -30,11 +30,7 @@ const std::vector<std::string> kCbr = variantsWhere([](const variants::Variant& 
 // Whether a checkerboard variant keeps the full-res history at the suite's settings (the
 // default quarter history for the others): it has no pixels missing by parity, and a
 // still camera converges to its storage's rounding (B10G11R11), not to full's image.
-bool fullHistory(const std::string& name) {
-    for (const auto& v : variants::allVariants())
-        if (v.name == name) return v.full_history;
-    return false;
-}
+bool fullHistory(const std::string& name) { return variants::findVariant(name).full_history; }
 
 
 // Quality of the run's variants against full, as sequence PSNR.
