@@ -9,6 +9,7 @@
 #include "harness/builtin_context.h"
 #include "harness/options.h"
 #include "harness/results.h"
+#include "harness/wall_account.h"
 #include "renderer/scene/scene.h"
 
 namespace cbr::vk {
@@ -27,6 +28,7 @@ struct RunContext {
     vk::Context& ctx;
     const RunResults& results;
     const PathPlacement* placement = nullptr;  // run.json path.placement, when known
+    const WallAccount* wall = nullptr;         // run.json wall, when the run kept one
 };
 
 // One row per variant, computed from the frame rows (also used by the printed summary).
@@ -50,6 +52,8 @@ struct VariantSummary {
 
 std::vector<VariantSummary> summarize(const RunResults& results);
 void writeOutputs(const std::filesystem::path& dir, const RunContext& rc);
+// Rewrites run.json's wall account (and wall_seconds) once the report is written.
+void updateRunJsonWall(const std::filesystem::path& dir, const RunContext& rc);
 // sweep.csv: one row per configuration (reports/sweep.h sweepColumns()).
 void writeSweepCsv(const std::filesystem::path& dir, const RunContext& rc);
 void printSummary(std::ostream& out, const std::filesystem::path& dir, const RunContext& rc);

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "harness/outputs.h"
 #include "reports/csv.h"
 
@@ -22,6 +24,9 @@ size_t reportNaNs(const reports::CsvTable& table, const char* file);
 
 // summary.csv's sequence quality cells (psnr_db_mean ... flicker_ratio_mean) of a summary.
 void summaryQualityCells(std::map<std::string, reports::Cell>& m, const VariantSummary& s);
+
+// run.json `worst`: each worst frame with its files and page copies.
+nlohmann::json worstJson(const std::vector<WorstFrame>& worst);
 
 // Now in UTC, ISO 8601 (run.json `date`).
 std::string isoDate();

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 #include <unistd.h>
@@ -269,6 +270,15 @@ json validationJson(vk::Context& ctx) {
             {"first_messages", messages}};
 }
 
+// Where the wall time went (harness/wall_account.h): the main thread's parts, which add up
+// to `seconds`, and the workers' CPU time per task, which overlaps them.
+json wallJson(const WallAccount& wall) {
+    json parts = json::object(), workers = json::object();
+    for (size_t i = 0; i < kWallParts; ++i) parts[wallPartKey(WallPart(i))] = wall.part(WallPart(i));
+    for (size_t i = 0; i < kWorkerTasks; ++i) workers[workerTaskKey(WorkerTask(i))] = wall.worker(WorkerTask(i));
+    return {{"seconds", wall.total()}, {"parts_s", parts}, {"worker_cpu_s", workers}};
+}
+
 // What the run directory holds.
 std::vector<std::string> fileList(const RunContext& rc) {
     std::vector<std::string> files = {"frames.csv", "summary.csv", "run.json"};
@@ -279,6 +289,19 @@ std::vector<std::string> fileList(const RunContext& rc) {
 }
 
 }  // namespace
+
+// The worst frames and their files (each written once, however many entries name it).
+json worstJson(const std::vector<WorstFrame>& worst) {
+    json out = json::array();
+    for (const auto& wf : worst) {
+        json files = json::object(), page = json::object();
+        for (const auto& [what, file] : wf.files) files[what] = file;
+        for (const auto& [what, file] : wf.page) page[what] = file;
+        out.push_back({{"variant", wf.variant}, {"kind", wf.kind}, {"frame", wf.frame}, {"value", number(wf.value)},
+                       {"files", files}, {"page", page}});
+    }
+    return out;
+}
 
 std::string isoDate() {
     std::time_t now = std::time(nullptr);
@@ -308,6 +331,18 @@ void writeRunJson(const std::filesystem::path& file, const RunContext& rc, const
     j["non_finite_cells"] = nan_cells;  // NaNs written as empty CSV cells (0 in a healthy run)
     j["validation"] = validationJson(rc.ctx);
     j["files"] = fileList(rc);
+    j["worst"] = worstJson(r.worst);
+    if (rc.wall) j["wall"] = wallJson(*rc.wall);
+    reports::writeTextAtomically(file, j.dump(2) + "\n");
+}
+
+void updateRunJsonWall(const std::filesystem::path& dir, const RunContext& rc) {
+    if (!rc.wall) return;
+    const auto file = dir / "run.json";
+    std::ifstream in(file);
+    json j = json::parse(in);
+    j["wall_seconds"] = rc.wall->total();
+    j["wall"] = wallJson(*rc.wall);
     reports::writeTextAtomically(file, j.dump(2) + "\n");
 }
 

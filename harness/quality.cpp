@@ -4,7 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include <cstdio>
+#include <set>
+
 #include "metrics/flip.h"
+#include "metrics/image_encode.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
 
@@ -15,7 +19,7 @@ struct QualityScorer::Worst {
     int frame = -1;
     double value = 0;  // SSIM (lower is worse) or ECI (higher is worse)
     Bytes reference, image, classes;
-    std::optional<metrics::Image> crawl_map;
+    Bytes crawl_map;  // the ECI kind's crawl map, as its heat map (RGBA8)
 };
 
 // Frames of one variant arrive out of order; the crawl metric needs them in order.
@@ -27,8 +31,9 @@ struct QualityScorer::Chain {
     Worst worst_ssim, worst_eci;
 };
 
-QualityScorer::QualityScorer(int width, int height, size_t frames, double flip_ppd, WorkerPool& workers)
-    : width_(width), height_(height), flip_ppd_(flip_ppd), workers_(workers), reference_(frames) {}
+QualityScorer::QualityScorer(int width, int height, size_t frames, double flip_ppd, WorkerPool& workers,
+                             WallAccount* wall)
+    : width_(width), height_(height), flip_ppd_(flip_ppd), workers_(workers), wall_(wall), reference_(frames) {}
 
 QualityScorer::~QualityScorer() { workers_.wait(); }
 
@@ -45,7 +50,10 @@ bool QualityScorer::hasReference(size_t frame) const {
 QualityScorer::Chain& QualityScorer::chain(const std::string& variant) {
     std::lock_guard lock(mutex_);
     auto& c = chains_[variant];
-    if (!c) c = std::make_unique<Chain>();
+    if (!c) {
+        c = std::make_unique<Chain>();
+        variant_order_.push_back(variant);
+    }
     return *c;
 }
 
@@ -74,23 +82,28 @@ void QualityScorer::score(const std::string& variant, bool is_reference, FrameRo
     int w = width_, h = height_;
     workers_.submit([this, &c, &row, ref, frame, variant, w, h] {
         try {
+            std::optional<WallAccount::WorkerScope> timer(std::in_place, wall_, WorkerTask::Psnr);
+            // PSNR's time includes both images' conversion to [0,1], which the others share.
             auto a = metrics::fromRgba8(ref->data(), w, h, size_t(w) * 4);
             auto b = metrics::fromRgba8(frame.rgba->data(), w, h, size_t(w) * 4);
             double mse = metrics::mse(a, b);
+            timer.emplace(wall_, WorkerTask::Ssim);
             auto s = metrics::ssim(a, b);
             row.quality.mse = mse;
             row.quality.psnr_db = metrics::psnrFromMse(mse);
             if (std::isfinite(s.ssim)) row.quality.ssim = s.ssim;
             else row.quality.note += "ssim not finite; ";
             if (std::isfinite(s.luma_ssim)) row.quality.ssim_luma = s.luma_ssim;
+            timer.emplace(wall_, WorkerTask::Flip);
             const metrics::FlipResult f = metrics::flip(a, b, flip_ppd_);
+            timer.reset();
             row.quality.flip_mean = f.mean;
             row.quality.flip_q1 = f.q1;
             row.quality.flip_median = f.median;
             row.quality.flip_q3 = f.q3;
             std::lock_guard lock(c.mutex);
             if (row.quality.ssim && (c.worst_ssim.frame < 0 || *row.quality.ssim < c.worst_ssim.value))
-                c.worst_ssim = {frame.index, *row.quality.ssim, ref, frame.rgba, frame.classes, std::nullopt};
+                c.worst_ssim = {frame.index, *row.quality.ssim, ref, frame.rgba, frame.classes, nullptr};
         } catch (const std::exception& e) {
             row.quality.note += std::string("metrics failed: ") + e.what() + "; ";
         }
@@ -112,6 +125,7 @@ void QualityScorer::score(const std::string& variant, bool is_reference, FrameRo
 // Called with the chain's mutex held, in frame order.
 void QualityScorer::crawlStep(const std::string& variant, FrameRow& row, const QualityFrame& frame) {
     Chain& c = *chains_.at(variant);
+    WallAccount::WorkerScope timer(wall_, WorkerTask::Eci);
     if (!frame.analysis) {
         row.quality.note += "no motion analysis: no edge crawl; ";
         c.tracker.reset();
@@ -149,7 +163,9 @@ void QualityScorer::crawlStep(const std::string& variant, FrameRow& row, const Q
         row.quality.crawl_denominator = cf.denominator;
         if (cf.no_edges) row.quality.note += "no reference edges in the valid region: ECI 0; ";
         if (c.worst_eci.frame < 0 || cf.eci > c.worst_eci.value)
-            c.worst_eci = {frame.index, cf.eci, ref, frame.rgba, frame.classes, std::move(cf.crawl_map)};
+            c.worst_eci = {frame.index, cf.eci, ref, frame.rgba, frame.classes,
+                           cf.crawl_map ? std::make_shared<const std::vector<uint8_t>>(heatMap(*cf.crawl_map, 8.0))
+                                        : nullptr};
     } catch (const std::exception& e) {
         row.quality.note += std::string("edge crawl failed: ") + e.what() + "; ";
         c.tracker.reset();
@@ -186,39 +202,161 @@ std::vector<uint8_t> classColours(const std::vector<uint8_t>& classes) {
 
 std::vector<uint8_t> classMapRgba(const std::vector<uint8_t>& classes) { return classColours(classes); }
 
-std::vector<std::string> QualityScorer::finish(const std::filesystem::path& dir) {
-    workers_.wait();
-    std::vector<std::string> written;
-    int w = width_, h = height_;
-    auto save = [&](const std::string& name, const std::vector<uint8_t>& rgba) {
-        std::filesystem::create_directories(dir / "worst");
-        metrics::writePng(dir / "worst" / name, {w, h, rgba});
-        written.push_back("worst/" + name);
-    };
-    for (auto& [variant, c] : chains_) {
-        for (auto [kind, worst] : {std::pair<const char*, Worst*>{"ssim", &c->worst_ssim}, {"eci", &c->worst_eci}}) {
-            if (worst->frame < 0) continue;
-            std::string base = variant + "_" + kind + "_";
-            auto ref = metrics::fromRgba8(worst->reference->data(), w, h, size_t(w) * 4);
-            auto img = metrics::fromRgba8(worst->image->data(), w, h, size_t(w) * 4);
-            metrics::Image error{w, h, 1, std::vector<double>(size_t(w) * h)};
-            for (size_t i = 0; i < error.data.size(); ++i)
-                error.data[i] = (std::abs(ref.data[3 * i] - img.data[3 * i]) +
-                                 std::abs(ref.data[3 * i + 1] - img.data[3 * i + 1]) +
-                                 std::abs(ref.data[3 * i + 2] - img.data[3 * i + 2])) / 3.0;
-            auto ssim = metrics::ssimMap(ref, img);
-            for (double& v : ssim.data) v = 1.0 - v;  // dissimilarity: bright where worse
-            save(base + "reference.png", *worst->reference);
-            save(base + "variant.png", *worst->image);
-            save(base + "error.png", heatMap(error, 4.0));
-            save(base + "ssim_map.png", heatMap(ssim, 2.0));
-            // FLIP's error is already in perceptual units on [0,1]: unscaled.
-            save(base + "flip_map.png", heatMap(metrics::flip(ref, img, flip_ppd_).map, 1.0));
-            if (worst->crawl_map) save(base + "crawl_map.png", heatMap(*worst->crawl_map, 8.0));
-            if (worst->classes && !worst->classes->empty()) save(base + "class_map.png", classColours(*worst->classes));
+// Schedules each distinct worst-frame image once on the workers: its lossless PNG in worst/
+// and the report's JPEG copy in worst/page/ (at most 1280 px wide for the frames the page
+// wipes between, 480 px for the maps it shows at 250 px).
+class QualityScorer::Writer {
+public:
+    Writer(const std::filesystem::path& dir, int width, int height, double flip_ppd, WorkerPool& workers,
+           WallAccount* wall)
+        : dir_(dir), w_(width), h_(height), flip_ppd_(flip_ppd), workers_(workers), wall_(wall) {
+        std::filesystem::create_directories(dir / "worst" / "page");
+    }
+
+    void add(WorstFrame& wf, const Worst& worst) {
+        char stem[160];
+        std::snprintf(stem, sizeof stem, "%s_%04d", wf.variant.c_str(), wf.frame);
+        const std::string base = stem;
+        std::snprintf(stem, sizeof stem, "reference_%04d", wf.frame);
+        image(wf, "reference", stem, worst.reference, kFrame);
+        image(wf, "variant", base, worst.image, kFrame);
+        maps(wf, base, worst.reference, worst.image);
+        if (worst.crawl_map) image(wf, "crawl_map", base + "_crawl_map", worst.crawl_map, kMap);
+        if (worst.classes && !worst.classes->empty())
+            image(wf, "class_map", base + "_class_map", worst.classes, kMap, classMapRgba);
+    }
+
+    // Every file scheduled, once the workers are done; errors were printed as they came.
+    void wait() { workers_.wait(); }
+
+private:
+    static constexpr int kFrame = 1280, kMap = 480;  // the page copies' widest (shown at about 660 and 250 px)
+    // JPEG quality: above 90 stb_image_write keeps full-resolution chroma (the frames' coloured
+    // edges stay sharp); the maps' thumbnails, linked to their PNGs, can take 4:2:0.
+    static constexpr int kFrameQuality = 92, kMapQuality = 85;
+
+    // Files of one image: recorded in the entry, encoded only the first time the stem appears.
+    // `convert`, when given, makes the RGBA8 image of `pixels` on the worker (class maps).
+    using Convert = std::vector<uint8_t> (*)(const std::vector<uint8_t>&);
+    void image(WorstFrame& wf, const std::string& what, const std::string& stem, Bytes pixels, int page_width,
+               Convert convert = nullptr) {
+        const bool photo = page_width == kFrame;
+        wf.files.push_back({what, "worst/" + stem + ".png"});
+        wf.page.push_back({what, "worst/page/" + stem + ".jpg"});
+        if (!scheduled_.insert(stem).second) return;
+        workers_.submit([this, stem, pixels, page_width, photo, convert] {
+            WallAccount::WorkerScope timer(wall_, WorkerTask::ImageEncode);
+            try {
+                metrics::Rgba8Image full{w_, h_, convert ? convert(*pixels) : *pixels};
+                metrics::writeFileAtomically(dir_ / "worst" / (stem + ".png"), metrics::encodePng(full));
+                metrics::writeFileAtomically(dir_ / "worst" / "page" / (stem + ".jpg"),
+                                             metrics::encodeJpeg(metrics::downscale(full, page_width), photo ? kFrameQuality : kMapQuality));
+            } catch (const std::exception& e) {
+                std::fprintf(stderr, "cbrbench: worst-frame image %s not written: %s\n", stem.c_str(), e.what());
+            }
+        });
+    }
+
+    // The error, 1 - SSIM and FLIP maps of one (variant, frame), computed on a worker.
+    void maps(WorstFrame& wf, const std::string& base, Bytes reference, Bytes variant) {
+        const char* kWhat[3] = {"error", "ssim_map", "flip_map"};
+        const bool first = !scheduled_.count(base + "_error");
+        if (first)
+            workers_.submit([this, base, reference, variant] {
+                try {
+                    auto [error, ssim, flip] = mapImages(*reference, *variant);
+                    for (auto [what, rgba] : {std::pair{"error", &error}, {"ssim_map", &ssim}, {"flip_map", &flip}})
+                        encodeLater(base + "_" + what, std::move(*rgba));
+                } catch (const std::exception& e) {
+                    std::fprintf(stderr, "cbrbench: maps of %s not written: %s\n", base.c_str(), e.what());
+                }
+            });
+        for (const char* what : kWhat) {
+            const std::string stem = base + "_" + what;
+            wf.files.push_back({what, "worst/" + stem + ".png"});
+            wf.page.push_back({what, "worst/page/" + stem + ".jpg"});
+            scheduled_.insert(stem);
         }
     }
-    return written;
+
+    void encodeLater(const std::string& stem, std::vector<uint8_t> rgba) {
+        auto bytes = std::make_shared<const std::vector<uint8_t>>(std::move(rgba));
+        workers_.submit([this, stem, bytes] {
+            WallAccount::WorkerScope timer(wall_, WorkerTask::ImageEncode);
+            try {
+                metrics::Rgba8Image full{w_, h_, *bytes};
+                metrics::writeFileAtomically(dir_ / "worst" / (stem + ".png"), metrics::encodePng(full));
+                metrics::writeFileAtomically(dir_ / "worst" / "page" / (stem + ".jpg"),
+                                             metrics::encodeJpeg(metrics::downscale(full, kMap), kMapQuality));
+            } catch (const std::exception& e) {
+                std::fprintf(stderr, "cbrbench: worst-frame image %s not written: %s\n", stem.c_str(), e.what());
+            }
+        });
+    }
+
+    struct Maps {
+        std::vector<uint8_t> error, ssim, flip;
+    };
+    Maps mapImages(const std::vector<uint8_t>& reference, const std::vector<uint8_t>& variant) const {
+        auto ref = metrics::fromRgba8(reference.data(), w_, h_, size_t(w_) * 4);
+        auto img = metrics::fromRgba8(variant.data(), w_, h_, size_t(w_) * 4);
+        metrics::Image error{w_, h_, 1, std::vector<double>(size_t(w_) * h_)};
+        for (size_t i = 0; i < error.data.size(); ++i)
+            error.data[i] = (std::abs(ref.data[3 * i] - img.data[3 * i]) + std::abs(ref.data[3 * i + 1] - img.data[3 * i + 1]) +
+                             std::abs(ref.data[3 * i + 2] - img.data[3 * i + 2])) / 3.0;
+        Maps m;
+        m.error = heatMap(error, 4.0);
+        {
+            WallAccount::WorkerScope timer(wall_, WorkerTask::Ssim);
+            auto ssim = metrics::ssimMap(ref, img);
+            for (double& v : ssim.data) v = 1.0 - v;  // dissimilarity: bright where worse
+            m.ssim = heatMap(ssim, 2.0);
+        }
+        WallAccount::WorkerScope timer(wall_, WorkerTask::Flip);
+        // FLIP's error is already in perceptual units on [0,1]: unscaled.
+        m.flip = heatMap(metrics::flip(ref, img, flip_ppd_).map, 1.0);
+        return m;
+    }
+
+    const std::filesystem::path dir_;
+    const int w_, h_;
+    const double flip_ppd_;
+    WorkerPool& workers_;
+    WallAccount* wall_;
+    std::set<std::string> scheduled_;  // stems handed to the workers (main thread only)
+};
+
+std::vector<WorstFrame> QualityScorer::finish(const std::filesystem::path& dir) {
+    workers_.wait();
+    std::vector<WorstFrame> out;
+    bool any = false;
+    for (auto& [variant, c] : chains_) any |= c->worst_ssim.frame >= 0 || c->worst_eci.frame >= 0;
+    if (!any) return out;
+    Writer writer(dir, width_, height_, flip_ppd_, workers_, wall_);
+    for (const auto& variant : variant_order_) {
+        Chain& c = *chains_.at(variant);
+        for (auto [kind, worst] : {std::pair<const char*, Worst*>{"ssim", &c.worst_ssim}, {"eci", &c.worst_eci}}) {
+            if (worst->frame < 0) continue;
+            WorstFrame& wf = out.emplace_back();
+            wf.variant = variant;
+            wf.kind = kind;
+            wf.frame = worst->frame;
+            wf.value = worst->value;
+            writer.add(wf, *worst);
+        }
+    }
+    writer.wait();
+    return out;
+}
+
+std::vector<std::string> worstFiles(const std::vector<WorstFrame>& worst) {
+    std::vector<std::string> files;
+    std::set<std::string> seen;
+    for (const auto& wf : worst)
+        for (const auto* list : {&wf.files, &wf.page})
+            for (const auto& [what, file] : *list)
+                if (seen.insert(file).second) files.push_back(file);
+    return files;
 }
 
 }  // namespace cbr::harness

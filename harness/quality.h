@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "harness/results.h"
+#include "harness/wall_account.h"
 #include "harness/worker_pool.h"
 #include "metrics/image.h"
 #include "metrics/temporal.h"
@@ -30,8 +31,10 @@ struct QualityFrame {
 
 class QualityScorer {
 public:
-    // flip_ppd: FLIP's pixels per degree (--flip-ppd).
-    QualityScorer(int width, int height, size_t frames, double flip_ppd, WorkerPool& workers);
+    // flip_ppd: FLIP's pixels per degree (--flip-ppd). `wall`, when given, receives the
+    // workers' time per metric and for image encoding.
+    QualityScorer(int width, int height, size_t frames, double flip_ppd, WorkerPool& workers,
+                  WallAccount* wall = nullptr);
     ~QualityScorer();
 
     void setReference(size_t frame, Bytes rgba);
@@ -43,24 +46,31 @@ public:
     // the variant is the reference itself (PSNR inf, SSIM 1, ECI 0, FLIP 0 without computing).
     void score(const std::string& variant, bool is_reference, FrameRow& row, QualityFrame frame);
     // Waits for every job; writes the worst frames (by SSIM and by ECI) of each variant
-    // as PNGs under dir/worst/, with their error, SSIM, FLIP and crawl maps. Returns the
-    // files written.
-    std::vector<std::string> finish(const std::filesystem::path& dir);
+    // as PNGs under dir/worst/, with their error, SSIM, FLIP, crawl and class maps, each
+    // distinct image once, encoded on the workers, and the report's smaller copies under
+    // dir/worst/page/. Returns the worst frames in variant order with their files.
+    std::vector<WorstFrame> finish(const std::filesystem::path& dir);
 
 private:
     struct Chain;
     struct Worst;
+    class Writer;
     void crawlStep(const std::string& variant, FrameRow& row, const QualityFrame& frame);
     Chain& chain(const std::string& variant);
 
     int width_, height_;
     double flip_ppd_;
     WorkerPool& workers_;
+    WallAccount* wall_;
     mutable std::mutex mutex_;
     std::vector<Bytes> reference_;
     bool release_references_ = false;
     std::map<std::string, std::unique_ptr<Chain>> chains_;
+    std::vector<std::string> variant_order_;  // first-scored order: the order finish() reports
 };
+
+// Every distinct file of the worst frames, in first-use order (run.json `files`).
+std::vector<std::string> worstFiles(const std::vector<WorstFrame>& worst);
 
 // Heat-map colouring of a one-channel image (0 black ... 1 white through red and yellow).
 std::vector<uint8_t> heatMap(const metrics::Image& value, double scale);

@@ -53,6 +53,19 @@ struct AlignmentCheck {
     bool ok = false;
 };
 
+// A variant's worst frame of one kind (lowest SSIM, highest ECI) and the files showing it:
+// (what, path under the run directory) pairs, what = reference, variant, error, ssim_map,
+// flip_map, crawl_map, class_map. Each file is written once, even when two entries share
+// it (the same frame worst by both kinds; the reference frame of several variants).
+struct WorstFrame {
+    std::string variant;
+    std::string kind;  // ssim | eci
+    int frame = 0;
+    double value = 0;
+    std::vector<std::pair<std::string, std::string>> files;  // full resolution, lossless PNG
+    std::vector<std::pair<std::string, std::string>> page;   // the report's copies (worst/page/)
+};
+
 struct VariantRun {
     std::string name;      // the configuration's label: the variant's name, or e.g. cbr-cso_tol=0.01 in a sweep
     std::string variant;   // the variant in the table (full, drr, cbr-aso, cbr-cso)
@@ -75,7 +88,8 @@ struct RunResults {
     double seconds = 0;         // wall time of the run
     double first_frame_seconds = 0;  // wall time from the start (scene loading included) to the first rendered frame's result (the quality pass's)
     std::vector<double> reference_ms;        // the ssaa reference's frame times (not a variant)
-    std::vector<std::string> worst_files;    // worst/<variant>_<kind>_<what>.png
+    std::vector<WorstFrame> worst;           // per variant and kind, in variant order
+    std::vector<std::string> worst_files;    // every distinct file under worst/
     vk::CopyBandwidth copy_bandwidth;        // measured after the variants, for the resolve's bandwidth
     SceneLoad scene_load;
 };

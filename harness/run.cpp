@@ -31,10 +31,10 @@ void checkDeviceLimits(const RunOptions& options, const render::Settings& settin
 }
 
 // The scene on the device, timed for run.json and the load line on stderr.
-gpu::GpuScene uploadScene(vk::Context& ctx, Prepared& p) {
-    const auto upload_start = std::chrono::steady_clock::now();
+gpu::GpuScene uploadScene(vk::Context& ctx, Prepared& p, WallAccount& wall) {
+    WallAccount::Scope scope(wall, WallPart::Upload);
     gpu::GpuScene gpu_scene = gpu::uploadScene(ctx, p.scene);
-    p.load.upload_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - upload_start).count();
+    p.load.upload_s = scope.seconds();
     if (!p.options.quiet) std::fprintf(stderr, "cbrbench: %s\n", sceneLoadLine(p.scene, p.load).c_str());
     return gpu_scene;
 }
@@ -48,24 +48,35 @@ void releaseAndMeasure(RunState& s) {
     // its timestamps do not bracket a transfer (a 64 MiB copy read as 10 TB/s).
     // Not on lavapipe: its timestamps around a lone dispatch or copy in a one-off submission
     // do not bracket the work (a 64 MiB compute copy read as 8 TB/s).
-    if (!s.ctx.description.is_lavapipe) s.results.copy_bandwidth = vk::measureCopyBandwidth(s.ctx, 512);
+    if (!s.ctx.description.is_lavapipe) {
+        WallAccount::Scope scope(s.wall, WallPart::Bandwidth);
+        s.results.copy_bandwidth = vk::measureCopyBandwidth(s.ctx, 512);
+    }
     s.results.scene_load = s.p.load;
     s.results.scene_load.peak_rss_mib_end = peakRssMib();
-    s.results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - s.wall_start).count();
 }
 
 // The result files, the report, the move to the final directory and the printed summary.
-void writeFiles(const RunState& s, reports::OutputDir& out) {
+// run.json is written before the report (the page reads it), so its wall account is
+// written again once the report is done, with the final total.
+void writeFiles(RunState& s, reports::OutputDir& out) {
     const RunOptions& options = s.options;
     const Prepared& p = s.p;
-    RunContext rc{options, p.settings, p.scene, p.path, p.times, p.poses, s.ctx, s.results, &p.placement};
-    writeOutputs(out.path(), rc);
-    if (!options.quiet) reports::writeReport(out.path());
-    if (options.sweep) {
-        writeSweepCsv(out.path(), rc);
-        reports::writeSweepReport(out.path());
+    RunContext rc{options, p.settings, p.scene, p.path, p.times, p.poses, s.ctx, s.results, &p.placement, &s.wall};
+    {
+        WallAccount::Scope scope(s.wall, WallPart::Outputs);
+        writeOutputs(out.path(), rc);
+        if (options.sweep) writeSweepCsv(out.path(), rc);
+        writeExports(out.path(), parseExportFormats(options.exports, "--export"));
     }
-    writeExports(out.path(), parseExportFormats(options.exports, "--export"));
+    {
+        WallAccount::Scope scope(s.wall, WallPart::Report);
+        if (!options.quiet) reports::writeReport(out.path());
+        if (options.sweep) reports::writeSweepReport(out.path());
+    }
+    s.wall.close();
+    s.results.seconds = s.wall.total();
+    updateRunJsonWall(out.path(), rc);
     out.commit();
     // An outer sweep's run is renamed once more with the others: name where it will be.
     const std::filesystem::path shown = options.shown_out.empty() ? out.finalPath() : std::filesystem::path(options.shown_out);
@@ -131,13 +142,21 @@ int runBenchmark(const RunOptions& options) {
         auto outer = outerSweeps(options.path, options.reference, options.params);
         if (outer.size() > 1 || outer[0].params.size() != options.params.size()) return runOuterSweeps(options, outer);
     }
-    auto wall_start = std::chrono::steady_clock::now();
-    Prepared p = prepare(options);
-    vk::Context ctx({options.validate, options.device});
+    WallAccount wall;
+    Prepared p = [&] {
+        WallAccount::Scope scope(wall, WallPart::SceneLoad);
+        return prepare(options);
+    }();
+    auto open_device = [&] {
+        WallAccount::Scope scope(wall, WallPart::DeviceOpen);
+        return std::make_unique<vk::Context>(vk::ContextOptions{options.validate, options.device});
+    };
+    std::unique_ptr<vk::Context> ctx_owner = open_device();
+    vk::Context& ctx = *ctx_owner;
     checkDeviceLimits(options, p.settings, ctx);
     reports::OutputDir out(p.out);
     if (options.save_frames) std::filesystem::create_directories(out.path() / "frames");
-    gpu::GpuScene gpu_scene = uploadScene(ctx, p);
+    gpu::GpuScene gpu_scene = uploadScene(ctx, p, wall);
     // Released on every way out, an interrupt's exception included: destroying the device
     // with the scene's images and buffers alive leaks them (LeakSanitizer, validation).
     // Declared before the renderers, so it runs after theirs; destroyGpuScene is idempotent.
@@ -147,7 +166,7 @@ int runBenchmark(const RunOptions& options) {
         ~SceneRelease() { gpu::destroyGpuScene(ctx, scene); }
     } scene_release{ctx, gpu_scene};
 
-    RunState s(p, ctx, gpu_scene, out.path(), wall_start);
+    RunState s(p, ctx, gpu_scene, out.path(), wall);
     renderSsaaReference(s);
     makeRenderers(s);
     calibrateSlowdown(s);
@@ -156,6 +175,7 @@ int runBenchmark(const RunOptions& options) {
     scoreFrames(s);
     releaseAndMeasure(s);
     writeFiles(s, out);
+    if (!options.quiet) std::fprintf(stderr, "cbrbench: %s\n", s.wall.line().c_str());
     return 0;
 }
 

@@ -14,6 +14,7 @@
 #include "harness/results.h"
 #include "harness/scene_load.h"
 #include "harness/sweep.h"
+#include "harness/wall_account.h"
 #include "harness/worker_pool.h"
 #include "renderer/gpu/gpu_scene.h"
 #include "renderer/renderer.h"
@@ -54,14 +55,14 @@ Prepared prepare(const RunOptions& o);
 // finish their PNG writes into `out` before the output directory goes).
 struct RunState {
     RunState(const Prepared& p, vk::Context& ctx, gpu::GpuScene& gpu_scene, const std::filesystem::path& out,
-             std::chrono::steady_clock::time_point wall_start);
+             WallAccount& wall);
 
     const Prepared& p;
     const RunOptions& options;
     vk::Context& ctx;
     gpu::GpuScene& gpu_scene;
     const std::filesystem::path out;  // the temporary output directory
-    const std::chrono::steady_clock::time_point wall_start;
+    WallAccount& wall;  // started before the scene loaded
     const int w, h;
     RunResults results;
     WorkerPool workers;

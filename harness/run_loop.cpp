@@ -34,18 +34,18 @@ RunResults startResults(const Prepared& p) {
 }  // namespace
 
 RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene& scene,
-                   const std::filesystem::path& out_dir, std::chrono::steady_clock::time_point start)
+                   const std::filesystem::path& out_dir, WallAccount& account)
     : p(prepared),
       options(prepared.options),
       ctx(context),
       gpu_scene(scene),
       out(out_dir),
-      wall_start(start),
+      wall(account),
       w(int(prepared.settings.width)),
       h(int(prepared.settings.height)),
       results(startResults(prepared)),
       workers(std::max(1u, std::thread::hardware_concurrency() / 2)),
-      scorer(w, h, prepared.poses.size(), prepared.options.flip_ppd, workers),
+      scorer(w, h, prepared.poses.size(), prepared.options.flip_ppd, workers, &account),
       mid(prepared.poses.size() / 2),
       mid_images(prepared.configs.size()),
       reference_frames(prepared.poses.size()),
@@ -93,17 +93,20 @@ void untimedFrames(const Prepared& p, render::Renderer& renderer, int count, boo
 }
 
 // Warm-up: the path's first frames, untimed, excluded (timing.md).
-void warmUp(const RunState& s, render::Renderer& renderer) { untimedFrames(s.p, renderer, s.options.warmup, true); }
+void warmUp(RunState& s, render::Renderer& renderer) {
+    WallAccount::Scope scope(s.wall, WallPart::WarmUp);
+    untimedFrames(s.p, renderer, s.options.warmup, true);
+}
 
 // Saves a display image (and a class map) as frames/<name>_<frame>.png on a worker.
-void savePng(const std::filesystem::path& out, const std::string& name, int frame, Bytes image, Bytes classes, int w,
-             int h, WorkerPool& workers) {
+void savePng(RunState& s, const std::string& name, int frame, Bytes image, Bytes classes) {
     char file[128];
     std::snprintf(file, sizeof file, "%s_%04d.png", name.c_str(), frame);
-    auto dest = out / "frames" / file;
+    auto dest = s.out / "frames" / file;
     std::snprintf(file, sizeof file, "%s_%04d_class.png", name.c_str(), frame);
-    auto class_dest = out / "frames" / file;
-    workers.submit([dest, class_dest, image, classes, w, h] {
+    auto class_dest = s.out / "frames" / file;
+    s.workers.submit([dest, class_dest, image, classes, w = s.w, h = s.h, wall = &s.wall] {
+        WallAccount::WorkerScope scope(wall, WorkerTask::ImageEncode);
         try {
             metrics::writePng(dest, {w, h, *image});
             if (classes && !classes->empty()) metrics::writePng(class_dest, {w, h, classMapRgba(*classes)});
@@ -153,6 +156,7 @@ public:
         render::Renderer& renderer = *s_.renderers[vi_];
         try {
             warmUp(s_, renderer);
+            Account account(*this);
             for (size_t i = 0; i < s_.p.poses.size(); ++i) {
                 throwIfInterrupted();
                 for (auto& fr : renderer.submit(request(s_.p, i, !timed()))) keep(std::move(fr));
@@ -172,6 +176,25 @@ public:
 private:
     bool timed() const { return rep_ != kQualityPass; }
 
+    // The pass's frames in the wall account: timed frames, or the quality pass's rendering
+    // less the readback copies and the waits for the scorer, which have parts of their own.
+    struct Account {
+        explicit Account(ConfigPass& pass) : pass(pass) {}
+        ~Account() {
+            WallAccount& wall = pass.s_.wall;
+            const double seconds = watch.seconds();
+            if (pass.timed()) {
+                wall.add(WallPart::TimedFrames, seconds);
+                return;
+            }
+            wall.add(WallPart::Readback, pass.readback_s_);
+            wall.add(WallPart::Scoring, pass.scoring_wait_s_);
+            wall.add(WallPart::QualityRender, seconds - pass.readback_s_ - pass.scoring_wait_s_);
+        }
+        ConfigPass& pass;
+        Stopwatch watch;
+    };
+
     // A failed variant becomes rows that say so, not a crash of the run (the timed
     // repetitions write them; the quality pass leaves the status for them).
     void failRemaining() {
@@ -190,9 +213,8 @@ private:
 
     void keep(render::FrameResult&& fr) {
         RunResults& results = s_.results;
-        if (results.first_frame_seconds == 0)
-            results.first_frame_seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - s_.wall_start).count();
+        if (results.first_frame_seconds == 0) results.first_frame_seconds = s_.wall.elapsed();
+        readback_s_ += fr.readback_ms * 1e-3;
         done_[size_t(fr.index)] = true;
         if (!timed()) return keepQuality(std::move(fr));
         FrameRow& row = results.rows.emplace_back();
@@ -241,8 +263,10 @@ private:
                         fr.analysis.empty() ? nullptr : std::make_shared<const std::vector<float>>(std::move(fr.analysis)),
                         i == 0 || s_.p.poses[i].cut};
         s_.scorer.score(vr_.name, is_reference, row, std::move(qf));
-        if (s_.options.save_frames) savePng(s_.out, vr_.name, fr.index, image, classes, s_.w, s_.h, s_.workers);
+        if (s_.options.save_frames) savePng(s_, vr_.name, fr.index, image, classes);
+        Stopwatch wait;
         s_.workers.waitUntilAtMost(kMaxQueuedJobs);
+        scoring_wait_s_ += wait.seconds();
     }
 
     static constexpr size_t kMaxQueuedJobs = 16;
@@ -252,6 +276,7 @@ private:
     const size_t vi_;
     VariantRun& vr_;
     std::vector<bool> done_;
+    double readback_s_ = 0, scoring_wait_s_ = 0;
 };
 
 }  // namespace
@@ -270,8 +295,9 @@ void renderSsaaReference(RunState& s) {
         auto image = std::make_shared<const std::vector<uint8_t>>(std::move(fr.rgba));
         s.reference_frames[size_t(fr.index)] = image;
         s.scorer.setReference(size_t(fr.index), image);
-        if (s.options.save_frames) savePng(s.out, "reference", fr.index, image, nullptr, s.w, s.h, s.workers);
+        if (s.options.save_frames) savePng(s, "reference", fr.index, image, nullptr);
     };
+    WallAccount::Scope scope(s.wall, WallPart::QualityRender);
     for (size_t i = 0; i < s.p.poses.size(); ++i) {
         throwIfInterrupted();
         for (auto& fr : reference.submit(request(s.p, i, true))) keep(std::move(fr));
@@ -281,6 +307,7 @@ void renderSsaaReference(RunState& s) {
 
 // One renderer per configuration; one the device cannot build is skipped or failed.
 void makeRenderers(RunState& s) {
+    WallAccount::Scope scope(s.wall, WallPart::Pipelines);
     for (size_t vi = 0; vi < s.p.configs.size(); ++vi) {
         VariantRun& vr = s.results.variants[vi];
         try {
@@ -301,6 +328,7 @@ void makeRenderers(RunState& s) {
 // of them before the first repetition, so every repetition applies the same amount.
 void calibrateSlowdown(RunState& s) {
     if (s.p.settings.debug_slowdown_pass.empty() || !(s.p.settings.debug_slowdown_pct > 0)) return;
+    WallAccount::Scope scope(s.wall, WallPart::WarmUp);
     for (auto& r : s.renderers)
         if (r) try {
                 untimedFrames(s.p, *r, 12, false);
@@ -313,6 +341,7 @@ void calibrateSlowdown(RunState& s) {
 // before the first timed frame (timing.md: timing frames include no readback).
 void renderQualityFrames(RunState& s) {
     for (size_t vi = 0; vi < s.p.configs.size(); ++vi) ConfigPass(s, kQualityPass, vi).run();
+    WallAccount::Scope scope(s.wall, WallPart::Scoring);
     s.workers.wait();
 }
 
@@ -325,7 +354,12 @@ void renderRepetitions(RunState& s) {
 // Waits for the scores, writes the worst frames, and checks each variant's middle frame
 // lines up with the reference's (not one frame early or late).
 void scoreFrames(RunState& s) {
-    s.results.worst_files = s.scorer.finish(s.out);
+    {
+        WallAccount::Scope scope(s.wall, WallPart::WorstImages);
+        s.results.worst = s.scorer.finish(s.out);
+        s.results.worst_files = worstFiles(s.results.worst);
+    }
+    WallAccount::Scope scope(s.wall, WallPart::Scoring);
     // Descriptions again: some (the calibrated debug slowdown) are known only after warm-up.
     for (size_t vi = 0; vi < s.p.configs.size(); ++vi)
         if (s.renderers[vi]) s.results.variants[vi].description = s.renderers[vi]->describe();

@@ -354,7 +354,7 @@ std::vector<Crossing> judge(const std::vector<SeqThreshold>& warn, const std::ve
 
 json runJson(const ScoreSeqOptions& o, const SeqInputs& in, const Scored& s, const VariantSummary& sum,
              const std::vector<Crossing>& crossings, const std::vector<SeqThreshold>& warn,
-             const std::vector<SeqThreshold>& fail, double seconds) {
+             const std::vector<SeqThreshold>& fail, double seconds, const std::vector<WorstFrame>& worst) {
     json j;
     j["kind"] = "score-seq";
     j["tool"] = {{"name", "cbrbench"}, {"version", CBR_VERSION}, {"commit", CBR_GIT_COMMIT}};
@@ -401,6 +401,7 @@ json runJson(const ScoreSeqOptions& o, const SeqInputs& in, const Scored& s, con
                     {"eci", finiteOrNull(sum.eci)},
                     {"flicker_ratio_mean", finiteOrNull(sum.flicker_ratio_mean)}};
     j["variants"] = json::array({{{"name", in.name}, {"status", "ok"}}});
+    j["worst"] = worstJson(worst);
     return j;
 }
 
@@ -429,7 +430,8 @@ int runScoreSeq(const ScoreSeqOptions& o) {
     WorkerPool workers(std::max(1u, std::thread::hardware_concurrency()));
     std::unique_ptr<QualityScorer> scorer;
     const Scored s = scoreFrames(o, in, results, infos, scorer, workers);
-    results.worst_files = scorer->finish(out.path());
+    results.worst = scorer->finish(out.path());
+    results.worst_files = worstFiles(results.worst);
     results.frames = int(results.rows.size());
     results.repeats = 1;
     VariantRun vr;
@@ -443,7 +445,7 @@ int runScoreSeq(const ScoreSeqOptions& o) {
     writeSeqFramesCsv(out.path() / "frames.csv", results, infos, !in.motion_files.empty());
     writeSeqSummaryCsv(out.path() / "summary.csv", sum, s.width, s.height);
     reports::writeTextAtomically(out.path() / "run.json",
-                                 runJson(o, in, s, sum, crossings, warn, fail, seconds).dump(2) + "\n");
+                                 runJson(o, in, s, sum, crossings, warn, fail, seconds, results.worst).dump(2) + "\n");
     reports::writeReport(out.path());
     out.commit();
 

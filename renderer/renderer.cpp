@@ -2,6 +2,7 @@
 #include "renderer/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -160,14 +161,14 @@ Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants:
         }
         slot->frame_ubo = vk::createBuffer(ctx, sizeof(shaders::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                            true);
-        slot->readback = vk::createBuffer(ctx, VkDeviceSize(settings.width) * settings.height * 4,
-                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        slot->readback = vk::createReadbackBuffer(ctx, VkDeviceSize(settings.width) * settings.height * 4,
+                                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT);
         if (variant_->diagnosticImage())
-            slot->diagnostic = vk::createBuffer(ctx, VkDeviceSize(settings.width) * settings.height,
-                                                VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+            slot->diagnostic = vk::createReadbackBuffer(ctx, VkDeviceSize(settings.width) * settings.height,
+                                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT);
         if (settings.analysis)
-            slot->analysis = vk::createBuffer(ctx, VkDeviceSize(settings.width) * settings.height * 16,
-                                              VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+            slot->analysis = vk::createReadbackBuffer(ctx, VkDeviceSize(settings.width) * settings.height * 16,
+                                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT);
         constexpr VkDeviceSize kStatsBytes = variants::kFrameStats * sizeof(uint32_t);
         slot->stats = vk::createBuffer(ctx, kStatsBytes,
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
@@ -414,6 +415,7 @@ FrameResult Renderer::collect(Slot& slot) {
     r.timing_consistent = sum == total && total > 0;
 
     if (slot.has_readback) {
+        const auto copy_start = std::chrono::steady_clock::now();
         size_t pixels = size_t(settings_.width) * settings_.height;
         r.rgba.resize(pixels * 4);
         std::memcpy(r.rgba.data(), slot.readback.mapped, pixels * 4);
@@ -425,6 +427,7 @@ FrameResult Renderer::collect(Slot& slot) {
             r.diagnostic.resize(pixels);
             std::memcpy(r.diagnostic.data(), slot.diagnostic.mapped, pixels);
         }
+        r.readback_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - copy_start).count();
     }
     auto names = variant_->statNames();
     const auto* counts = static_cast<const uint32_t*>(slot.stats.mapped);

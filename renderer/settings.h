@@ -114,6 +114,7 @@ struct FrameResult {
     std::vector<uint8_t> rgba;         // width * height * 4 when read back
     std::vector<uint8_t> diagnostic;   // width * height, the variant's diagnostic image, when read back
     std::vector<float> analysis;       // width * height * 4: motion.xy, view depth, previous view depth
+    double readback_ms = 0;            // host time copying the read-back images out of mapped memory
     std::vector<std::pair<std::string, double>> stats;  // e.g. px_shaded: fraction of the frame's pixels
     std::vector<std::pair<std::string, std::string>> left_out;  // (pass, reason)
 };

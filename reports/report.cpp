@@ -79,6 +79,11 @@ figcaption{font-size:12px;color:var(--muted)}
 // Wipe sliders and flip buttons; guarded so a missing element is skipped, never thrown on.
 constexpr const char* kScript = R"JS(
 (function () {
+  var same = document.querySelectorAll('img[data-same]');
+  for (var j = 0; j < same.length; ++j) {
+    var first = document.getElementById(same[j].getAttribute('data-same'));
+    if (first) same[j].src = first.src;
+  }
   var boxes = document.querySelectorAll('.wipe-box');
   for (var i = 0; i < boxes.length; ++i) {
     (function (box) {

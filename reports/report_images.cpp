@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <string_view>
+#include <unordered_map>
 
 #include "reports/base64.h"
 #include "reports/html.h"
@@ -17,6 +19,7 @@ namespace fs = std::filesystem;
 struct Embedded {
     std::string uri;  // empty when the file is missing
     int width = 0, height = 0;
+    std::string link;  // the full-resolution file, relative to the report, when the page shows a copy
 };
 
 // Width and height from a PNG's IHDR chunk (PNG spec, section 11.2.2); 0 when not a PNG.
@@ -33,6 +36,21 @@ void pngSize(const std::string& bytes, int& w, int& h) {
     h = be32(20);
 }
 
+// Width and height from a baseline or progressive JPEG's SOF segment; 0 when not found.
+void jpegSize(const std::string& bytes, int& w, int& h) {
+    auto u8 = [&](size_t o) { return unsigned(uint8_t(bytes[o])); };
+    if (bytes.size() < 4 || u8(0) != 0xFF || u8(1) != 0xD8) return;
+    for (size_t o = 2; o + 9 < bytes.size() && u8(o) == 0xFF;) {
+        const unsigned marker = u8(o + 1), length = u8(o + 2) << 8 | u8(o + 3);
+        if (marker >= 0xC0 && marker <= 0xC2) {
+            h = int(u8(o + 5) << 8 | u8(o + 6));
+            w = int(u8(o + 7) << 8 | u8(o + 8));
+            return;
+        }
+        o += 2 + length;
+    }
+}
+
 Embedded embed(const fs::path& file) {
     Embedded e;
     std::error_code ec;
@@ -42,8 +60,22 @@ Embedded embed(const fs::path& file) {
     std::stringstream ss;
     ss << in.rdbuf();
     const std::string bytes = ss.str();
-    pngSize(bytes, e.width, e.height);
-    e.uri = "data:image/png;base64," + base64Encode(bytes);
+    const bool jpeg = file.extension() == ".jpg";
+    if (jpeg) jpegSize(bytes, e.width, e.height);
+    else pngSize(bytes, e.width, e.height);
+    e.uri = std::string(jpeg ? "data:image/jpeg" : "data:image/png") + ";base64," + base64Encode(bytes);
+    return e;
+}
+
+// The page copy of a worst-frame file named in run.json (worst[].page), linked to the
+// full-resolution file (worst[].files); the full file itself in runs without copies.
+Embedded embedWorst(const RunData& d, const nlohmann::json& entry, const char* what) {
+    const nlohmann::json* full = jsonAt(entry, std::string("/files/") + what);
+    if (!full || !full->is_string()) return {};
+    const nlohmann::json* page = jsonAt(entry, std::string("/page/") + what);
+    Embedded e = page && page->is_string() ? embed(d.dir / page->get<std::string>()) : Embedded{};
+    if (e.uri.empty()) e = embed(d.dir / full->get<std::string>());
+    if (!e.uri.empty()) e.link = full->get<std::string>();
     return e;
 }
 
@@ -71,12 +103,16 @@ std::string wipe(const Embedded& ref, const Embedded& var, const std::string& va
     out += "<div class=\"wipe-controls\"><span>\u2190 reference</span><input type=\"range\" min=\"0\" "
            "max=\"100\" value=\"50\" aria-label=\"wipe between reference and " + esc(variant) +
            "\"><span>" + esc(variant) + " \u2192</span><button type=\"button\" class=\"flip\">flip</button></div>";
+    if (!ref.link.empty() && !var.link.empty())
+        out += "<p class=\"note small\">Page copies (JPEG, at most 1280 px wide). Lossless full resolution: <a href=\"" +
+               esc(ref.link) + "\">reference</a>, <a href=\"" + esc(var.link) + "\">" + esc(variant) + "</a>.</p>";
     return out + "</div>";
 }
 
 std::string mapFigure(const Embedded& e, const std::string& caption, const std::string& missing_name) {
     std::string out = "<figure class=\"map\">";
     if (e.uri.empty()) out += "<div class=\"missing\">" + std::string(kDash) + "</div>";
+    else if (!e.link.empty()) out += "<a href=\"" + esc(e.link) + "\" title=\"full resolution\">" + img(e, caption) + "</a>";
     else out += img(e, caption);
     out += "<figcaption>" + esc(caption);
     if (e.uri.empty()) out += " <span class=\"muted\">(" + esc(missing_name) + " absent)</span>";
@@ -120,15 +156,25 @@ std::string fromWorstDir(const RunData& d, const std::string& v) {
     };
     const Kind kinds[] = {{"ssim", "Lowest SSIM", "ssim", false}, {"eci", "Highest edge crawl (ECI)", "eci", true}};
     const bool cbr = isCheckerboard(d, v);
+    const nlohmann::json* listed = jsonAt(d.run, "/worst");
     std::string out;
     for (const auto& k : kinds) {
         auto file = [&](const char* what) { return std::string(v) + "_" + k.kind + "_" + what + ".png"; };
-        const fs::path dir = d.dir / "worst";
-        Embedded ref = embed(dir / file("reference")), var = embed(dir / file("variant"));
-        Embedded err = embed(dir / file("error")), ssim = embed(dir / file("ssim_map"));
-        Embedded flip = embed(dir / file("flip_map"));  // absent in runs before FLIP
-        Embedded crawl = embed(dir / file("crawl_map"));
-        Embedded cls = cbr ? embed(dir / file("class_map")) : Embedded{};
+        // Runs that list their worst frames in run.json name the files there (shared, written
+        // once, with page copies); older runs wrote worst/<variant>_<kind>_<what>.png.
+        const nlohmann::json* entry = nullptr;
+        if (listed && listed->is_array())
+            for (const auto& e : *listed)
+                if (e.value("variant", "") == v && e.value("kind", "") == k.kind) entry = &e;
+        auto get = [&](const char* what) {
+            if (listed && listed->is_array()) return entry ? embedWorst(d, *entry, what) : Embedded{};
+            return embed(d.dir / "worst" / file(what));
+        };
+        Embedded ref = get("reference"), var = get("variant");
+        Embedded err = get("error"), ssim = get("ssim_map");
+        Embedded flip = get("flip_map");  // absent in runs before FLIP
+        Embedded crawl = get("crawl_map");
+        Embedded cls = cbr ? get("class_map") : Embedded{};
         bool any = !ref.uri.empty() || !var.uri.empty() || !err.uri.empty() || !ssim.uri.empty() ||
                    !crawl.uri.empty() || !cls.uri.empty();
         std::string label = frameLabel(d, v, k.column, k.highest);
@@ -172,6 +218,30 @@ std::string fromSavedFrames(const RunData& d, const std::string& v) {
     return out + "</div></div>";
 }
 
+// A data URI repeated in the section (the reference frame of several variants' worst
+// frames, a frame worst by both SSIM and ECI) is embedded once: a later <img> names the first
+// by id and the page's script copies its source.
+std::string embedOnce(const std::string& html) {
+    static const std::string kKey = " src=\"data:";
+    std::unordered_map<std::string_view, int> ids;
+    std::string out;
+    out.reserve(html.size());
+    size_t pos = 0;
+    for (size_t at = html.find(kKey); at != std::string::npos; at = html.find(kKey, pos)) {
+        const size_t begin = at + 6, end = html.find('"', begin);  // the URI, after ` src="`
+        if (end == std::string::npos) break;
+        out.append(html, pos, at - pos);
+        const std::string_view uri(html.data() + begin, end - begin);
+        const auto [it, first] = ids.try_emplace(uri, int(ids.size()));
+        const std::string id = "img-" + std::to_string(it->second);
+        if (first) out.append(" id=\"" + id + "\" src=\"").append(uri).append("\"");
+        else out += " data-same=\"" + id + "\"";
+        pos = end + 1;
+    }
+    out.append(html, pos, std::string::npos);
+    return out;
+}
+
 }  // namespace
 
 std::string imagesSection(const RunData& d) {
@@ -198,7 +268,7 @@ std::string imagesSection(const RunData& d) {
         else out += worst ? fromWorstDir(d, v) : fromSavedFrames(d, v);
         out += "</div>";
     }
-    return out + "</section>";
+    return embedOnce(out + "</section>");
 }
 
 }  // namespace cbr::reports

@@ -58,6 +58,8 @@ struct ImageDesc {
 };
 
 Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, bool host_visible);
+// Host-visible and coherent, host-cached where the device offers it: for buffers the host reads.
+Buffer createReadbackBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage);
 void destroyBuffer(Context& ctx, Buffer& buffer);
 // Device-local buffer filled through a staging copy.
 Buffer uploadBuffer(Context& ctx, const void* data, VkDeviceSize size, VkBufferUsageFlags usage);

@@ -5,11 +5,21 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <set>
 
 #include "tests/render/bench_runner.h"
 
 namespace cbr::test {
 namespace {
+
+// The file run.json's worst list names for a variant's worst frame of a kind ("" if none).
+std::string worstFile(const nlohmann::json& run, const std::string& variant, const std::string& kind,
+                      const std::string& what) {
+    for (const auto& e : run["worst"])
+        if (e["variant"] == variant && e["kind"] == kind && e["files"].contains(what))
+            return e["files"][what].get<std::string>();
+    return "";
+}
 
 TEST(Quality, SupersampledReferenceScoresFullAndCrawlIsReported) {
     auto work = scratchDir("quality-ssaa");
@@ -50,11 +60,45 @@ TEST(Quality, SupersampledReferenceScoresFullAndCrawlIsReported) {
     }
     for (const char* v : {"full", "cbr-aso"})
         for (const char* what : {"reference", "variant", "error", "ssim_map"})
-            EXPECT_TRUE(std::filesystem::exists(out / "worst" / (std::string(v) + "_ssim_" + what + ".png")))
-                << v << " " << what;
-    EXPECT_TRUE(std::filesystem::exists(out / "worst" / "cbr-aso_eci_crawl_map.png"));
-    EXPECT_TRUE(std::filesystem::exists(out / "worst" / "cbr-aso_eci_class_map.png"));
+            EXPECT_TRUE(std::filesystem::exists(out / worstFile(run, v, "ssim", what))) << v << " " << what;
+    EXPECT_TRUE(std::filesystem::exists(out / worstFile(run, "cbr-aso", "eci", "crawl_map")));
+    EXPECT_TRUE(std::filesystem::exists(out / worstFile(run, "cbr-aso", "eci", "class_map")));
     EXPECT_TRUE(std::filesystem::exists(out / "report.html"));
+}
+
+// Every worst-frame file run.json names exists, with its page copy; the run.json file list
+// names each once, and the folder holds nothing else (no image written twice under two names).
+TEST(Quality, WorstFramesAreWrittenOnceWithPageCopies) {
+    auto work = scratchDir("quality-worst");
+    auto out = work / "out";
+    auto r = runBench({"run", "--scene", "atrium", "--path", "flythrough", "--res", "160x90", "--frames", "6",
+                       "--repeat", "1", "--warmup", "0", "--variants", "full,cbr-aso,drr", "--out", out.string()},
+                      work);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto run = readJson(out / "run.json");
+    ASSERT_TRUE(run["worst"].is_array());
+    EXPECT_EQ(run["worst"].size(), 4u) << "cbr-aso and drr, by SSIM and by ECI";
+    std::set<std::string> named;
+    for (const auto& e : run["worst"]) {
+        for (const char* list : {"files", "page"})
+            for (const auto& [what, file] : e[list].items()) {
+                EXPECT_TRUE(std::filesystem::exists(out / file.get<std::string>())) << file;
+                named.insert(file.get<std::string>());
+            }
+        EXPECT_EQ(e["files"].size(), e["page"].size());
+        const int frame = e["frame"].get<int>();
+        EXPECT_NE(e["files"]["reference"].get<std::string>().find("reference_000" + std::to_string(frame)),
+                  std::string::npos);
+    }
+    std::set<std::string> listed, on_disk;
+    for (const auto& f : run["files"])
+        if (f.get<std::string>().rfind("worst/", 0) == 0) {
+            EXPECT_TRUE(listed.insert(f.get<std::string>()).second) << f;
+        }
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(out / "worst"))
+        if (entry.is_regular_file()) on_disk.insert(std::filesystem::relative(entry.path(), out).string());
+    EXPECT_EQ(listed, named);
+    EXPECT_EQ(on_disk, named);
 }
 
 TEST(Quality, StaticPathGivesFiniteCrawlAndReferenceIsExact) {
@@ -91,7 +135,7 @@ TEST(Quality, StaticPathGivesFiniteCrawlAndReferenceIsExact) {
         EXPECT_EQ(std::stod(summary.at(i, "flip_mean")) == 0.0, summary.at(i, "variant") == "full") << i;
     auto run = readJson(out / "run.json");
     EXPECT_NEAR(run["metrics"]["flip_ppd"].get<double>(), 67.0206, 1e-4);
-    EXPECT_TRUE(std::filesystem::exists(out / "worst" / "cbr-cso_ssim_flip_map.png"));
+    EXPECT_TRUE(std::filesystem::exists(out / worstFile(run, "cbr-cso", "ssim", "flip_map")));
     EXPECT_NE(slurp(out / "report.html").find("FLIP error map"), std::string::npos);
 }
 

@@ -109,7 +109,12 @@ TEST(ScoreSeq, ShiftOnOddFramesCrawlsFarAboveTheCopy) {
     EXPECT_EQ(run["kind"], "score-seq");
     EXPECT_EQ(run["sequence"]["matched_by"], "sorted name");
     EXPECT_TRUE(fs::exists(s.work / "copy-out" / "report.html"));
-    EXPECT_TRUE(fs::exists(s.work / "odd-out" / "worst" / "odd_eci_crawl_map.png"));
+    bool crawl_map = false;
+    const auto odd_run = readJson(s.work / "odd-out" / "run.json");
+    for (const auto& e : odd_run["worst"])
+        if (e["kind"] == "eci" && e["files"].contains("crawl_map"))
+            crawl_map = fs::exists(s.work / "odd-out" / e["files"]["crawl_map"].get<std::string>());
+    EXPECT_TRUE(crawl_map);
 
     // Motion files in the documented convention give the fallback's figure; the opposite
     // sign (what --motion-scale -1 is for) warps the wrong way and crawls.

@@ -1,0 +1,173 @@
+// PNG through libdeflate, JPEG through stb_image_write, and a box downscale (image_encode.h).
+#include "metrics/image_encode.h"
+
+#include <libdeflate.h>
+
+#include <array>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "metrics/image_io_detail.h"
+
+// Static, in a file kept out of unity batches (CMakeLists.txt): image_io.cpp may compile
+// its own static stb_image_write.
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#include <stb_image_write.h>
+#pragma GCC diagnostic pop
+
+namespace cbr::metrics {
+
+namespace {
+
+void checkImage(const char* what, const Rgba8Image& image) {
+    if (image.width <= 0 || image.height <= 0 || image.pixels.size() != size_t(image.width) * image.height * 4)
+        throw std::invalid_argument(std::string(what) + ": image is " + std::to_string(image.width) + "x" +
+                                    std::to_string(image.height) + " with " + std::to_string(image.pixels.size()) +
+                                    " bytes, expected width * height * 4 > 0");
+}
+
+void put32(std::string& out, uint32_t v) {
+    const char b[4] = {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+    out.append(b, 4);
+}
+
+void chunk(std::string& out, const char* type, const uint8_t* data, size_t size) {
+    put32(out, uint32_t(size));
+    const size_t start = out.size();
+    out.append(type, 4);
+    out.append(reinterpret_cast<const char*>(data), size);
+    put32(out, libdeflate_crc32(0, out.data() + start, size + 4));
+}
+
+inline uint8_t paeth(int a, int b, int c) {
+    const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+    return uint8_t(pa <= pb && pa <= pc ? a : pb <= pc ? b : c);
+}
+
+// One row's five filters (PNG spec 9.2); the one with the least sum of |signed byte| wins.
+void filterRow(const uint8_t* row, const uint8_t* prev, size_t bytes, size_t bpp, uint8_t* out) {
+    static thread_local std::array<std::vector<uint8_t>, 5> candidates;
+    thread_local std::vector<uint8_t> zeros;
+    if (!prev) {
+        zeros.assign(bytes, 0);
+        prev = zeros.data();
+    }
+    for (auto& c : candidates) c.resize(bytes);
+    uint8_t* none = candidates[0].data();
+    uint8_t* sub = candidates[1].data();
+    uint8_t* up = candidates[2].data();
+    uint8_t* avg = candidates[3].data();
+    uint8_t* pae = candidates[4].data();
+    for (size_t i = 0; i < bytes; ++i) {
+        const int a = i >= bpp ? row[i - bpp] : 0, b = prev[i], c = i >= bpp ? prev[i - bpp] : 0;
+        none[i] = row[i];
+        sub[i] = uint8_t(row[i] - a);
+        up[i] = uint8_t(row[i] - b);
+        avg[i] = uint8_t(row[i] - (a + b) / 2);
+        pae[i] = uint8_t(row[i] - paeth(a, b, c));
+    }
+    size_t best = 0;
+    uint64_t best_sum = UINT64_MAX;
+    for (size_t f = 0; f < 5; ++f) {
+        uint64_t sum = 0;
+        for (size_t i = 0; i < bytes; ++i) sum += uint64_t(std::abs(int(int8_t(candidates[f][i]))));
+        if (sum < best_sum) best_sum = sum, best = f;
+    }
+    out[0] = uint8_t(best);
+    std::memcpy(out + 1, candidates[best].data(), bytes);
+}
+
+}  // namespace
+
+std::string encodePng(const Rgba8Image& image, int level) {
+    checkImage("encodePng", image);
+    bool opaque = true;
+    for (size_t i = 3; i < image.pixels.size() && opaque; i += 4) opaque = image.pixels[i] == 255;
+    const int bpp = opaque ? 3 : 4;
+    const size_t w = size_t(image.width), h = size_t(image.height), row_bytes = w * size_t(bpp);
+    std::vector<uint8_t> packed(row_bytes * h);
+    if (opaque)
+        for (size_t i = 0; i < w * h; ++i) std::memcpy(&packed[i * 3], &image.pixels[i * 4], 3);
+    else
+        packed.assign(image.pixels.begin(), image.pixels.end());
+    std::vector<uint8_t> filtered((row_bytes + 1) * h);
+    for (size_t y = 0; y < h; ++y)
+        filterRow(&packed[y * row_bytes], y ? &packed[(y - 1) * row_bytes] : nullptr, row_bytes, size_t(bpp),
+                  &filtered[y * (row_bytes + 1)]);
+    std::unique_ptr<libdeflate_compressor, decltype(&libdeflate_free_compressor)> compressor(
+        libdeflate_alloc_compressor(level), libdeflate_free_compressor);
+    if (!compressor) throw std::runtime_error("encodePng: libdeflate has no compressor for level " + std::to_string(level));
+    std::vector<uint8_t> zdata(libdeflate_zlib_compress_bound(compressor.get(), filtered.size()));
+    const size_t zsize = libdeflate_zlib_compress(compressor.get(), filtered.data(), filtered.size(), zdata.data(), zdata.size());
+    if (zsize == 0) throw std::runtime_error("encodePng: libdeflate could not compress the image");
+
+    std::string out("\x89PNG\r\n\x1a\n", 8);
+    uint8_t ihdr[13] = {uint8_t(w >> 24), uint8_t(w >> 16), uint8_t(w >> 8), uint8_t(w),
+                        uint8_t(h >> 24), uint8_t(h >> 16), uint8_t(h >> 8), uint8_t(h),
+                        8, uint8_t(opaque ? 2 : 6), 0, 0, 0};  // 8 bits, RGB or RGBA, deflate, adaptive, no interlace
+    chunk(out, "IHDR", ihdr, sizeof ihdr);
+    chunk(out, "IDAT", zdata.data(), zsize);
+    chunk(out, "IEND", nullptr, 0);
+    return out;
+}
+
+std::string encodeJpeg(const Rgba8Image& image, int quality) {
+    checkImage("encodeJpeg", image);
+    std::string out;
+    auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+    };
+    if (!stbi_write_jpg_to_func(append, &out, image.width, image.height, 4, image.pixels.data(), quality))
+        throw std::runtime_error("encodeJpeg: stb_image_write failed");
+    return out;
+}
+
+Rgba8Image downscale(const Rgba8Image& image, int max_width) {
+    checkImage("downscale", image);
+    if (max_width <= 0) throw std::invalid_argument("downscale: max_width must be > 0");
+    const int k = (image.width + max_width - 1) / max_width;
+    if (k <= 1) return image;
+    Rgba8Image out;
+    out.width = (image.width + k - 1) / k;
+    out.height = (image.height + k - 1) / k;
+    out.pixels.resize(size_t(out.width) * out.height * 4);
+    for (int oy = 0; oy < out.height; ++oy)
+        for (int ox = 0; ox < out.width; ++ox) {
+            uint32_t sum[4] = {0, 0, 0, 0}, n = 0;
+            for (int y = oy * k; y < std::min(image.height, (oy + 1) * k); ++y)
+                for (int x = ox * k; x < std::min(image.width, (ox + 1) * k); ++x, ++n) {
+                    const uint8_t* p = &image.pixels[(size_t(y) * image.width + x) * 4];
+                    for (int c = 0; c < 4; ++c) sum[c] += p[c];
+                }
+            uint8_t* q = &out.pixels[(size_t(oy) * out.width + ox) * 4];
+            for (int c = 0; c < 4; ++c) q[c] = uint8_t((sum[c] + n / 2) / n);
+        }
+    return out;
+}
+
+void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes) {
+    const auto tmp = detail::temporaryName(file);
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) throw std::runtime_error("cannot create " + tmp.string() + ": " + std::strerror(errno));
+        out.write(bytes.data(), std::streamsize(bytes.size()));
+        out.close();
+        if (!out) {
+            std::error_code ec;
+            std::filesystem::remove(tmp, ec);
+            throw std::runtime_error("cannot write " + file.string());
+        }
+    }
+    detail::commit(tmp, file);
+}
+
+}  // namespace cbr::metrics

@@ -1,0 +1,33 @@
+// Fast encoders for the images a run writes: lossless PNG through libdeflate (the run's
+// full-resolution files), JPEG page copies for the report, and a box-filter downscale.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "metrics/image_io.h"
+
+namespace cbr::metrics {
+
+// An 8-bit PNG of the image (PNG spec, ISO/IEC 15948): RGB when every alpha is 255, else
+// RGBA; each row filtered with the PNG filter that gives the smallest sum of absolute
+// values (the spec's suggested heuristic); one zlib stream from libdeflate at `level`
+// (1 fastest ... 12 smallest). readPng and every PNG reader read it back byte for byte.
+// Throws std::invalid_argument for an empty image or a size mismatch.
+std::string encodePng(const Rgba8Image& image, int level = 4);
+
+// A baseline JPEG (stb_image_write) of the RGB channels; quality above 90 keeps full-resolution
+// chroma, so coloured edges are not smeared. For page copies only: never scored.
+std::string encodeJpeg(const Rgba8Image& image, int quality = 92);
+
+// Box-filtered copy at most max_width wide: each output pixel the mean of a k x k block,
+// k = ceil(width / max_width), partial blocks at the edges averaged over what they cover.
+// The image itself when it is already narrow enough.
+Rgba8Image downscale(const Rgba8Image& image, int max_width);
+
+// Writes the bytes to a temporary name in the same folder and renames it (no half-written
+// file after a crash). Throws std::runtime_error naming the file on failure.
+void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes);
+
+}  // namespace cbr::metrics
