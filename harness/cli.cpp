@@ -11,17 +11,20 @@
 #include "harness/calibrate.h"
 #include "harness/compare.h"
 #include "harness/export.h"
+#include "harness/help_markdown.h"
 #include "harness/matrix.h"
 #include "harness/options.h"
 #include "harness/run.h"
 #include "harness/score_seq.h"
 #include "harness/sequence_files.h"
 #include "harness/stress.h"
+#include "harness/sweep.h"
 #include "metrics/cost.h"
 #include "metrics/flip.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
 #include "renderer/scene/scene.h"
+#include "renderer/variants/checkerboard.h"
 #include "renderer/variants/variants.h"
 #include "renderer/vk/context.h"
 #include "reports/report.h"
@@ -29,6 +32,13 @@
 
 namespace cbr::harness {
 namespace {
+
+// "full, drr, ...": the variant table's names, so the help lists exactly what runs.
+std::string variantNames() {
+    std::string out;
+    for (const auto& v : variants::allVariants()) out += (out.empty() ? "" : ", ") + std::string(v.name);
+    return out;
+}
 
 constexpr const char* kFlipPpdHelp =
     "FLIP's pixels per degree of visual angle (default 67.02: 0.7 m from a 0.7 m wide, 3840-pixel monitor)";
@@ -75,16 +85,17 @@ int scoreImages(const std::string& ref_file, const std::string& img_file, const 
 
 // The options of `run` and `sweep` (a sweep is a run over configurations).
 void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& variant_list) {
-    cmd->add_option("--scene", o.scene, "procedural scene name or a .gltf/.glb file")->capture_default_str();
+    cmd->add_option("--scene", o.scene, "procedural scene name (cbrbench scenes) or a .gltf/.glb file")->capture_default_str();
     cmd->add_option("--path", o.path,
-                    "built-in path name, a path .json file, or gltf / gltf:NAME (the scene file's camera)")
+                    "built-in path name (cbrbench paths), a path .json file, or gltf / gltf:NAME (the scene file's camera)")
         ->capture_default_str();
     cmd->add_option("--fps", o.fps, "frame rate of a --path gltf camera (frames over the animation's length)")
         ->capture_default_str();
     cmd->add_option("--animation", o.animation,
                     "glTF animations to play: all, none, or a comma list of names or indices (looped)")
         ->capture_default_str();
-    cmd->add_option("--variants", variant_list, "comma-separated variants (default: all; full always runs)");
+    cmd->add_option("--variants", variant_list,
+                    "comma-separated variants of " + variantNames() + " (default: all; full always runs: the reference)");
     cmd->add_option("--res", o.resolution, "output resolution WIDTHxHEIGHT")->capture_default_str();
     cmd->add_option("--frames", o.frames,
                     "frames sampled evenly over the path (0: the path's own length; --path gltf: default 0)")
@@ -109,7 +120,7 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_option("--shading-cost", o.shading_cost, "fragment shading about K times more expensive, same image")
         ->capture_default_str();
     cmd->add_option("--exposure", o.exposure, "exposure multiplier before tone mapping")->capture_default_str();
-    cmd->add_option("--cbr-route", o.cbr_route, "checkerboard route: auto, msaa-jitter, msaa-locations, multiview")
+    cmd->add_option("--cbr-route", o.cbr_route, std::string("checkerboard route: ") + variants::routeNames())
         ->capture_default_str();
     cmd->add_option("--cbr-history", o.cbr_history,
                     "checkerboard history: quarter (frame N-1's quarter-res samples, the paper's) or full (the "
@@ -122,7 +133,7 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
                     "how --cbr-history full stores the history: b10g11r11 (4 bytes a pixel; rgba16f where the "
                     "device cannot store it) or rgba16f (8 bytes, exact on a still camera)")
         ->capture_default_str();
-    cmd->add_option("--cbr-lod-bias", o.cbr_lod_bias, "texture LOD bias of checkerboard scene passes")
+    cmd->add_option("--cbr-lod-bias", o.cbr_lod_bias, "texture LOD bias of checkerboard scene passes (-1 matches full-res derivatives; the paper's: -0.5)")
         ->capture_default_str();
     cmd->add_option("--cso-tolerance", o.cso_tolerance, "cbr-cso depth tolerance (relative, or scene units)")
         ->capture_default_str();
@@ -130,7 +141,8 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
                     "none, or pixel-id: colours encode the full-res pixel each sample lands on (tests)")
         ->capture_default_str();
     cmd->add_option("--debug-slowdown", o.debug_slowdown,
-                    "PASS=PCT: make one pass PCT percent slower with calibrated extra GPU work (tests the detector)");
+                    "PASS=PCT: make one pass PCT percent slower with calibrated extra GPU work (tests the detector; needs "
+                    "--warmup >= 2)");
     cmd->add_option("--pipeline", o.pipeline, "forward or deferred (G-buffer, lighting resolve)")->capture_default_str();
     cmd->add_option("--reference", o.reference, "what variants are scored against: full or ssaa")
         ->capture_default_str();
@@ -138,7 +150,7 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_option("--cso-mode", o.cso_mode, "cbr-cso tolerance mode: relative or absolute")->capture_default_str();
     cmd->add_option("--resolve-impl", o.resolve_impl,
                     "fused (resolve/upscale write the display image), separate (then a tonemap pass), or reference "
-                    "(the pre-issue-14 passes, for image and time comparisons)")
+                    "(the untiled passes the tiled resolve replaced, for image and time comparisons)")
         ->capture_default_str();
     cmd->add_option("--target-clear", o.target_clear,
                     "how scene passes clear colour targets: auto (compute on NVIDIA, load op elsewhere), load-op, or "
@@ -365,10 +377,9 @@ Command sweepCommand(CLI::App& app, const std::vector<std::string>& argv) {
     auto r = std::make_shared<RunArgs>();
     addRunOptions(cli, r->o, r->variant_list);
     cli->add_option("--param", r->o.params,
-                    "NAME=LO:HI:log|lin:N or NAME=V1,V2,... (repeatable); numeric NAME: cso-tolerance, drr-scale, "
-                    "taau-scale, taau-blend, shading-cost, cbr-lod-bias; word-valued NAME=W1,W2,...: cbr-route, "
-                    "cbr-history, cso-mode, drr-filter, and "
-                    "reference (full,ssaa: one run per value into OUT/ref=K/, as --path a,b runs one per path)")
+                    "NAME=LO:HI:log|lin:N or NAME=V1,V2,... (repeatable; word-valued names take a list only): " +
+                        sweepParamSummary() +
+                        "; reference runs one sweep per value into OUT/ref=K/, as --path a,b runs one per path")
         ->required();
     return {cli, [r, argv] {
                 RunOptions& o = r->parsed(argv);
@@ -453,6 +464,7 @@ std::vector<Command> addCommands(CLI::App& app, const std::vector<std::string>& 
     c.push_back(mergeCommand(app));
     c.push_back(stressCommand(app));
     c.push_back(sweepCommand(app, argv));
+    c.push_back(helpCommand(app));
     for (const char* name : {"run", "sweep", "stress", "merge", "calibrate", "score-seq"})
         app.get_subcommand(name)->add_flag("--quiet", quiet,
                                            "no progress bar on the terminal (none is drawn when stderr is not one)");
