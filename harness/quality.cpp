@@ -26,25 +26,54 @@ struct QualityScorer::Worst {
 struct QualityScorer::Chain {
     std::mutex mutex;
     int next = 0;
-    std::map<int, std::pair<FrameRow*, QualityFrame>> pending;
+    struct Pending {
+        FrameRow* row;
+        QualityFrame frame;
+        Bytes reference;
+    };
+    std::map<int, Pending> pending;
     metrics::CrawlTracker tracker;
     Worst worst_ssim, worst_eci;
 };
 
-QualityScorer::QualityScorer(int width, int height, size_t frames, double flip_ppd, WorkerPool& workers,
-                             WallAccount* wall)
-    : width_(width), height_(height), flip_ppd_(flip_ppd), workers_(workers), wall_(wall), reference_(frames) {}
+QualityScorer::QualityScorer(int width, int height, double flip_ppd, WorkerPool& workers, WallAccount* wall)
+    : width_(width), height_(height), flip_ppd_(flip_ppd), workers_(workers), wall_(wall) {}
 
 QualityScorer::~QualityScorer() { workers_.wait(); }
 
-void QualityScorer::setReference(size_t frame, Bytes rgba) {
-    std::lock_guard lock(mutex_);
-    reference_.at(frame) = std::move(rgba);
+void QualityScorer::setReference(size_t frame, Bytes rgba, int uses) {
+    std::vector<std::function<void()>> waiting;
+    {
+        std::lock_guard lock(mutex_);
+        Reference& r = references_[frame];
+        r.rgba = std::move(rgba);
+        r.uses += uses;
+        waiting.swap(r.waiting);
+        if (r.uses <= 0 && waiting.empty()) references_.erase(frame);
+    }
+    for (auto& job : waiting) job();
 }
 
-bool QualityScorer::hasReference(size_t frame) const {
+void QualityScorer::skip(size_t frame) {
     std::lock_guard lock(mutex_);
-    return frame < reference_.size() && reference_[frame] != nullptr;
+    release(frame);
+}
+
+void QualityScorer::release(size_t frame) {
+    Reference& r = references_[frame];
+    if (--r.uses <= 0 && r.rgba && r.waiting.empty()) references_.erase(frame);
+}
+
+void QualityScorer::referenceFailed() {
+    std::vector<std::function<void()>> waiting;
+    {
+        std::lock_guard lock(mutex_);
+        reference_failed_ = true;
+        for (auto& [frame, r] : references_)
+            for (auto& job : r.waiting) waiting.push_back(std::move(job));
+        references_.clear();
+    }
+    for (auto& job : waiting) job();
 }
 
 QualityScorer::Chain& QualityScorer::chain(const std::string& variant) {
@@ -69,16 +98,33 @@ void QualityScorer::score(const std::string& variant, bool is_reference, FrameRo
         row.quality.flip_mean = row.quality.flip_q1 = row.quality.flip_median = row.quality.flip_q3 = 0.0;
         return;
     }
-    Bytes ref;
-    {
-        std::lock_guard lock(mutex_);
-        ref = reference_.at(size_t(frame.index));
-    }
-    if (!ref) {
+    Chain& c = chain(variant);
+    const size_t index = size_t(frame.index);
+    std::unique_lock lock(mutex_);
+    if (reference_failed_) {
         row.quality.note += "no reference frame (the reference failed); ";
         return;
     }
-    Chain& c = chain(variant);
+    Reference& r = references_[index];
+    if (r.rgba) {
+        Bytes ref = r.rgba;
+        lock.unlock();
+        return submitScore(c, variant, row, std::move(frame), std::move(ref));
+    }
+    // Its reference frame is still in flight: scored when it arrives (or noted if it never does).
+    r.waiting.push_back([this, &c, variant, &row, frame, index] {
+        Bytes ref;
+        {
+            std::lock_guard inner(mutex_);
+            auto it = references_.find(index);
+            if (it != references_.end()) ref = it->second.rgba;
+        }
+        if (!ref) row.quality.note += "no reference frame (the reference failed); ";
+        else submitScore(c, variant, row, frame, std::move(ref));
+    });
+}
+
+void QualityScorer::submitScore(Chain& c, const std::string& variant, FrameRow& row, QualityFrame frame, Bytes ref) {
     int w = width_, h = height_;
     workers_.submit([this, &c, &row, ref, frame, variant, w, h] {
         try {
@@ -107,14 +153,15 @@ void QualityScorer::score(const std::string& variant, bool is_reference, FrameRo
         } catch (const std::exception& e) {
             row.quality.note += std::string("metrics failed: ") + e.what() + "; ";
         }
-        // Edge crawl needs frame t-1 of the same variant: run the chain in order.
+        // Edge crawl needs frame t-1 of the same variant: run the chain in order. Each
+        // reference frame is given back once its crawl step is done.
         std::lock_guard lock(c.mutex);
-        c.pending.emplace(frame.index, std::make_pair(&row, frame));
+        c.pending.emplace(frame.index, Chain::Pending{&row, frame, ref});
         for (auto it = c.pending.find(c.next); it != c.pending.end(); it = c.pending.find(c.next)) {
-            crawlStep(variant, *it->second.first, it->second.second);
-            if (release_references_) {
+            crawlStep(variant, *it->second.row, it->second.frame, it->second.reference);
+            {
                 std::lock_guard reference_lock(mutex_);
-                reference_.at(size_t(c.next)).reset();
+                release(size_t(c.next));
             }
             c.pending.erase(it);
             ++c.next;
@@ -123,7 +170,7 @@ void QualityScorer::score(const std::string& variant, bool is_reference, FrameRo
 }
 
 // Called with the chain's mutex held, in frame order.
-void QualityScorer::crawlStep(const std::string& variant, FrameRow& row, const QualityFrame& frame) {
+void QualityScorer::crawlStep(const std::string& variant, FrameRow& row, const QualityFrame& frame, const Bytes& ref) {
     Chain& c = *chains_.at(variant);
     WallAccount::WorkerScope timer(wall_, WorkerTask::Eci);
     if (!frame.analysis) {
@@ -132,11 +179,6 @@ void QualityScorer::crawlStep(const std::string& variant, FrameRow& row, const Q
         return;
     }
     try {
-        Bytes ref;
-        {
-            std::lock_guard lock(mutex_);
-            ref = reference_.at(size_t(frame.index));
-        }
         int w = width_, h = height_;
         metrics::MotionField motion;
         motion.width = w;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -33,15 +34,17 @@ class QualityScorer {
 public:
     // flip_ppd: FLIP's pixels per degree (--flip-ppd). `wall`, when given, receives the
     // workers' time per metric and for image encoding.
-    QualityScorer(int width, int height, size_t frames, double flip_ppd, WorkerPool& workers,
-                  WallAccount* wall = nullptr);
+    QualityScorer(int width, int height, double flip_ppd, WorkerPool& workers, WallAccount* wall = nullptr);
     ~QualityScorer();
 
-    void setReference(size_t frame, Bytes rgba);
-    // Drop each reference frame once its edge-crawl step is done, so a long sequence holds
-    // only the frames in flight (score-seq; valid while one variant is scored).
-    void releaseReferencesAfterUse() { release_references_ = true; }
-    bool hasReference(size_t frame) const;
+    // Reference frame `frame`, to be scored against by `uses` frames (one per other variant):
+    // it is dropped once they are done (or skipped), so memory does not grow with the path.
+    // Frames handed to score() before their reference arrived are scored now.
+    void setReference(size_t frame, Bytes rgba, int uses);
+    // A variant that will not score `frame` after all (it failed): one use fewer.
+    void skip(size_t frame);
+    // The reference failed: frames waiting for it, and frames to come, get a note instead.
+    void referenceFailed();
     // Scores `frame` of `variant` into `row` (which must outlive finish()). `is_reference`:
     // the variant is the reference itself (PSNR inf, SSIM 1, ECI 0, FLIP 0 without computing).
     void score(const std::string& variant, bool is_reference, FrameRow& row, QualityFrame frame);
@@ -55,7 +58,14 @@ private:
     struct Chain;
     struct Worst;
     class Writer;
-    void crawlStep(const std::string& variant, FrameRow& row, const QualityFrame& frame);
+    struct Reference {
+        Bytes rgba;
+        int uses = 0;  // scores still to come; may go below 0 before the frame arrives (skips)
+        std::vector<std::function<void()>> waiting;  // scores handed in before the frame
+    };
+    void crawlStep(const std::string& variant, FrameRow& row, const QualityFrame& frame, const Bytes& ref);
+    void submitScore(Chain& c, const std::string& variant, FrameRow& row, QualityFrame frame, Bytes ref);
+    void release(size_t frame);  // with mutex_ held
     Chain& chain(const std::string& variant);
 
     int width_, height_;
@@ -63,8 +73,8 @@ private:
     WorkerPool& workers_;
     WallAccount* wall_;
     mutable std::mutex mutex_;
-    std::vector<Bytes> reference_;
-    bool release_references_ = false;
+    std::map<size_t, Reference> references_;  // the frames still to be scored against
+    bool reference_failed_ = false;
     std::map<std::string, std::unique_ptr<Chain>> chains_;
     std::vector<std::string> variant_order_;  // first-scored order: the order finish() reports
 };

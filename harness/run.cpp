@@ -167,8 +167,8 @@ int runBenchmark(const RunOptions& options) {
     } scene_release{ctx, gpu_scene};
 
     RunState s(p, ctx, gpu_scene, out.path(), wall);
-    renderSsaaReference(s);
     makeRenderers(s);
+    makeSsaaReference(s);
     calibrateSlowdown(s);
     renderQualityFrames(s);
     renderRepetitions(s);

@@ -70,7 +70,7 @@ struct RunState {
     // The alignment check looks at the middle frame of a path of at least 3 frames.
     const size_t mid;
     std::vector<Bytes> mid_images;
-    std::vector<Bytes> reference_frames;
+    std::vector<Bytes> reference_frames;  // only the alignment check's, around the middle frame
     // The quality pass's rows, one per (configuration, frame): only their scores are kept,
     // copied into repetition 0's timed rows.
     std::vector<FrameRow> quality_rows;
@@ -78,13 +78,14 @@ struct RunState {
     ProgressBar progress;  // frames rendered, on a terminal
     // One renderer per variant for the whole run: pipelines and targets are built once.
     std::vector<std::unique_ptr<render::Renderer>> renderers;
+    std::unique_ptr<render::Renderer> ssaa_reference;  // --reference ssaa, during the quality pass
 };
 
 // The `rep` of a ConfigPass that renders the untimed, scored quality frames.
 constexpr int kQualityPass = -1;
 
 // The loop's steps in the order runBenchmark calls them (run_loop.cpp).
-void renderSsaaReference(RunState& s);
+void makeSsaaReference(RunState& s);
 void makeRenderers(RunState& s);
 void calibrateSlowdown(RunState& s);
 void renderQualityFrames(RunState& s);

@@ -45,7 +45,7 @@ RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene
       h(int(prepared.settings.height)),
       results(startResults(prepared)),
       workers(std::max(1u, std::thread::hardware_concurrency() / 2)),
-      scorer(w, h, prepared.poses.size(), prepared.options.flip_ppd, workers, &account),
+      scorer(w, h, prepared.options.flip_ppd, workers, &account),
       mid(prepared.poses.size() / 2),
       mid_images(prepared.configs.size()),
       reference_frames(prepared.poses.size()),
@@ -141,6 +141,15 @@ AlignmentCheck checkAlignment(const std::vector<uint8_t>& variant, const std::ve
 // other full configurations differ only in shading cost and are scored against it).
 bool isReference(const RunState& s, size_t vi) { return vi == 0 && s.options.reference != "ssaa"; }
 
+// A reference frame to the scorer, for every configuration that scores against it; the
+// frames around the middle stay for the alignment check.
+void keepReference(RunState& s, size_t i, const Bytes& image) {
+    int uses = 0;
+    for (size_t vi = 0; vi < s.p.configs.size(); ++vi) uses += !isReference(s, vi) && s.results.variants[vi].status == "ok";
+    if (i + 1 >= s.mid && i <= s.mid + 1) s.reference_frames[i] = image;
+    s.scorer.setReference(i, image, uses);
+}
+
 // One pass of one configuration over the path, in path order: the quality pass (untimed,
 // every frame read back and scored into `quality_rows`) or a timed repetition (nothing
 // read back, so neither the readback nor the scoring runs while frames are timed: on a
@@ -151,17 +160,44 @@ public:
     ConfigPass(RunState& s, int rep, size_t vi)
         : s_(s), rep_(rep), vi_(vi), vr_(s.results.variants[vi]), done_(s.p.poses.size(), false) {}
 
+    // A timed repetition: warm-up, then the path's frames in order.
     void run() {
+        begin();
+        Stopwatch watch;
+        for (size_t i = 0; i < s_.p.poses.size(); ++i) frame(i);
+        end();
+        if (timed()) s_.wall.add(WallPart::TimedFrames, watch.seconds());
+    }
+
+    // The quality pass runs configurations side by side (renderQualityFrames): each step
+    // on its own, a failure ending this configuration's pass only.
+    void begin() {
         if (vr_.status != "ok") return failRemaining();
-        render::Renderer& renderer = *s_.renderers[vi_];
+        guarded([&] { warmUp(s_, *s_.renderers[vi_]); });
+    }
+    void frame(size_t i) {
+        if (vr_.status != "ok") return;
+        guarded([&] {
+            throwIfInterrupted();
+            for (auto& fr : s_.renderers[vi_]->submit(request(s_.p, i, !timed()))) keep(std::move(fr));
+        });
+    }
+    void end() {
+        if (vr_.status != "ok") return;
+        guarded([&] {
+            for (auto& fr : s_.renderers[vi_]->finish()) keep(std::move(fr));
+        });
+    }
+    double readbackSeconds() const { return readback_s_; }
+    double scoringWaitSeconds() const { return scoring_wait_s_; }
+
+private:
+    bool timed() const { return rep_ != kQualityPass; }
+
+    template <typename Step>
+    void guarded(const Step& step) {
         try {
-            warmUp(s_, renderer);
-            Account account(*this);
-            for (size_t i = 0; i < s_.p.poses.size(); ++i) {
-                throwIfInterrupted();
-                for (auto& fr : renderer.submit(request(s_.p, i, !timed()))) keep(std::move(fr));
-            }
-            for (auto& fr : renderer.finish()) keep(std::move(fr));
+            step();
         } catch (const vk::Unsupported& e) {
             vr_.status = "skipped";
             vr_.note = e.what();
@@ -173,32 +209,18 @@ public:
         }
     }
 
-private:
-    bool timed() const { return rep_ != kQualityPass; }
-
-    // The pass's frames in the wall account: timed frames, or the quality pass's rendering
-    // less the readback copies and the waits for the scorer, which have parts of their own.
-    struct Account {
-        explicit Account(ConfigPass& pass) : pass(pass) {}
-        ~Account() {
-            WallAccount& wall = pass.s_.wall;
-            const double seconds = watch.seconds();
-            if (pass.timed()) {
-                wall.add(WallPart::TimedFrames, seconds);
-                return;
-            }
-            wall.add(WallPart::Readback, pass.readback_s_);
-            wall.add(WallPart::Scoring, pass.scoring_wait_s_);
-            wall.add(WallPart::QualityRender, seconds - pass.readback_s_ - pass.scoring_wait_s_);
-        }
-        ConfigPass& pass;
-        Stopwatch watch;
-    };
-
     // A failed variant becomes rows that say so, not a crash of the run (the timed
-    // repetitions write them; the quality pass leaves the status for them).
+    // repetitions write them; the quality pass leaves the status for them, and gives the
+    // reference frames it will not score back to the scorer).
     void failRemaining() {
-        if (!timed()) return;
+        if (!timed()) {
+            for (size_t i = 0; i < s_.p.poses.size(); ++i)
+                if (!done_[i]) {
+                    if (isReference(s_, vi_)) s_.scorer.referenceFailed();
+                    else s_.scorer.skip(i);
+                }
+            return;
+        }
         for (size_t i = 0; i < s_.p.poses.size(); ++i) {
             if (done_[i]) continue;
             FrameRow& row = s_.results.rows.emplace_back();
@@ -255,10 +277,7 @@ private:
         Bytes classes =
             fr.diagnostic.empty() ? nullptr : std::make_shared<const std::vector<uint8_t>>(std::move(fr.diagnostic));
         if (i == s_.mid) s_.mid_images[vi_] = image;
-        if (is_reference) {
-            s_.reference_frames[i] = image;
-            s_.scorer.setReference(i, image);
-        }
+        if (is_reference) keepReference(s_, i, image);
         QualityFrame qf{fr.index, image, classes,
                         fr.analysis.empty() ? nullptr : std::make_shared<const std::vector<float>>(std::move(fr.analysis)),
                         i == 0 || s_.p.poses[i].cut};
@@ -281,29 +300,33 @@ private:
 
 }  // namespace
 
-// `--reference ssaa`: a supersampled render is the reference, and `full` is scored too.
-void renderSsaaReference(RunState& s) {
+// `--reference ssaa`: a supersampled renderer is the reference, and `full` is scored too.
+// Its frames are rendered side by side with the configurations' in the quality pass.
+void makeSsaaReference(RunState& s) {
     if (s.options.reference != "ssaa") return;
     render::Settings ref_settings = s.p.settings;
     ref_settings.supersample = s.options.ssaa;
     ref_settings.analysis = false;
-    render::Renderer reference(s.ctx, s.gpu_scene, variants::supersampledReference(), ref_settings);
-    warmUp(s, reference);
-    auto keep = [&](render::FrameResult&& fr) {
-        s.progress.step("reference (ssaa " + std::to_string(s.options.ssaa) + "x" + std::to_string(s.options.ssaa) + ")");
-        s.results.reference_ms.push_back(fr.gpu_ms);
-        auto image = std::make_shared<const std::vector<uint8_t>>(std::move(fr.rgba));
-        s.reference_frames[size_t(fr.index)] = image;
-        s.scorer.setReference(size_t(fr.index), image);
-        if (s.options.save_frames) savePng(s, "reference", fr.index, image, nullptr);
-    };
-    WallAccount::Scope scope(s.wall, WallPart::QualityRender);
-    for (size_t i = 0; i < s.p.poses.size(); ++i) {
-        throwIfInterrupted();
-        for (auto& fr : reference.submit(request(s.p, i, true))) keep(std::move(fr));
+    {
+        WallAccount::Scope scope(s.wall, WallPart::Pipelines);
+        s.ssaa_reference =
+            std::make_unique<render::Renderer>(s.ctx, s.gpu_scene, variants::supersampledReference(), ref_settings);
     }
-    for (auto& fr : reference.finish()) keep(std::move(fr));
+    warmUp(s, *s.ssaa_reference);
 }
+
+namespace {
+
+double keepSsaaFrame(RunState& s, render::FrameResult&& fr) {
+    s.progress.step("reference (ssaa " + std::to_string(s.options.ssaa) + "x" + std::to_string(s.options.ssaa) + ")");
+    s.results.reference_ms.push_back(fr.gpu_ms);
+    auto image = std::make_shared<const std::vector<uint8_t>>(std::move(fr.rgba));
+    keepReference(s, size_t(fr.index), image);
+    if (s.options.save_frames) savePng(s, "reference", fr.index, image, nullptr);
+    return fr.readback_ms * 1e-3;
+}
+
+}  // namespace
 
 // One renderer per configuration; one the device cannot build is skipped or failed.
 void makeRenderers(RunState& s) {
@@ -337,10 +360,39 @@ void calibrateSlowdown(RunState& s) {
             }
 }
 
-// Every configuration's frames once, untimed, read back and scored; the scores are done
-// before the first timed frame (timing.md: timing frames include no readback).
+// Every configuration's frames once, untimed, read back and scored, frame by frame: frame i
+// of the reference, then frame i of every other configuration, so that the scorer holds a
+// reference frame only until the others have scored against it (memory does not grow with
+// the path). Each renderer still sees its own frames in path order, so every image is the
+// one a configuration-by-configuration pass would give. The scores are done before the
+// first timed frame (timing.md: timing frames include no readback).
 void renderQualityFrames(RunState& s) {
-    for (size_t vi = 0; vi < s.p.configs.size(); ++vi) ConfigPass(s, kQualityPass, vi).run();
+    Stopwatch watch;
+    const double warm_up_before = s.wall.part(WallPart::WarmUp);
+    std::vector<std::unique_ptr<ConfigPass>> passes;
+    for (size_t vi = 0; vi < s.p.configs.size(); ++vi) passes.push_back(std::make_unique<ConfigPass>(s, kQualityPass, vi));
+    for (auto& pass : passes) pass->begin();
+    double readback = 0, waits = 0;
+    for (size_t i = 0; i < s.p.poses.size(); ++i) {
+        if (s.ssaa_reference) {
+            throwIfInterrupted();
+            for (auto& fr : s.ssaa_reference->submit(request(s.p, i, true))) readback += keepSsaaFrame(s, std::move(fr));
+        }
+        for (auto& pass : passes) pass->frame(i);
+    }
+    if (s.ssaa_reference) {
+        for (auto& fr : s.ssaa_reference->finish()) readback += keepSsaaFrame(s, std::move(fr));
+        s.ssaa_reference.reset();
+    }
+    for (auto& pass : passes) {
+        pass->end();
+        readback += pass->readbackSeconds();
+        waits += pass->scoringWaitSeconds();
+    }
+    const double warm_up = s.wall.part(WallPart::WarmUp) - warm_up_before;
+    s.wall.add(WallPart::Readback, readback);
+    s.wall.add(WallPart::Scoring, waits);
+    s.wall.add(WallPart::QualityRender, watch.seconds() - warm_up - readback - waits);
     WallAccount::Scope scope(s.wall, WallPart::Scoring);
     s.workers.wait();
 }

@@ -169,8 +169,7 @@ Scored scoreFrames(const ScoreSeqOptions& o, const SeqInputs& in, RunResults& re
         if (i == 0) {
             s.width = ref.image.width;
             s.height = ref.image.height;
-            scorer = std::make_unique<QualityScorer>(s.width, s.height, n, o.flip_ppd, workers);
-            scorer->releaseReferencesAfterUse();
+            scorer = std::make_unique<QualityScorer>(s.width, s.height, o.flip_ppd, workers);
         }
         checkSize(ref.image, s.width, s.height, rf.file, "REFERENCE");
         checkSize(img.image, s.width, s.height, in.test_files[i], "TEST");
@@ -205,7 +204,7 @@ Scored scoreFrames(const ScoreSeqOptions& o, const SeqInputs& in, RunResults& re
         row.render_width = uint32_t(s.width);
         row.render_height = uint32_t(s.height);
         infos.push_back(info);
-        scorer->setReference(i, std::make_shared<const std::vector<uint8_t>>(std::move(ref.image.pixels)));
+        scorer->setReference(i, std::make_shared<const std::vector<uint8_t>>(std::move(ref.image.pixels)), 1);
         QualityFrame qf;
         qf.index = int(i);
         qf.rgba = std::make_shared<const std::vector<uint8_t>>(std::move(img.image.pixels));
