@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "metrics/buffers.h"
 #include "metrics/simd.h"
 
 namespace cbr::metrics {
@@ -36,8 +37,8 @@ constexpr int kTaps = 2 * kRadius + 1;
 static_assert(kRadius == int(3.5 * kSigma + 0.5), "window radius must follow scipy's rule");
 
 // Output tile of the SSIM pass: 32 rows x 192 columns. Its eight planes (input plus the
-// 5-pixel halo, 42 x 202 doubles each: 0.55 MB) stay in a core's L2 cache while 11 rows
-// are read for every output row; tiles are also the unit of parallel work.
+// 5-pixel halo, 42 x 202 doubles each: 0.55 MB) and four filtered planes (0.2 MB) stay in
+// a core's L2 cache; tiles are also the unit of parallel work.
 constexpr int kTileRows = 32;
 constexpr int kTileCols = 192;
 constexpr int kTileInRows = kTileRows + 2 * kRadius;
@@ -174,8 +175,8 @@ inline void lumaProducts(double* const* a, double* const* b, size_t n,
 // One thread's buffers, kept across calls so that no tile touches fresh pages.
 struct TileScratch {
     std::vector<double> planes = std::vector<double>(size_t(kImagePlanes) * kTileInRows * kTileInCols);
-    std::vector<double> vertical = std::vector<double>(size_t(kPlanes) * kTileInCols);
-    std::vector<double> filtered = std::vector<double>(size_t(kPlanes) * kTileCols);
+    std::vector<double> vertical = std::vector<double>(size_t(kTileInCols));
+    std::vector<double> filtered = std::vector<double>(size_t(kPlanes) * kTileRows * kTileCols);
     std::vector<double> values = std::vector<double>(size_t(kTileCols));
     std::vector<double> luma_means = std::vector<double>(size_t(2) * kTileRows * kTileCols);
 };
@@ -240,18 +241,22 @@ bool ssimTile(const Image& a, const Image& b, bool with_luma, const double* kern
         // Luma's means come from the RGB means below: it filters only its two products.
         double* plane[kPlanes] = {is_luma ? nullptr : image_plane[0][c],
                                   is_luma ? nullptr : image_plane[1][c], sum_squares, products};
-        double* fa = scratch.filtered.data();
-        double* fb = fa + kTileCols;
-        double* fs = fb + kTileCols;
-        double* fp = fs + kTileCols;
+        // One plane at a time over all the tile's rows: the column pass's 11-row window of
+        // that plane (18 KB) then stays in L1 from one row to the next.
+        for (int q = is_luma ? 2 : 0; q < kPlanes; ++q)
+            for (int r = 0; r < out_rows; ++r) {
+                double* v = scratch.vertical.data();
+                columnPass(plane[q] + size_t(r) * in_cols, size_t(in_cols), in_cols, kernel, v);
+                rowPass(v, out_cols, kernel, scratch.filtered.data() + (size_t(q) * kTileRows + size_t(r)) * kTileCols);
+            }
         double* values = scratch.values.data();
         double channel_sum = 0;
         for (int r = 0; r < out_rows; ++r) {
-            for (int q = is_luma ? 2 : 0; q < kPlanes; ++q) {
-                double* v = scratch.vertical.data() + size_t(q) * kTileInCols;
-                columnPass(plane[q] + size_t(r) * in_cols, size_t(in_cols), in_cols, kernel, v);
-                rowPass(v, out_cols, kernel, scratch.filtered.data() + size_t(q) * kTileCols);
-            }
+            const double* filtered_row = scratch.filtered.data() + size_t(r) * kTileCols;
+            const double* fa = filtered_row;
+            const double* fb = filtered_row + size_t(kTileRows) * kTileCols;
+            const double* fs = filtered_row + size_t(2 * kTileRows) * kTileCols;
+            const double* fp = filtered_row + size_t(3 * kTileRows) * kTileCols;
             double* row_ya = mean_ya + size_t(r) * kTileCols;
             double* row_yb = mean_yb + size_t(r) * kTileCols;
             if (is_luma) {
@@ -301,10 +306,6 @@ bool ssimTile(const Image& a, const Image& b, bool with_luma, const double* kern
                     v = c == 0 ? values[i] : v + values[i];
                     if (c == channels - 1) v /= channels;
                 }
-            }
-            if (is_luma) {
-                fa = scratch.filtered.data();
-                fb = fa + kTileCols;
             }
         }
         sums[c] += channel_sum;
@@ -422,7 +423,7 @@ Image ssimMap(const Image& a, const Image& b) {
     map.height = a.height;
     map.channels = 1;
     // The border has no full window; 1.0 there reads as "no error" in a heat map.
-    map.data.assign(size_t(a.width) * a.height, 1.0);
+    map.data = detail::filledBuffer(size_t(a.width) * a.height, 1.0);
     double sums[3] = {0, 0, 0};
     ssimCore("ssimMap", a, b, /*with_luma=*/false, sums, &map);
     return map;

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "metrics/buffers.h"
 #include "metrics/simd.h"
 
 namespace cbr::metrics {
@@ -416,7 +417,7 @@ CrawlFrame CrawlTracker::add(const Image& reference, const Image& variant, const
     now.depth.assign(motion.depth.begin(), motion.depth.end());
 
     CrawlFrame frame;
-    if (want_map) frame.crawl_map = Image{width, height, 1, std::vector<double>(pixels, 0.0)};
+    if (want_map) frame.crawl_map = Image{width, height, 1, detail::filledBuffer(pixels, 0.0)};
     // From here on the state is consistent: this frame is the one the next compares with.
     const int previous_index = state->current;
     state->current = 1 - state->current;
