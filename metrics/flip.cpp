@@ -16,16 +16,21 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <mutex>
 #include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "metrics/buffers.h"
+#include "metrics/flip_colour.h"
 #include "metrics/simd.h"
 
 namespace cbr::metrics {
 
 namespace {
+
+using namespace flip_detail;
 
 // Section 4 of the paper: colour error exponent qc, re-mapping knee pc (a fraction of the
 // largest error cmax) mapped to pt, feature detector width w in degrees; the feature error
@@ -44,16 +49,6 @@ constexpr Csf kCsfAchromatic{1.0, 0.0047, 0.0, 1e-5};
 constexpr Csf kCsfRedGreen{1.0, 0.0053, 0.0, 1e-5};
 constexpr Csf kCsfBlueYellow{34.1, 0.04, 13.5, 0.025};
 
-// Linear sRGB <-> CIE XYZ with the D65 white, in the tool's single-precision values.
-constexpr float kWhite[3] = {0.950428545f, 1.0f, 1.088900371f};
-constexpr float kInvWhite[3] = {1.052156925f, 1.0f, 0.918357670f};
-constexpr float kRgbToXyz[3][3] = {
-    {10135552.0f / 24577794.0f, 8788810.0f / 24577794.0f, 4435075.0f / 24577794.0f},
-    {2613072.0f / 12288897.0f, 8788810.0f / 12288897.0f, 887015.0f / 12288897.0f},
-    {1425312.0f / 73733382.0f, 8788810.0f / 73733382.0f, 70074185.0f / 73733382.0f}};
-constexpr float kXyzToRgb[3][3] = {{3.241003275f, -1.537398934f, -0.498615861f},
-                                   {-0.969224334f, 1.875930071f, 0.041554224f},
-                                   {0.055639423f, -0.204011202f, 1.057148933f}};
 // CIE L*a*b*'s f(t): cube root above (6/29)^3, a line below.
 constexpr float kLabDelta = 6.0f / 29.0f;
 constexpr float kLabDeltaCube = kLabDelta * kLabDelta * kLabDelta;
@@ -77,15 +72,28 @@ struct Kernels {
     int colour_radius = 0;
     int feature_radius = 0;
     int halo = 0;                        // max of the two
-    std::vector<float> y, cx, cz1, cz2;  // 2 * colour_radius + 1 taps each
-    std::vector<float> g, d, dd;         // 2 * feature_radius + 1 taps each
+    std::vector<float> y, cx, cz1, cz2;  // up to 2 * colour_radius + 1 taps each (toFloat)
+    std::vector<float> g, d, dd;         // up to 2 * feature_radius + 1 taps each
+    // Where a kernel of `taps` taps starts in a line with `halo` pixels on each side.
+    int skip(const std::vector<float>& w) const { return halo - int(w.size() / 2); }
 };
 
 void normalise(std::vector<double>& w, double divisor) {
     for (double& v : w) v /= divisor;
 }
 
-std::vector<float> toFloat(const std::vector<double>& w) { return {w.begin(), w.end()}; }
+// The kernel in single precision, less the outer tap pairs below 1e-9 of its largest tap:
+// the achromatic and red-green CSFs (sigma about 1 pixel at 67 ppd) are sampled over the
+// blue-yellow one's radius of 10, and their last taps (1e-10 and less) change no filtered
+// value by as much as its float rounding, while they cost a fifth of the filtering.
+std::vector<float> toFloat(const std::vector<double>& w) {
+    double peak = 0;
+    for (double v : w) peak = std::max(peak, std::abs(v));
+    size_t cut = 0;
+    while (2 * cut + 1 < w.size() && std::abs(w[cut]) < 1e-9 * peak && std::abs(w[w.size() - 1 - cut]) < 1e-9 * peak)
+        ++cut;
+    return {w.begin() + std::ptrdiff_t(cut), w.end() - std::ptrdiff_t(cut)};
+}
 
 Kernels makeKernels(double ppd) {
     constexpr double pi = std::numbers::pi;
@@ -159,81 +167,40 @@ Kernels makeKernels(double ppd) {
     return k;
 }
 
-// sRGB transfer, decoded in single precision as the tool does.
-float srgbToLinear(float s) { return s <= 0.04045f ? s / 12.92f : std::pow((s + 0.055f) / 1.055f, 2.4f); }
-
-// Display images hold 8-bit code values v / 255: a table lookup replaces the power.
-struct DecodeTable {
-    std::array<double, 256> code{};   // k / 255, as fromRgba8 writes it
-    std::array<float, 256> linear{};  // srgbToLinear(float(k) / 255)
-    DecodeTable() {
-        for (int k = 0; k < 256; ++k) {
-            code[size_t(k)] = k / 255.0;
-            linear[size_t(k)] = srgbToLinear(float(k) / 255.0f);
-        }
+// Image values to 8-bit codes k, where every value is exactly k / 255 (what fromRgba8
+// writes, decode()'s table hit): the tiles then read 6 MB of codes per 1080p image, from the
+// cache, instead of 50 MB of doubles from memory. Rows [y0, y1); false when a value is not
+// a code value (NaN and inf included), and the caller keeps the doubles.
+CBR_SIMD_CLONES
+bool toCodes(const DecodeTable& table, const Image& image, int y0, int y1, uint8_t* __restrict out) {
+    const size_t row = size_t(image.width) * image.channels;
+    const double* __restrict in = image.data.data() + size_t(y0) * row;
+    const double* __restrict code = table.code.data();
+    const size_t count = size_t(y1 - y0) * row;
+    out += size_t(y0) * row;
+    int mismatch = 0;
+    // Branch-free (clamped index, compare, or), so that it vectorises with gathers.
+    for (size_t i = 0; i < count; ++i) {
+        const double v = in[i];
+        const double clamped = v >= 0.0 ? (v <= 1.0 ? v : 1.0) : 0.0;  // NaN -> 0, then fails ==
+        const int k = int(clamped * 255.0 + 0.5);
+        mismatch |= int(code[k] != v);
+        out[i] = uint8_t(k);
     }
-};
-
-// One display value to linear RGB. Values outside [0,1] are clamped (as the tool clamps the
-// decoded image); NaN and infinities set `bad`.
-inline float decode(const DecodeTable& t, double v, bool& bad) {
-    if (!(v >= 0.0 && v <= 1.0)) {
-        if (!std::isfinite(v)) {
-            bad = true;
-            return 0.0f;
-        }
-        v = v < 0.0 ? 0.0 : 1.0;
-    }
-    const int k = int(v * 255.0 + 0.5);
-    return t.code[size_t(k)] == v ? t.linear[size_t(k)] : srgbToLinear(float(v));
-}
-
-// Row yy of an sRGB image, columns first .. first + count - 1 clamped to the image (the
-// paper's filters see the border pixels repeated), to YCxCz: Y = 116 Y/Yn - 16,
-// Cx = 500 (X/Xn - Y/Yn), Cz = 200 (Y/Yn - Z/Zn). Returns false for a NaN or infinite value.
-bool toYCxCz(const DecodeTable& table, const Image& image, int yy, int first, int count, float* py, float* pcx,
-             float* pcz) {
-    bool bad = false;
-    const int c = image.channels;
-    const double* row = image.data.data() + size_t(yy) * image.width * c;
-    for (int i = 0; i < count; ++i) {
-        const double* p = row + size_t(std::clamp(first + i, 0, image.width - 1)) * c;
-        const float r = decode(table, p[0], bad);
-        const float g = c == 3 ? decode(table, p[1], bad) : r;
-        const float b = c == 3 ? decode(table, p[2], bad) : r;
-        const float X = (kRgbToXyz[0][0] * r + kRgbToXyz[0][1] * g + kRgbToXyz[0][2] * b) * kInvWhite[0];
-        const float Y = (kRgbToXyz[1][0] * r + kRgbToXyz[1][1] * g + kRgbToXyz[1][2] * b) * kInvWhite[1];
-        const float Z = (kRgbToXyz[2][0] * r + kRgbToXyz[2][1] * g + kRgbToXyz[2][2] * b) * kInvWhite[2];
-        py[i] = 116.0f * Y - 16.0f;
-        pcx[i] = 500.0f * (X - Y);
-        pcz[i] = 200.0f * (Y - Z);
-    }
-    return !bad;
-}
-
-// t^(1/3) for t > 0: a first guess from the float's bits (the exponent divided by 3, within
-// a few per cent) and two Halley steps (cubic convergence), all of it vectorisable.
-inline float cubeRoot(float t) {
-    const int32_t bits = std::bit_cast<int32_t>(t);
-    float y = std::bit_cast<float>(int32_t(float(bits) * (1.0f / 3.0f)) + 0x2A555555);
-    for (int i = 0; i < 2; ++i) {
-        const float y3 = y * y * y;
-        y = y * (y3 + 2.0f * t) / (2.0f * y3 + t);
-    }
-    return y;
+    return mismatch == 0;
 }
 
 // Both sides computed, then selected: the loops around it stay branch-free vector code.
-inline float labF(float t) {
+[[gnu::always_inline]] inline float labF(float t) {
     const float root = cubeRoot(t), line = kLabSlope * t + kLabOffset;
     return t > kLabDeltaCube ? root : line;
 }
 
-inline float unitClamp(float v) { return std::min(std::max(v, 0.0f), 1.0f); }
+[[gnu::always_inline]] inline float unitClamp(float v) { return std::min(std::max(v, 0.0f), 1.0f); }
 
 // Filtered YCxCz -> linear RGB clamped to [0,1] -> L*a*b* with the Hunt adjustment
 // (a* and b* scaled by 0.01 L*: colours fade in the dark).
-inline void huntLab(float fy, float fcx, float fcz, float& L, float& A, float& B) {
+[[gnu::always_inline]] inline void huntLab(float fy, float fcx, float fcz, float& L, float& A, float& B) {
     const float yn = (fy + 16.0f) / 116.0f;
     const float X = (yn + fcx / 500.0f) * kWhite[0];
     const float Y = yn * kWhite[1];
@@ -251,7 +218,7 @@ inline void huntLab(float fy, float fcx, float fcz, float& L, float& A, float& B
 }
 
 // HyAB (Abasi et al. 2020): city-block in lightness, Euclidean in chroma.
-inline float hyab(float l1, float a1, float b1, float l2, float a2, float b2) {
+[[gnu::always_inline]] inline float hyab(float l1, float a1, float b1, float l2, float a2, float b2) {
     return std::abs(l1 - l2) + std::sqrt((a1 - a2) * (a1 - a2) + (b1 - b2) * (b1 - b2));
 }
 
@@ -274,10 +241,10 @@ float maxColourError() {
 
 // The filters' building blocks; restrict on parameters (not on locals) is what lets the
 // compiler vectorise them without run-time alias checks.
-inline void scaled(float* __restrict out, const float* __restrict in, float w, int n) {
+[[gnu::always_inline]] inline void scaled(float* __restrict out, const float* __restrict in, float w, int n) {
     for (int x = 0; x < n; ++x) out[x] = w * in[x];
 }
-inline void addScaled(float* __restrict out, const float* __restrict in, float w, int n) {
+[[gnu::always_inline]] inline void addScaled(float* __restrict out, const float* __restrict in, float w, int n) {
     for (int x = 0; x < n; ++x) out[x] += w * in[x];
 }
 
@@ -292,7 +259,7 @@ constexpr int kBlock = 32;  // outputs per block: four registers
 
 // out[x] = sum_t w[t] src(t)[x] for x < n, src(t) = the t-th input row.
 template <typename Source>
-inline void filterBlocks(Source src, size_t taps, const float* w, int n, float* __restrict out) {
+[[gnu::always_inline]] inline void filterBlocks(Source src, size_t taps, const float* w, int n, float* __restrict out) {
     int x = 0;
     for (; x + kBlock <= n; x += kBlock) {
         Vec8 a0, a1, a2, a3, v0, v1, v2, v3;
@@ -316,12 +283,12 @@ inline void filterBlocks(Source src, size_t taps, const float* w, int n, float* 
 }
 
 // out[x] = sum_t w[t] in[x + t], x < n: a correlation, as the tool applies the filters.
-inline void rowFilter(const float* in, int n, const std::vector<float>& w, float* out) {
+[[gnu::always_inline]] inline void rowFilter(const float* in, int n, const std::vector<float>& w, float* out) {
     filterBlocks([in](size_t t) { return in + t; }, w.size(), w.data(), n, out);
 }
 
 // out[x] = sum_t w[t] rows[first + t][plane + x]: the vertical pass over the ring of rows.
-inline void columnFilter(const float* const* rows, int first, size_t plane, int n, const std::vector<float>& w,
+[[gnu::always_inline]] inline void columnFilter(const float* const* rows, int first, size_t plane, int n, const std::vector<float>& w,
                          float* out) {
     filterBlocks([rows, first, plane](size_t t) { return rows[size_t(first) + t] + plane; }, w.size(), w.data(), n,
                  out);
@@ -334,8 +301,10 @@ struct Constants {
 
 // Colour and feature differences and the final error of one output row of n pixels, from
 // the vertical pass of the reference and the test: error = colour^(1 - feature).
-inline void finalRow(const float* ref, const float* test, int n, const Constants& k, float* __restrict colour,
-                     float* __restrict exponent, float* __restrict out) {
+// Inlined into flipTile's clones, so that it is vectorised for AVX2 too.
+[[gnu::always_inline]] inline void finalRow(const float* __restrict ref, const float* __restrict test, int n,
+                                            const Constants& k, float* __restrict colour,
+                                            float* __restrict exponent, float* __restrict out) {
     constexpr size_t C = kTileCols;
     for (int x = 0; x < n; ++x) {
         const size_t i = size_t(x);
@@ -344,7 +313,7 @@ inline void finalRow(const float* ref, const float* test, int n, const Constants
         huntLab(test[kVY * C + i], test[kVCx * C + i], test[kVCz * C + i], l2, a2, b2);
         colour[x] = hyab(l1, a1, b1, l2, a2, b2);
     }
-    for (int x = 0; x < n; ++x) colour[x] = std::pow(colour[x], kQc);
+    for (int x = 0; x < n; ++x) colour[x] = powApprox(colour[x], kQc);
     // Re-mapping: [0, pc cmax] -> [0, pt] and (pc cmax, cmax] -> (pt, 1].
     const float below = kPt / k.pccmax, above = (1.0f - kPt) / (k.cmax - k.pccmax);
     for (int x = 0; x < n; ++x) {
@@ -364,7 +333,7 @@ inline void finalRow(const float* ref, const float* test, int n, const Constants
         // qf = 0.5: the square root of the larger difference, normalised by 1/sqrt(2).
         exponent[x] = 1.0f - std::sqrt(kScale * std::max(std::abs(e1 - e2), std::abs(p1 - p2)));
     }
-    for (int x = 0; x < n; ++x) out[x] = std::pow(colour[x], exponent[x]);
+    for (int x = 0; x < n; ++x) out[x] = powApprox(colour[x], exponent[x]);
 }
 
 // One thread's buffers, kept across calls so that no tile touches fresh pages.
@@ -379,12 +348,17 @@ struct TileScratch {
 constexpr size_t kImagePlanes = size_t(kHorizontalPlanes) * kTileCols;
 constexpr size_t kRingRow = 2 * kImagePlanes;
 
-// FLIP of output columns [x0, x0 + n) and rows [y0, y1) into map (row-major doubles);
-// returns the sum of those errors, or NaN when an input value is NaN or infinite.
+// The weighted quartiles' buckets: error values in [b / kBuckets, (b + 1) / kBuckets).
+constexpr int kBuckets = 4096;
+inline int bucketOf(double v) { return std::min(int(v * kBuckets), kBuckets - 1); }
+
+// FLIP of output columns [x0, x0 + n) and rows [y0, y1) into map (row-major doubles), and
+// each error added to its bucket of `buckets` (kBuckets sums); returns the sum of those
+// errors, or NaN when an input value is NaN or infinite.
 CBR_SIMD_CLONES
-double flipTile(const Kernels& k, const Constants& constants, const DecodeTable& table, const Image& reference,
-                const Image& test, int x0, int n, int y0, int y1, TileScratch& s, double* map) {
-    const int width = reference.width, height = reference.height;
+double flipTile(const Kernels& k, const Constants& constants, const DecodeTable& table, const Source& reference,
+                const Source& test, int x0, int n, int y0, int y1, TileScratch& s, double* map, double* buckets) {
+    const int width = reference.image->width, height = reference.image->height;
     const int halo = k.halo, window = 2 * halo + 1;
     const size_t line = size_t(kTileCols + 2 * halo);
     s.lines.resize(6 * line);
@@ -392,8 +366,6 @@ double flipTile(const Kernels& k, const Constants& constants, const DecodeTable&
     s.vertical.resize(2 * size_t(kVerticalPlanes) * kTileCols);
     s.work.resize(4 * size_t(kTileCols));
     s.rows.resize(size_t(window));
-    // The narrower kernel starts this many taps into the shared halo.
-    const int colour_skip = halo - k.colour_radius, feature_skip = halo - k.feature_radius;
     float* colour = s.work.data();
     float* exponent = colour + kTileCols;
     float* error = exponent + kTileCols;
@@ -411,13 +383,13 @@ double flipTile(const Kernels& k, const Constants& constants, const DecodeTable&
             const float* lcx = ly + line;
             const float* lcz = lcx + line;
             float* h = ring + size_t(img) * kImagePlanes;
-            rowFilter(ly + colour_skip, n, k.y, h + kHY * kTileCols);
-            rowFilter(lcx + colour_skip, n, k.cx, h + kHCx * kTileCols);
-            rowFilter(lcz + colour_skip, n, k.cz1, h + kHCz1 * kTileCols);
-            rowFilter(lcz + colour_skip, n, k.cz2, h + kHCz2 * kTileCols);
-            rowFilter(ly + feature_skip, n, k.g, h + kHG * kTileCols);
-            rowFilter(ly + feature_skip, n, k.d, h + kHD * kTileCols);
-            rowFilter(ly + feature_skip, n, k.dd, h + kHDD * kTileCols);
+            rowFilter(ly + k.skip(k.y), n, k.y, h + kHY * kTileCols);
+            rowFilter(lcx + k.skip(k.cx), n, k.cx, h + kHCx * kTileCols);
+            rowFilter(lcz + k.skip(k.cz1), n, k.cz1, h + kHCz1 * kTileCols);
+            rowFilter(lcz + k.skip(k.cz2), n, k.cz2, h + kHCz2 * kTileCols);
+            rowFilter(ly + k.skip(k.g), n, k.g, h + kHG * kTileCols);
+            rowFilter(ly + k.skip(k.d), n, k.d, h + kHD * kTileCols);
+            rowFilter(ly + k.skip(k.dd), n, k.dd, h + kHDD * kTileCols);
         }
         if (i < 2 * halo) continue;
         // Output row y0 + r: its window is the ring rows r .. r + 2 halo.
@@ -427,15 +399,15 @@ double flipTile(const Kernels& k, const Constants& constants, const DecodeTable&
         for (int img = 0; img < 2; ++img) {
             const size_t base = size_t(img) * kImagePlanes;
             float* v = s.vertical.data() + size_t(img) * kVerticalPlanes * kTileCols;
-            columnFilter(rows, colour_skip, base + kHY * kTileCols, n, k.y, v + kVY * kTileCols);
-            columnFilter(rows, colour_skip, base + kHCx * kTileCols, n, k.cx, v + kVCx * kTileCols);
-            columnFilter(rows, colour_skip, base + kHCz1 * kTileCols, n, k.cz1, v + kVCz * kTileCols);
-            columnFilter(rows, colour_skip, base + kHCz2 * kTileCols, n, k.cz2, cz2);
+            columnFilter(rows, k.skip(k.y), base + kHY * kTileCols, n, k.y, v + kVY * kTileCols);
+            columnFilter(rows, k.skip(k.cx), base + kHCx * kTileCols, n, k.cx, v + kVCx * kTileCols);
+            columnFilter(rows, k.skip(k.cz1), base + kHCz1 * kTileCols, n, k.cz1, v + kVCz * kTileCols);
+            columnFilter(rows, k.skip(k.cz2), base + kHCz2 * kTileCols, n, k.cz2, cz2);
             addScaled(v + kVCz * kTileCols, cz2, 1.0f, n);
-            columnFilter(rows, feature_skip, base + kHD * kTileCols, n, k.g, v + kVDx * kTileCols);
-            columnFilter(rows, feature_skip, base + kHDD * kTileCols, n, k.g, v + kVDDx * kTileCols);
-            columnFilter(rows, feature_skip, base + kHG * kTileCols, n, k.d, v + kVDy * kTileCols);
-            columnFilter(rows, feature_skip, base + kHG * kTileCols, n, k.dd, v + kVDDy * kTileCols);
+            columnFilter(rows, k.skip(k.g), base + kHD * kTileCols, n, k.g, v + kVDx * kTileCols);
+            columnFilter(rows, k.skip(k.g), base + kHDD * kTileCols, n, k.g, v + kVDDx * kTileCols);
+            columnFilter(rows, k.skip(k.d), base + kHG * kTileCols, n, k.d, v + kVDy * kTileCols);
+            columnFilter(rows, k.skip(k.dd), base + kHG * kTileCols, n, k.dd, v + kVDDy * kTileCols);
         }
         finalRow(s.vertical.data(), s.vertical.data() + size_t(kVerticalPlanes) * kTileCols, n, constants, colour,
                  exponent, error);
@@ -443,6 +415,7 @@ double flipTile(const Kernels& k, const Constants& constants, const DecodeTable&
         for (int x = 0; x < n; ++x) {
             dst[x] = error[x];
             sum += error[x];
+            buckets[bucketOf(error[x])] += error[x];
         }
     }
     return ok ? sum : std::numeric_limits<double>::quiet_NaN();
@@ -450,12 +423,9 @@ double flipTile(const Kernels& k, const Constants& constants, const DecodeTable&
 
 // The tool's weighted percentile: pixels sorted by error, the first error at which the
 // running sum exceeds p times the total (0 when no error is above 0). Found without a
-// full sort: buckets by value give the crossing bucket, and only that bucket is sorted.
-std::array<double, 3> weightedQuartiles(const std::vector<double>& values, double total) {
-    constexpr int kBuckets = 4096;
-    std::vector<double> bucket_sum(kBuckets, 0.0);
-    auto bucketOf = [](double v) { return std::min(int(v * kBuckets), kBuckets - 1); };
-    for (double v : values) bucket_sum[size_t(bucketOf(v))] += v;
+// full sort: the bucket sums give the crossing bucket, and only that bucket is sorted.
+std::array<double, 3> weightedQuartiles(const std::vector<double>& values, const std::vector<double>& bucket_sum,
+                                        double total) {
     constexpr double kPercents[3] = {0.25, 0.5, 0.75};
     std::array<int, 3> bucket{-1, -1, -1};
     std::array<double, 3> before{};
@@ -470,12 +440,25 @@ std::array<double, 3> weightedQuartiles(const std::vector<double>& values, doubl
             running += bucket_sum[size_t(b)];
         }
     }
+    // The crossing buckets' members, gathered by row strips in parallel; sorted below, so
+    // the order in which strips append does not matter.
     std::array<std::vector<double>, 3> members;
-    for (double v : values) {
-        const int b = bucketOf(v);
-        for (int q = 0; q < 3; ++q)
-            if (b == bucket[size_t(q)]) members[size_t(q)].push_back(v);
-    }
+    std::mutex mutex;
+    const int strips = 64;
+    cv::parallel_for_(cv::Range(0, strips), [&](const cv::Range& range) {
+        std::array<std::vector<double>, 3> found;
+        const size_t begin = values.size() * size_t(range.start) / strips;
+        const size_t end = values.size() * size_t(range.end) / strips;
+        for (size_t i = begin; i < end; ++i) {
+            const double v = values[i];
+            const int b = bucketOf(v);
+            for (int q = 0; q < 3; ++q)
+                if (b == bucket[size_t(q)]) found[size_t(q)].push_back(v);
+        }
+        std::lock_guard lock(mutex);
+        for (int q = 0; q < 3; ++q) members[size_t(q)].insert(members[size_t(q)].end(), found[size_t(q)].begin(),
+                                                              found[size_t(q)].end());
+    });
     std::array<double, 3> result{};
     for (int q = 0; q < 3; ++q) {
         if (bucket[size_t(q)] < 0) continue;
@@ -527,27 +510,48 @@ FlipResult flip(const Image& reference, const Image& test, double ppd) {
 
     const int width = reference.width, height = reference.height;
     FlipResult result;
-    result.map = Image{width, height, 1, std::vector<double>(size_t(width) * height)};
+    result.map = Image{width, height, 1, detail::filledBuffer(size_t(width) * height, 0.0)};
     const int tile_cols = (width + kTileCols - 1) / kTileCols;
     const int tile_rows = (height + kTileRows - 1) / kTileRows;
     const int tiles = tile_cols * tile_rows;
+    // The 8-bit codes of both images, or of neither (then each tile decodes the doubles).
+    constexpr int kCodeStripRows = 32;
+    const int code_strips = (height + kCodeStripRows - 1) / kCodeStripRows;
+    const std::unique_ptr<uint8_t[]> codes = detail::scratchBuffer<uint8_t>(2 * reference.data.size());
+    std::vector<uint8_t> coded(size_t(2 * code_strips), 0);
+    cv::parallel_for_(cv::Range(0, 2 * code_strips), [&](const cv::Range& range) {
+        for (int i = range.start; i < range.end; ++i) {
+            const int strip = i % code_strips, y0 = strip * kCodeStripRows;
+            const bool second = i >= code_strips;
+            coded[size_t(i)] = toCodes(table, second ? test : reference, y0, std::min(y0 + kCodeStripRows, height),
+                                       codes.get() + (second ? reference.data.size() : 0));
+        }
+    });
+    const bool all_coded = std::find(coded.begin(), coded.end(), 0) == coded.end();
+    const Source reference_source{&reference, all_coded ? codes.get() : nullptr};
+    const Source test_source{&test, all_coded ? codes.get() + reference.data.size() : nullptr};
     // One slot per tile, summed in order afterwards: the mean does not depend on scheduling.
     std::vector<double> tile_sums(size_t(tiles), 0.0);
+    // Bucket sums per tile too, added in tile order below (deterministic, like the mean).
+    std::vector<double> tile_buckets(size_t(tiles) * kBuckets);
     cv::parallel_for_(cv::Range(0, tiles), [&](const cv::Range& range) {
         thread_local TileScratch scratch;
         for (int t = range.start; t < range.end; ++t) {
             const int x0 = (t % tile_cols) * kTileCols, y0 = (t / tile_cols) * kTileRows;
-            tile_sums[size_t(t)] = flipTile(kernels, constants, table, reference, test, x0,
+            tile_sums[size_t(t)] = flipTile(kernels, constants, table, reference_source, test_source, x0,
                                             std::min(kTileCols, width - x0), y0, std::min(y0 + kTileRows, height),
-                                            scratch, result.map.data.data());
+                                            scratch, result.map.data.data(), tile_buckets.data() + size_t(t) * kBuckets);
         }
     });
     double total = 0;
     for (double s : tile_sums) total += s;
+    std::vector<double> bucket_sum(kBuckets, 0.0);
+    for (int t = 0; t < tiles; ++t)
+        for (int b = 0; b < kBuckets; ++b) bucket_sum[size_t(b)] += tile_buckets[size_t(t) * kBuckets + size_t(b)];
     // A NaN pixel would silently turn every score into NaN; refuse it at the door.
     if (std::isnan(total)) throw std::invalid_argument("flip: image contains a NaN or infinite value");
     result.mean = total / double(result.map.data.size());
-    const auto quartiles = weightedQuartiles(result.map.data, total);
+    const auto quartiles = weightedQuartiles(result.map.data, bucket_sum, total);
     result.q1 = quartiles[0];
     result.median = quartiles[1];
     result.q3 = quartiles[2];
