@@ -1,0 +1,111 @@
+// Per-frame quality metrics in Vulkan compute: MSE, SSIM, LDR-FLIP and edge crawl of one variant
+// against the reference, equal within issue 32's tolerances to what metrics/ computes on the CPU.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include <vulkan/vulkan.h>
+
+#include "metrics/flip.h"
+#include "metrics/temporal.h"
+#include "renderer/vk/pipelines.h"
+#include "renderer/vk/resources.h"
+
+namespace cbr::vk {
+class Context;
+}
+
+namespace cbr::scoring {
+
+struct DeviceMetricsSettings {
+    uint32_t width = 0, height = 0;        // at least 11 x 11 (SSIM's window)
+    double flip_ppd = metrics::kFlipDefaultPpd;  // any finite value > 0
+    metrics::CrawlSettings crawl;
+};
+
+// The figures the CPU path computes (metrics::mse, ssim, flip, CrawlTracker::add), same meaning.
+struct DeviceScores {
+    double mse = 0, ssim = 0, ssim_luma = 0;
+    double flip_mean = 0, flip_q1 = 0, flip_median = 0, flip_q3 = 0;
+    bool has_pair = false;  // false on a chain's first frame or after `cut`
+    double eci = 0, flicker_ratio = 0, valid_fraction = 0, crawl_numerator = 0, crawl_denominator = 0;
+    bool no_edges = false;
+};
+
+class DeviceMetrics {
+public:
+    // Throws vk::Unsupported when the device lacks what the passes need, std::invalid_argument
+    // for settings the CPU metrics refuse too (a frame under 11 x 11, a ppd not finite and > 0,
+    // negative or non-finite crawl settings).
+    DeviceMetrics(vk::Context& ctx, const DeviceMetricsSettings& s);
+    ~DeviceMetrics();
+    DeviceMetrics(const DeviceMetrics&) = delete;
+    DeviceMetrics& operator=(const DeviceMetrics&) = delete;
+
+    // One per variant: its previous frame's blurred lumas and depth (GPU buffers). A chain only
+    // needs the Context alive: it may be destroyed before or after its DeviceMetrics, but never
+    // while a command buffer that recorded it is pending.
+    struct Chain;
+    std::unique_ptr<Chain> makeChain();
+
+    // Size of the host-visible result buffer record() writes.
+    VkDeviceSize resultBytes() const;
+
+    // Records into cmd (outside any render pass) everything that scores `variant` against
+    // `reference`. reference, variant: one uint per pixel, RGBA8 as vkCmdCopyImageToBuffer writes
+    // VK_FORMAT_R8G8B8A8_UNORM (R in the low byte), rows tightly packed, top row first. analysis:
+    // vec4 per pixel = motion.xy (pixels; the surface at p at t was at p + motion at t-1), view
+    // depth at t (0: no surface), the depth that surface had at t-1 (metrics::MotionField).
+    // cut: no pair with the chain's previous frame; the chain restarts from this frame.
+    // result: resultBytes() of host-visible memory, written entirely (partial sums, histogram).
+    // The inputs are copied first (transfer reads, ordered after all earlier commands by the
+    // barrier record() begins with), so they need VK_BUFFER_USAGE_TRANSFER_SRC_BIT and `result`
+    // VK_BUFFER_USAGE_TRANSFER_DST_BIT; record() orders its own buffers against earlier record()
+    // calls on the queue and ends with the result made visible to host reads.
+    void record(VkCommandBuffer cmd, VkBuffer reference, VkBuffer variant, VkBuffer analysis, Chain& chain, bool cut,
+                VkBuffer result);
+
+    // After the command buffer's fence: the figures from the mapped result buffer, summed in
+    // double in a fixed order. `chain` is the one recorded with it (checked for its size).
+    DeviceScores read(const void* mapped_result, const Chain& chain) const;
+
+    // Device memory this object holds, and what each chain holds (bytes).
+    VkDeviceSize scratchBytes() const;
+    VkDeviceSize chainBytes() const;
+
+private:
+    void release();
+    void recordFlip(VkCommandBuffer cmd) const;
+    void recordCrawl(VkCommandBuffer cmd, const Chain& chain, bool pair) const;
+    void dispatch(VkCommandBuffer cmd, const vk::ComputeKernel& kernel, VkDescriptorSet set, int y0, int y1, int r0,
+                  int r1, uint32_t groups_x, uint32_t groups_y) const;
+
+    vk::Context& ctx_;
+    DeviceMetricsSettings settings_;
+    uint32_t groups_x_ = 0, groups_y_ = 0;
+    int flip_halo_ = 0;
+    int band_rows_ = 0;       // FLIP output rows per band
+    int band_plane_ = 0;      // floats per band plane
+    VkDeviceSize result_bytes_ = 0;
+    vk::ComputeKernel ssim_, flip_ycc_, flip_h_, flip_v_, blur_v_, blur_h_, crawl_;
+    vk::Buffer reference_, variant_, analysis_, params_, band_, now_, out_;
+    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    VkDescriptorSet set_ = VK_NULL_HANDLE;  // binding 7 (the previous frame) is `now_`, unused
+};
+
+struct DeviceMetrics::Chain {
+    explicit Chain(vk::Context& ctx) : ctx(ctx) {}
+    ~Chain();
+    Chain(const Chain&) = delete;
+    Chain& operator=(const Chain&) = delete;
+
+    vk::Context& ctx;
+    uint32_t width = 0, height = 0;
+    vk::Buffer state;  // blurred reference luma, blurred variant luma, depth: 3 planes of floats
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet set = VK_NULL_HANDLE;  // the DeviceMetrics' set with binding 7 = state
+    bool has_previous = false;             // set by record(); a cut restarts from the frame recorded
+};
+
+}  // namespace cbr::scoring

@@ -1,0 +1,218 @@
+// The device scorer's filter taps and constants, computed by the same expressions as the CPU
+// metrics (metrics/metrics.cpp, flip.cpp, temporal.cpp keep theirs private), so that both
+// paths filter with the same single-precision weights. SSIM: Wang et al. 2004; FLIP: Andersson
+// et al. 2020 and NVIDIA's tool (github.com/NVlabs/flip, v1.6).
+#include "renderer/scoring/device_metrics_params.h"
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace cbr::scoring::detail {
+namespace {
+
+// FLIP section 4 and its contrast sensitivity functions (metrics/flip.cpp).
+constexpr float kQc = 0.7f;
+constexpr float kPc = 0.4f;
+constexpr double kFeatureWidthDeg = 0.082;
+struct Csf {
+    double a1, b1, a2, b2;
+};
+constexpr Csf kCsfAchromatic{1.0, 0.0047, 0.0, 1e-5};
+constexpr Csf kCsfRedGreen{1.0, 0.0053, 0.0, 1e-5};
+constexpr Csf kCsfBlueYellow{34.1, 0.04, 13.5, 0.025};
+constexpr float kWhite[3] = {0.950428545f, 1.0f, 1.088900371f};
+constexpr float kInvWhite[3] = {1.052156925f, 1.0f, 0.918357670f};
+constexpr float kRgbToXyz[3][3] = {
+    {10135552.0f / 24577794.0f, 8788810.0f / 24577794.0f, 4435075.0f / 24577794.0f},
+    {2613072.0f / 12288897.0f, 8788810.0f / 12288897.0f, 887015.0f / 12288897.0f},
+    {1425312.0f / 73733382.0f, 8788810.0f / 73733382.0f, 70074185.0f / 73733382.0f}};
+constexpr float kXyzToRgb[3][3] = {{3.241003275f, -1.537398934f, -0.498615861f},
+                                   {-0.969224334f, 1.875930071f, 0.041554224f},
+                                   {0.055639423f, -0.204011202f, 1.057148933f}};
+constexpr float kLabDelta = 6.0f / 29.0f;
+constexpr float kLabDeltaCube = kLabDelta * kLabDelta * kLabDelta;
+constexpr float kLabSlope = 1.0f / (3.0f * kLabDelta * kLabDelta);
+constexpr float kLabOffset = 4.0f / 29.0f;
+
+// Appends w as floats; returns where they start.
+int append(std::vector<float>& taps, const std::vector<double>& w) {
+    const int at = int(taps.size());
+    for (double v : w) taps.push_back(float(v));
+    return at;
+}
+
+// scipy.ndimage._gaussian_kernel1d at sigma 1.5, radius 5 (Wang's 11 taps), as metrics.cpp.
+std::vector<double> ssimKernel() {
+    std::vector<double> k(11);
+    double sum = 0;
+    for (int i = 0; i < 11; ++i) {
+        const double x = i - 5;
+        k[size_t(i)] = std::exp(-0.5 / (1.5 * 1.5) * (x * x));
+        sum += k[size_t(i)];
+    }
+    for (double& v : k) v /= sum;
+    return k;
+}
+
+// scipy's gaussian_filter kernel with truncate 4 (temporal.cpp blurKernel); sigma 0: no blur.
+std::vector<double> blurKernel(double sigma) {
+    if (sigma == 0) return {1.0};
+    const int radius = int(4.0 * sigma + 0.5);
+    std::vector<double> k(size_t(2 * radius + 1));
+    double sum = 0;
+    for (int i = 0; i <= 2 * radius; ++i) {
+        const double x = i - radius;
+        k[size_t(i)] = std::exp(-0.5 / (sigma * sigma) * (x * x));
+        sum += k[size_t(i)];
+    }
+    for (double& v : k) v /= sum;
+    return k;
+}
+
+// The three CSFs over one radius (3 standard deviations of the widest Gaussian), blue-yellow as
+// two separable Gaussians scaled so that the 2D kernel sums to 1 (flip.cpp makeKernels).
+void flipColourKernels(double ppd, Params& p) {
+    constexpr double pi = std::numbers::pi;
+    const double max_b = std::max({kCsfAchromatic.b1, kCsfRedGreen.b1, kCsfBlueYellow.b1, kCsfAchromatic.b2,
+                                   kCsfRedGreen.b2, kCsfBlueYellow.b2});
+    const int radius = int(std::ceil(3.0 * std::sqrt(max_b / (2.0 * pi * pi)) * ppd));
+    const size_t taps = size_t(2 * radius + 1);
+    std::vector<double> y(taps), cx(taps), cz1(taps), cz2(taps);
+    auto gaussian = [](double x2, double a, double b) { return a * std::sqrt(pi / b) * std::exp(-pi * pi * x2 / b); };
+    double sy = 0, scx = 0, s1 = 0, s2 = 0;
+    for (size_t i = 0; i < taps; ++i) {
+        const double x = (double(i) - radius) / ppd;
+        y[i] = gaussian(x * x, kCsfAchromatic.a1, kCsfAchromatic.b1);
+        cx[i] = gaussian(x * x, kCsfRedGreen.a1, kCsfRedGreen.b1);
+        cz1[i] = std::sqrt(kCsfBlueYellow.a1 * std::sqrt(pi / kCsfBlueYellow.b1)) *
+                 std::exp(-pi * pi * x * x / kCsfBlueYellow.b1);
+        cz2[i] = std::sqrt(kCsfBlueYellow.a2 * std::sqrt(pi / kCsfBlueYellow.b2)) *
+                 std::exp(-pi * pi * x * x / kCsfBlueYellow.b2);
+    }
+    for (size_t i = 0; i < taps; ++i) sy += y[i], scx += cx[i], s1 += cz1[i], s2 += cz2[i];
+    const double sz = std::sqrt(s1 * s1 + s2 * s2);
+    for (size_t i = 0; i < taps; ++i) y[i] /= sy, cx[i] /= scx, cz1[i] /= sz, cz2[i] /= sz;
+    p.head.flip_colour_radius = radius;
+    p.head.flip_y = append(p.taps, y);
+    p.head.flip_cx = append(p.taps, cx);
+    p.head.flip_cz1 = append(p.taps, cz1);
+    p.head.flip_cz2 = append(p.taps, cz2);
+}
+
+// Edge and point detectors: first and second derivative of a Gaussian of standard deviation
+// w/2 degrees over 3 sigma; the Gaussian sums to 1, the derivatives' positive and negative
+// weights to +1 and -1 (flip.cpp makeKernels).
+void flipFeatureKernels(double ppd, Params& p) {
+    const double sigma = 0.5 * kFeatureWidthDeg * ppd;
+    const int radius = int(std::ceil(3.0 * sigma));
+    const size_t taps = size_t(2 * radius + 1);
+    std::vector<double> g(taps), d(taps), dd(taps);
+    double sg = 0, dpos = 0, dneg = 0, ddpos = 0, ddneg = 0;
+    for (size_t i = 0; i < taps; ++i) {
+        const double x = double(i) - radius;
+        g[i] = std::exp(-x * x / (2.0 * sigma * sigma));
+        d[i] = -x * g[i];
+        dd[i] = (x * x / (sigma * sigma) - 1.0) * g[i];
+        sg += g[i];
+        (d[i] > 0 ? dpos : dneg) += std::abs(d[i]);
+        (dd[i] > 0 ? ddpos : ddneg) += std::abs(dd[i]);
+    }
+    for (size_t i = 0; i < taps; ++i) {
+        g[i] /= sg;
+        const double dn = d[i] > 0 ? dpos : dneg, ddn = dd[i] > 0 ? ddpos : ddneg;
+        d[i] = dn > 0 ? d[i] / dn : 0.0;
+        dd[i] = ddn > 0 ? dd[i] / ddn : 0.0;
+    }
+    p.head.flip_feature_radius = radius;
+    p.head.flip_g = append(p.taps, g);
+    p.head.flip_d = append(p.taps, d);
+    p.head.flip_dd = append(p.taps, dd);
+}
+
+// flip.cpp's cube root (a guess from the float's bits, two Halley steps), for the same cmax.
+float cubeRoot(float t) {
+    const int32_t bits = std::bit_cast<int32_t>(t);
+    float y = std::bit_cast<float>(int32_t(float(bits) * (1.0f / 3.0f)) + 0x2A555555);
+    for (int i = 0; i < 2; ++i) {
+        const float y3 = y * y * y;
+        y = y * (y3 + 2.0f * t) / (2.0f * y3 + t);
+    }
+    return y;
+}
+
+float labF(float t) { return t > kLabDeltaCube ? cubeRoot(t) : kLabSlope * t + kLabOffset; }
+
+// cmax: HyAB between Hunt-adjusted green and blue, to the power qc (flip.cpp maxColourError).
+float maxColourError() {
+    float lab[2][3];
+    const float rgb[2][3] = {{0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};
+    for (int i = 0; i < 2; ++i) {
+        float xyz[3];
+        for (int j = 0; j < 3; ++j)
+            xyz[j] = (kRgbToXyz[j][0] * rgb[i][0] + kRgbToXyz[j][1] * rgb[i][1] + kRgbToXyz[j][2] * rgb[i][2]) *
+                     kInvWhite[j];
+        const float fx = labF(xyz[0]), fy = labF(xyz[1]), fz = labF(xyz[2]);
+        lab[i][0] = 116.0f * fy - 16.0f;
+        lab[i][1] = 0.01f * lab[i][0] * (500.0f * (fx - fy));
+        lab[i][2] = 0.01f * lab[i][0] * (200.0f * (fy - fz));
+    }
+    const float hyab = std::abs(lab[0][0] - lab[1][0]) +
+                       std::sqrt((lab[0][1] - lab[1][1]) * (lab[0][1] - lab[1][1]) +
+                                 (lab[0][2] - lab[1][2]) * (lab[0][2] - lab[1][2]));
+    return std::pow(hyab, kQc);
+}
+
+float srgbToLinear(float s) { return s <= 0.04045f ? s / 12.92f : std::pow((s + 0.055f) / 1.055f, 2.4f); }
+
+void checkCrawl(const char* name, double value) {
+    if (!(value >= 0) || !std::isfinite(value))
+        throw std::invalid_argument(std::string("DeviceMetrics: crawl.") + name + " must be finite and >= 0, got " +
+                                    std::to_string(value));
+}
+
+}  // namespace
+
+Params makeParams(const DeviceMetricsSettings& s) {
+    if (!(s.flip_ppd > 0.0) || !std::isfinite(s.flip_ppd))
+        throw std::invalid_argument("DeviceMetrics: flip_ppd must be finite and > 0, got " +
+                                    std::to_string(s.flip_ppd));
+    checkCrawl("blur_sigma", s.crawl.blur_sigma);
+    checkCrawl("margin", s.crawl.margin);
+    checkCrawl("edge_threshold", s.crawl.edge_threshold);
+    checkCrawl("disocclusion_tolerance", s.crawl.disocclusion_tolerance);
+    Params p;
+    p.head.ssim_taps = append(p.taps, ssimKernel());
+    const std::vector<double> blur = blurKernel(s.crawl.blur_sigma);
+    p.head.blur_radius = int(blur.size() / 2);
+    p.head.blur_taps = append(p.taps, blur);
+    flipColourKernels(s.flip_ppd, p);
+    flipFeatureKernels(s.flip_ppd, p);
+
+    p.head.margin = s.crawl.margin;
+    p.head.edge_threshold2 = float(s.crawl.edge_threshold * s.crawl.edge_threshold);
+    p.head.tolerance = float(s.crawl.disocclusion_tolerance);
+    p.head.flicker_floor = float(1.0 / 255.0);
+    p.head.cmax = maxColourError();
+    p.head.pccmax = kPc * p.head.cmax;
+    p.head.lab_delta_cube = kLabDeltaCube;
+    p.head.lab_slope = kLabSlope;
+    p.head.lab_offset = kLabOffset;
+    p.head.feature_scale = float(1.0 / (116.0 * std::numbers::sqrt2));
+    for (int i = 0; i < 3; ++i) {
+        p.head.white[i] = kWhite[i];
+        p.head.inv_white[i] = kInvWhite[i];
+        for (int j = 0; j < 3; ++j) {
+            p.head.rgb_to_xyz[3 * i + j] = kRgbToXyz[i][j];
+            p.head.xyz_to_rgb[3 * i + j] = kXyzToRgb[i][j];
+        }
+    }
+    for (int k = 0; k < 256; ++k) p.head.srgb_to_linear[k] = srgbToLinear(float(k) / 255.0f);
+    return p;
+}
+
+}  // namespace cbr::scoring::detail

@@ -1,0 +1,100 @@
+#version 460
+// Edge crawl, steps 3-6 of method/metrics.md ("Edge crawl"), as metrics/temporal.cpp: the valid
+// mask (margin, warp source inside the margin, no disocclusion by the nearest previous depth),
+// the reference's dilated Sobel edges, the bilinear backward warp of the previous blurred lumas,
+// and per workgroup the sums of (dV - dR)^2, |dV|, max(|dR|, 1/255), edge pixels, valid pixels.
+#extension GL_GOOGLE_include_directive : require
+#include "score_common.glsl"
+layout(local_size_x = SCORE_GROUP, local_size_y = SCORE_GROUP) in;
+
+const float kMaxDepth = 3.40282347e38;  // FLT_MAX: larger depths are infinite, no surface
+
+shared vec3 sums[SCORE_THREADS];
+shared uvec2 counts[SCORE_THREADS];
+
+// |Sobel / 8| of the blurred reference luma at q above the threshold; neighbours clamped.
+bool edgeAt(int qx, int qy) {
+    const int w = P.width, h = P.height;
+    const int l = max(qx - 1, 0), r = min(qx + 1, w - 1);
+    const int up = max(qy - 1, 0) * w, mid = qy * w, down = min(qy + 1, h - 1) * w;
+    const float gx = ((now[up + r] - now[up + l]) + 2.0 * (now[mid + r] - now[mid + l]) +
+                      (now[down + r] - now[down + l])) * 0.125;
+    const float gy = ((now[down + l] - now[up + l]) + 2.0 * (now[down + qx] - now[up + qx]) +
+                      (now[down + r] - now[up + r])) * 0.125;
+    return gx * gx + gy * gy > P.edge_threshold2;
+}
+
+// The 3x3 dilation of the edges, over the neighbours inside the frame.
+bool nearEdge(int x, int y) {
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            const int qx = x + dx, qy = y + dy;
+            if (qx >= 0 && qy >= 0 && qx < P.width && qy < P.height && edgeAt(qx, qy)) return true;
+        }
+    return false;
+}
+
+// Bilinear sample of previous plane `plane` at pixel (x0 + fx, y0 + fy), 0 <= fx, fy <= 1.
+float warped(int plane, int x0, int y0, float fx, float fy) {
+    const int w = P.width, base = plane * w * P.height;
+    const int x1 = min(x0 + 1, w - 1), y1 = min(y0 + 1, P.height - 1);
+    const int r0 = base + y0 * w, r1 = base + y1 * w;
+    const float top = previous[r0 + x0] + fx * (previous[r0 + x1] - previous[r0 + x0]);
+    const float bottom = previous[r1 + x0] + fx * (previous[r1 + x1] - previous[r1 + x0]);
+    return top + fy * (bottom - top);
+}
+
+void main() {
+    const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
+    const int w = P.width, h = P.height, n = w * h, m = P.margin;
+    vec3 s = vec3(0.0);   // (dV - dR)^2, |dV|, max(|dR|, floor)
+    uvec2 c = uvec2(0u);  // edge pixels scored, valid pixels
+    if (x >= m && y >= m && x < w - m && y < h - m) {
+        const int p = y * w + x;
+        const vec4 a = analysis[p];
+        // The warp source x + motion inside the margin, compared without rounding x + motion;
+        // NaN motion fails every comparison.
+        const bool inside = a.x >= float(m - x) && a.x <= float(w - 1 - m - x) && a.y >= float(m - y) &&
+                            a.y <= float(h - 1 - m - y);
+        if (inside) {
+            // Floor and fraction of the motion, not of x + motion, which float would round at 4K
+            // widths (the CPU adds in double); the fraction is exact but within 2^-24 below an integer.
+            const vec2 whole = floor(a.xy), frac = a.xy - whole;
+            const int x0 = x + int(whole.x), y0 = y + int(whole.y);
+            const int nx = x0 + (frac.x >= 0.5 ? 1 : 0), ny = y0 + (frac.y >= 0.5 ? 1 : 0);
+            const float before = previous[2 * n + ny * w + nx];
+            const float depth = a.z, expected = a.w;
+            const bool surface = depth > 0.0 && depth <= kMaxDepth && expected > 0.0 && expected <= kMaxDepth &&
+                                 abs(before - expected) <= P.tolerance * expected;
+            if (surface) {
+                c.y = 1u;
+                if (nearEdge(x, y)) {
+                    const float dv = now[n + p] - warped(1, x0, y0, frac.x, frac.y);
+                    const float dr = now[p] - warped(0, x0, y0, frac.x, frac.y);
+                    s = vec3((dv - dr) * (dv - dr), abs(dv), max(abs(dr), P.flicker_floor));
+                    c.x = 1u;
+                }
+            }
+        }
+    }
+    const uint t = gl_LocalInvocationIndex;
+    sums[t] = s;
+    counts[t] = c;
+    barrier();
+    for (uint stride = SCORE_THREADS / 2; stride > 0u; stride >>= 1) {
+        if (t < stride) {
+            sums[t] += sums[t + stride];
+            counts[t] += counts[t + stride];
+        }
+        barrier();
+    }
+    if (t == 0u) {
+        const uint group = gl_WorkGroupID.y * uint(P.groups_x) + gl_WorkGroupID.x;
+        const uint o = P.crawl_base + group * SCORE_CRAWL_WORDS;
+        result[o] = floatBitsToUint(sums[0].x);
+        result[o + 1u] = floatBitsToUint(sums[0].y);
+        result[o + 2u] = floatBitsToUint(sums[0].z);
+        result[o + 3u] = counts[0].x;
+        result[o + 4u] = counts[0].y;
+    }
+}
