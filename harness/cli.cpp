@@ -160,6 +160,11 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_option("--scene-scale", o.scene_scale, "scale the scene and the camera path about the origin (0.001: mm)")
         ->capture_default_str();
     cmd->add_option("--flip-ppd", o.flip_ppd, kFlipPpdHelp);
+    cmd->add_option("--scorer", o.scorer,
+                    "where quality frames are scored: device (Vulkan compute, where the images are), cpu, or auto "
+                    "(device on GPUs, cpu on lavapipe, where it is faster)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"auto", "device", "cpu"}));
     cmd->add_option("--near", o.near, "near plane of every keyframe, scene units (after placement)");
     cmd->add_option("--far", o.far, "far plane of every keyframe, scene units (after placement)");
 }

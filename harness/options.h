@@ -49,6 +49,7 @@ struct RunOptions {
     std::string exports;                 // --export: comma list of formats (harness/export.h)
     int ssaa = 4;                        // k x k samples per pixel of the ssaa reference
     double flip_ppd = metrics::kFlipDefaultPpd;  // FLIP's observer: pixels per degree of visual angle
+    std::string scorer = "auto";         // auto | device | cpu: where quality frames are scored
     // Placement (harness/placement.h): world' = offset + scale * world, scene and path together.
     std::string scene_offset;            // "X,Y,Z" ("": none)
     double scene_scale = 1.0;

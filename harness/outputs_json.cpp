@@ -209,6 +209,9 @@ json metricsJson(const RunContext& rc) {
                                              std::to_string(rc.options.ssaa) + " samples per pixel, box filter in HDR"
                                        : std::string("full")},
                 {"image_io", metrics::imageIoBackend()},
+                {"scorer", r.scorer},
+                {"scorer_requested", rc.options.scorer},
+                {"scorer_note", r.scorer_note},
                 {"scored_repeat", 0}};
     if (!r.reference_ms.empty()) out["reference_gpu_ms_median"] = median(r.reference_ms);
     return out;

@@ -169,6 +169,42 @@ void QualityScorer::submitScore(Chain& c, const std::string& variant, FrameRow& 
     });
 }
 
+void QualityScorer::offerWorst(const std::string& variant, int frame, const Quality& q, Bytes reference, Bytes image,
+                               Bytes classes) {
+    Chain& c = chain(variant);
+    std::lock_guard lock(c.mutex);
+    if (q.ssim && (c.worst_ssim.frame < 0 || *q.ssim < c.worst_ssim.value))
+        c.worst_ssim = {frame, *q.ssim, reference, image, classes, nullptr};
+    if (q.eci && (c.worst_eci.frame < 0 || *q.eci > c.worst_eci.value))
+        c.worst_eci = {frame, *q.eci, reference, image, classes, nullptr};
+}
+
+void fillQuality(Quality& q, const scoring::DeviceScores& d) {
+    auto put = [&q](std::optional<double>& field, double value, const char* name) {
+        if (std::isfinite(value)) field = value;
+        else q.note += std::string(name) + " not finite; ";
+    };
+    if (std::isfinite(d.mse) && d.mse >= 0) {
+        q.mse = d.mse;
+        q.psnr_db = metrics::psnrFromMse(d.mse);
+    } else {
+        q.note += "mse not finite; ";
+    }
+    put(q.ssim, d.ssim, "ssim");
+    put(q.ssim_luma, d.ssim_luma, "ssim_luma");
+    put(q.flip_mean, d.flip_mean, "flip");
+    put(q.flip_q1, d.flip_q1, "flip_q1");
+    put(q.flip_median, d.flip_median, "flip_median");
+    put(q.flip_q3, d.flip_q3, "flip_q3");
+    if (!d.has_pair) return;  // first frame or after a cut: no pair to compare
+    put(q.eci, d.eci, "eci");
+    put(q.flicker_ratio, d.flicker_ratio, "flicker_ratio");
+    put(q.crawl_valid_fraction, d.valid_fraction, "crawl_valid_fraction");
+    q.crawl_numerator = d.crawl_numerator;
+    q.crawl_denominator = d.crawl_denominator;
+    if (d.no_edges) q.note += "no reference edges in the valid region: ECI 0; ";
+}
+
 // Called with the chain's mutex held, in frame order.
 void QualityScorer::crawlStep(const std::string& variant, FrameRow& row, const QualityFrame& frame, const Bytes& ref) {
     Chain& c = *chains_.at(variant);

@@ -16,6 +16,7 @@
 #include "harness/worker_pool.h"
 #include "metrics/image.h"
 #include "metrics/temporal.h"
+#include "renderer/scoring/device_metrics.h"
 
 namespace cbr::harness {
 
@@ -48,6 +49,10 @@ public:
     // Scores `frame` of `variant` into `row` (which must outlive finish()). `is_reference`:
     // the variant is the reference itself (PSNR inf, SSIM 1, ECI 0, FLIP 0 without computing).
     void score(const std::string& variant, bool is_reference, FrameRow& row, QualityFrame frame);
+    // A frame scored elsewhere (on the device) that may be the variant's worst by SSIM or by
+    // edge crawl: its images, kept if so.
+    void offerWorst(const std::string& variant, int frame, const Quality& quality, Bytes reference, Bytes image,
+                    Bytes classes);
     // Waits for every job; writes the worst frames (by SSIM and by ECI) of each variant
     // as PNGs under dir/worst/, with their error, SSIM, FLIP, crawl and class maps, each
     // distinct image once, encoded on the workers, and the report's smaller copies under
@@ -81,6 +86,10 @@ private:
 
 // Every distinct file of the worst frames, in first-use order (run.json `files`).
 std::vector<std::string> worstFiles(const std::vector<WorstFrame>& worst);
+
+// The row's figures from the device scorer's (the same definitions; notes where one is
+// missing or not finite).
+void fillQuality(Quality& quality, const scoring::DeviceScores& scores);
 
 // Heat-map colouring of a one-channel image (0 black ... 1 white through red and yellow).
 std::vector<uint8_t> heatMap(const metrics::Image& value, double scale);

@@ -92,6 +92,8 @@ struct RunResults {
     std::vector<std::string> worst_files;    // every distinct file under worst/
     vk::CopyBandwidth copy_bandwidth;        // measured after the variants, for the resolve's bandwidth
     SceneLoad scene_load;
+    std::string scorer = "cpu";  // where the quality frames were scored: device | cpu
+    std::string scorer_note;     // why, when --scorer auto chose, or the device could not
 };
 
 }  // namespace cbr::harness

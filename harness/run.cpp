@@ -169,6 +169,7 @@ int runBenchmark(const RunOptions& options) {
     RunState s(p, ctx, gpu_scene, out.path(), wall);
     makeRenderers(s);
     makeSsaaReference(s);
+    chooseScorer(s);
     calibrateSlowdown(s);
     renderQualityFrames(s);
     renderRepetitions(s);

@@ -18,6 +18,7 @@
 #include "harness/worker_pool.h"
 #include "renderer/gpu/gpu_scene.h"
 #include "renderer/renderer.h"
+#include "renderer/scoring/frame_scoring.h"
 #include "renderer/scene/scene.h"
 #include "renderer/variants/variants.h"
 #include "renderer/vk/context.h"
@@ -76,6 +77,9 @@ struct RunState {
     std::vector<FrameRow> quality_rows;
     FrameRow& qualityRow(size_t config, size_t frame) { return quality_rows[config * p.poses.size() + frame]; }
     ProgressBar progress;  // frames rendered, on a terminal
+    // --scorer device (or auto on a GPU): the metrics in Vulkan compute, shared by the
+    // renderers (declared before them, so it outlives them).
+    std::unique_ptr<scoring::DeviceScoring> device_scoring;
     // One renderer per variant for the whole run: pipelines and targets are built once.
     std::vector<std::unique_ptr<render::Renderer>> renderers;
     std::unique_ptr<render::Renderer> ssaa_reference;  // --reference ssaa, during the quality pass
@@ -87,6 +91,8 @@ constexpr int kQualityPass = -1;
 // The loop's steps in the order runBenchmark calls them (run_loop.cpp).
 void makeSsaaReference(RunState& s);
 void makeRenderers(RunState& s);
+// --scorer: the device scorer for every renderer, or the CPU's (RunResults::scorer says which).
+void chooseScorer(RunState& s);
 void calibrateSlowdown(RunState& s);
 void renderQualityFrames(RunState& s);
 void renderRepetitions(RunState& s);

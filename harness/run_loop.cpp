@@ -141,12 +141,24 @@ AlignmentCheck checkAlignment(const std::vector<uint8_t>& variant, const std::ve
 // other full configurations differ only in shading cost and are scored against it).
 bool isReference(const RunState& s, size_t vi) { return vi == 0 && s.options.reference != "ssaa"; }
 
+// A quality frame: read back for the CPU scorer; scored on the device otherwise, and read
+// back only where the host needs the image (the alignment check's frames, --save-frames).
+render::FrameRequest qualityRequest(const RunState& s, size_t i) {
+    if (!s.device_scoring) return request(s.p, i, true);
+    const bool host = s.options.save_frames || (i + 1 >= s.mid && i <= s.mid + 1);
+    render::FrameRequest req = request(s.p, i, host);
+    req.score = true;
+    return req;
+}
+
 // A reference frame to the scorer, for every configuration that scores against it; the
 // frames around the middle stay for the alignment check.
 void keepReference(RunState& s, size_t i, const Bytes& image) {
+    if (!image) return;
+    if (i + 1 >= s.mid && i <= s.mid + 1) s.reference_frames[i] = image;
+    if (s.device_scoring) return;  // the device keeps its own
     int uses = 0;
     for (size_t vi = 0; vi < s.p.configs.size(); ++vi) uses += !isReference(s, vi) && s.results.variants[vi].status == "ok";
-    if (i + 1 >= s.mid && i <= s.mid + 1) s.reference_frames[i] = image;
     s.scorer.setReference(i, image, uses);
 }
 
@@ -179,7 +191,8 @@ public:
         if (vr_.status != "ok") return;
         guarded([&] {
             throwIfInterrupted();
-            for (auto& fr : s_.renderers[vi_]->submit(request(s_.p, i, !timed()))) keep(std::move(fr));
+            for (auto& fr : s_.renderers[vi_]->submit(timed() ? request(s_.p, i, false) : qualityRequest(s_, i)))
+                keep(std::move(fr));
         });
     }
     void end() {
@@ -270,6 +283,7 @@ private:
         row.variant = vr_.name;
         row.frame = fr.index;
         s_.progress.step("quality frames " + vr_.name);
+        if (s_.device_scoring) return keepDeviceScored(row, std::move(fr));
         if (fr.rgba.empty()) return;
         const bool is_reference = isReference(s_, vi_);
         size_t i = size_t(fr.index);
@@ -286,6 +300,27 @@ private:
         Stopwatch wait;
         s_.workers.waitUntilAtMost(kMaxQueuedJobs);
         scoring_wait_s_ += wait.seconds();
+    }
+
+    // Scored on the device: the figures into the row; a frame that is the worst so far came
+    // with its images, for worst/.
+    void keepDeviceScored(FrameRow& row, render::FrameResult&& fr) {
+        const size_t i = size_t(fr.index);
+        auto bytes = [](std::vector<uint8_t>& v) {
+            return v.empty() ? nullptr : std::make_shared<const std::vector<uint8_t>>(std::move(v));
+        };
+        Bytes image = bytes(fr.rgba), classes = bytes(fr.diagnostic), reference = bytes(fr.reference_rgba);
+        if (image && i == s_.mid) s_.mid_images[vi_] = image;
+        if (isReference(s_, vi_)) {
+            keepReference(s_, i, image);
+            s_.scorer.score(vr_.name, true, row, QualityFrame{fr.index, image, nullptr, nullptr, false});
+        } else if (fr.device_scores) {
+            fillQuality(row.quality, *fr.device_scores);
+            if (reference && image) s_.scorer.offerWorst(vr_.name, fr.index, row.quality, reference, image, classes);
+        } else {
+            row.quality.note += "not scored on the device; ";
+        }
+        if (s_.options.save_frames && image) savePng(s_, vr_.name, fr.index, image, classes);
     }
 
     static constexpr size_t kMaxQueuedJobs = 16;
@@ -347,6 +382,40 @@ void makeRenderers(RunState& s) {
     }
 }
 
+// --scorer: auto takes the device on a GPU and the CPU on lavapipe, where the CPU scorer is
+// the faster (docs/results/current.md); a device that cannot run the metrics falls back to
+// the CPU under auto, and stops the run under `device`.
+void chooseScorer(RunState& s) {
+    const std::string& want = s.options.scorer;
+    if (want == "cpu" || (want == "auto" && s.ctx.description.is_lavapipe)) {
+        s.results.scorer = "cpu";
+        if (want == "auto") s.results.scorer_note = "auto: lavapipe, where the CPU scorer is faster";
+        return;
+    }
+    int in_flight = 1;
+    for (const auto& c : s.p.configs) in_flight = std::max(in_flight, c.settings.frames_in_flight);
+    WallAccount::Scope scope(s.wall, WallPart::Pipelines);
+    try {
+        scoring::DeviceMetricsSettings settings;
+        settings.width = uint32_t(s.w);
+        settings.height = uint32_t(s.h);
+        settings.flip_ppd = s.options.flip_ppd;
+        s.device_scoring = std::make_unique<scoring::DeviceScoring>(s.ctx, settings, in_flight);
+    } catch (const vk::Unsupported& e) {
+        if (want == "device") throw std::invalid_argument(std::string("--scorer device: ") + e.what() + "; expected --scorer cpu or auto on this device");
+        s.results.scorer = "cpu";
+        s.results.scorer_note = std::string("auto: the device cannot score (") + e.what() + ")";
+        return;
+    }
+    for (size_t vi = 0; vi < s.renderers.size(); ++vi)
+        if (s.renderers[vi])
+            s.renderers[vi]->scoreOnDevice(*s.device_scoring, isReference(s, vi) ? scoring::ScoringRole::Reference
+                                                                                  : scoring::ScoringRole::Variant);
+    if (s.ssaa_reference) s.ssaa_reference->scoreOnDevice(*s.device_scoring, scoring::ScoringRole::Reference);
+    s.results.scorer = "device";
+    if (want == "auto") s.results.scorer_note = "auto: a GPU, where the images are";
+}
+
 // A debug slowdown calibrates on its first warm-up frames: give each renderer enough
 // of them before the first repetition, so every repetition applies the same amount.
 void calibrateSlowdown(RunState& s) {
@@ -376,7 +445,7 @@ void renderQualityFrames(RunState& s) {
     for (size_t i = 0; i < s.p.poses.size(); ++i) {
         if (s.ssaa_reference) {
             throwIfInterrupted();
-            for (auto& fr : s.ssaa_reference->submit(request(s.p, i, true))) readback += keepSsaaFrame(s, std::move(fr));
+            for (auto& fr : s.ssaa_reference->submit(qualityRequest(s, i))) readback += keepSsaaFrame(s, std::move(fr));
         }
         for (auto& pass : passes) pass->frame(i);
     }

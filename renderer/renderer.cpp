@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "renderer/passes/readback_pass.h"
+#include "renderer/scoring/frame_scoring.h"
 #include "renderer/shaders/shared.h"
 #include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
@@ -79,6 +80,7 @@ struct Renderer::Slot {
     vk::Buffer instances;   // model and previous model matrix per instance
     vk::Buffer lights;      // GpuLight records, positions relative to this frame's camera
     VkDescriptorSet frame_set = VK_NULL_HANDLE;
+    size_t index = 0;  // in slots_
     bool in_flight = false;
     bool has_readback = false;
     FrameRequest request;
@@ -141,6 +143,7 @@ Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants:
     frame_pool_ = vk::createPool(ctx, frame_bindings, uint32_t(n));
     for (int i = 0; i < n; ++i) {
         auto slot = std::make_unique<Slot>();
+        slot->index = size_t(i);
         VkCommandBufferAllocateInfo a{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
         a.commandPool = ctx.command_pool;
         a.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -220,6 +223,7 @@ Renderer::~Renderer() {
 
 std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
     std::vector<FrameResult> done;
+    const size_t slot_index = next_slot_;
     Slot& slot = *slots_[next_slot_];
     next_slot_ = (next_slot_ + 1) % slots_.size();
     if (slot.in_flight) {
@@ -235,7 +239,7 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
     graph::Graph graph;
     variant_->declare(graph, setup);
     graph.setOutputs({&variant_->display()});
-    if (request.readback) addReadbacks(graph, slot, setup.scene_frame);
+    if (request.readback || request.score) addReadbacks(graph, slot_index, request, setup.scene_frame);
     writeUniforms(slot, request, setup.params);
     if (spin_.pipeline) addSlowdownSpin(graph, request);
     recordFrame(slot, graph);
@@ -280,13 +284,30 @@ std::shared_ptr<passes::SceneFrame> Renderer::prepareSceneFrame(Slot& slot, cons
     return frame;
 }
 
-// A quality frame copies its display (and diagnostic) image for the host, and renders the
-// untimed analysis pass.
-void Renderer::addReadbacks(graph::Graph& graph, Slot& slot, const std::shared_ptr<passes::SceneFrame>& frame) {
-    passes::addReadbackPass(graph, variant_->display(), slot.readback.buffer);
-    if (vk::Image* diagnostic = variant_->diagnosticImage()) passes::addReadbackPass(graph, *diagnostic, slot.diagnostic.buffer);
-    if (!settings_.analysis) return;
-    // Unjittered, full size, after every timed pass: never part of a frame's GPU time.
+// A quality frame copies its display (and diagnostic) image for the host, renders the
+// untimed analysis pass, and (scored on the device) adds the scoring passes.
+void Renderer::addReadbacks(graph::Graph& graph, size_t slot_index, const FrameRequest& request,
+                            const std::shared_ptr<passes::SceneFrame>& frame) {
+    Slot& slot = *slots_[slot_index];
+    const bool host = request.readback, device = request.score && scoring_;
+    if (host) {
+        passes::addReadbackPass(graph, variant_->display(), slot.readback.buffer);
+        if (vk::Image* diagnostic = variant_->diagnosticImage()) passes::addReadbackPass(graph, *diagnostic, slot.diagnostic.buffer);
+    }
+    const bool analysis = settings_.analysis && (host || (device && scoring_->needsAnalysis()));
+    if (analysis) addAnalysis(graph, frame);
+    if (host && analysis) passes::addReadbackPass(graph, analysis_, slot.analysis.buffer);
+    if (device)
+        scoring_->addPasses(graph, slot_index, request, variant_->display(), variant_->diagnosticImage(),
+                            analysis ? &analysis_ : nullptr);
+}
+
+void Renderer::scoreOnDevice(scoring::DeviceScoring& shared, scoring::ScoringRole role) {
+    scoring_ = std::make_unique<scoring::FrameScoring>(shared, role, slots_.size(), variant_->diagnosticImage() != nullptr);
+}
+
+// Unjittered, full size, after every timed pass: never part of a frame's GPU time.
+void Renderer::addAnalysis(graph::Graph& graph, const std::shared_ptr<passes::SceneFrame>& frame) {
     auto analysis_frame = std::make_shared<passes::SceneFrame>(*frame);
     analysis_frame->pipelines = &analysis_pipelines_;
     analysis_frame->viewport = {settings_.width, settings_.height};
@@ -295,7 +316,6 @@ void Renderer::addReadbacks(graph::Graph& graph, Slot& slot, const std::shared_p
     analysis_frame->clear_color = glm::vec4(0.0f);  // no surface: depth 0
     passes::SceneTargets targets{&analysis_, nullptr, &analysis_depth_, 0, false, true};
     passes::addAnalysisPass(graph, targets, analysis_frame);
-    passes::addReadbackPass(graph, analysis_, slot.analysis.buffer);
 }
 
 // --debug-slowdown: warm-up frames time the spin on its own (a pass kept despite writing no
@@ -429,6 +449,7 @@ FrameResult Renderer::collect(Slot& slot) {
         }
         r.readback_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - copy_start).count();
     }
+    if (scoring_) scoring_->collect(slot.index, r);
     auto names = variant_->statNames();
     const auto* counts = static_cast<const uint32_t*>(slot.stats.mapped);
     double pixel_count = double(settings_.width) * double(settings_.height);

@@ -17,6 +17,11 @@
 namespace cbr::vk {
 class Context;
 }
+namespace cbr::scoring {
+class DeviceScoring;
+class FrameScoring;
+enum class ScoringRole;
+}
 
 namespace cbr::render {
 
@@ -32,6 +37,9 @@ public:
     // Waits for every frame in flight and returns them.
     std::vector<FrameResult> finish();
     double currentScale() const { return scale_; }
+    // Quality frames requested with `score` are scored on the device against the shared
+    // scorer's reference frames (role Variant) or become them (role Reference).
+    void scoreOnDevice(scoring::DeviceScoring& shared, scoring::ScoringRole role);
     std::vector<std::pair<std::string, std::string>> describe() const;
 
 private:
@@ -43,7 +51,9 @@ private:
     // The steps of submit(): instance matrices and lights for the frame, the quality frame's
     // readbacks and analysis pass, --debug-slowdown's spin, and the command buffer.
     std::shared_ptr<passes::SceneFrame> prepareSceneFrame(Slot& slot, const FrameRequest& request);
-    void addReadbacks(graph::Graph& graph, Slot& slot, const std::shared_ptr<passes::SceneFrame>& frame);
+    void addReadbacks(graph::Graph& graph, size_t slot_index, const FrameRequest& request,
+                      const std::shared_ptr<passes::SceneFrame>& frame);
+    void addAnalysis(graph::Graph& graph, const std::shared_ptr<passes::SceneFrame>& frame);
     void addSlowdownSpin(graph::Graph& graph, const FrameRequest& request);
     void recordFrame(Slot& slot, graph::Graph& graph);
 
@@ -72,6 +82,7 @@ private:
     std::vector<glm::dvec3> light_positions_;      // world position of each record's light
     VkDescriptorPool frame_pool_ = VK_NULL_HANDLE;
     std::vector<std::unique_ptr<Slot>> slots_;
+    std::unique_ptr<scoring::FrameScoring> scoring_;  // --scorer device
     size_t next_slot_ = 0;
     double scale_ = 1;
 };

@@ -2,10 +2,15 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+namespace cbr::scoring {
+struct DeviceScores;
+}
 
 namespace cbr::render {
 
@@ -95,6 +100,7 @@ struct FrameRequest {
     Camera prev_camera;
     bool history_reset = false;  // first frame or a camera cut
     bool readback = false;       // copy the display image back (quality frames)
+    bool score = false;          // a quality frame scored on the device (Renderer::scoreOnDevice)
 };
 
 struct PassTime {
@@ -115,6 +121,10 @@ struct FrameResult {
     std::vector<uint8_t> diagnostic;   // width * height, the variant's diagnostic image, when read back
     std::vector<float> analysis;       // width * height * 4: motion.xy, view depth, previous view depth
     double readback_ms = 0;            // host time copying the read-back images out of mapped memory
+    // Scored on the device: its figures. A frame that was the worst so far also brings its
+    // images (rgba, diagnostic, and the reference frame it was scored against).
+    std::shared_ptr<const scoring::DeviceScores> device_scores;
+    std::vector<uint8_t> reference_rgba;
     std::vector<std::pair<std::string, double>> stats;  // e.g. px_shaded: fraction of the frame's pixels
     std::vector<std::pair<std::string, std::string>> left_out;  // (pass, reason)
 };

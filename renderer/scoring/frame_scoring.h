@@ -1,0 +1,74 @@
+// Device scoring as renderers use it: the reference's recent frames on the device, and per
+// renderer the untimed passes that copy a quality frame where the metrics read it, score it,
+// and read back its figures (and, for a new worst frame, its images).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "renderer/graph/graph.h"
+#include "renderer/scoring/device_metrics.h"
+#include "renderer/settings.h"
+#include "renderer/vk/resources.h"
+
+namespace cbr::scoring {
+
+// Shared by a run's renderers, which record on one queue, the reference's frame first.
+class DeviceScoring {
+public:
+    // `frames_in_flight`: the renderers' slots; the ring holds two frames more, so that a
+    // variant's frame i still finds reference frame i when its slot is collected.
+    DeviceScoring(vk::Context& ctx, const DeviceMetricsSettings& settings, int frames_in_flight);
+    ~DeviceScoring();
+    DeviceScoring(const DeviceScoring&) = delete;
+    DeviceScoring& operator=(const DeviceScoring&) = delete;
+
+    vk::Context& context() { return ctx_; }
+    DeviceMetrics& metrics() { return metrics_; }
+    const DeviceMetricsSettings& settings() const { return settings_; }
+    const vk::Buffer& referenceFrame(int frame) const { return ring_[size_t(frame) % ring_.size()]; }
+    VkDeviceSize deviceBytes() const;  // the metrics' scratch and the ring
+
+private:
+    vk::Context& ctx_;
+    DeviceMetricsSettings settings_;
+    DeviceMetrics metrics_;
+    std::vector<vk::Buffer> ring_;
+};
+
+enum class ScoringRole { Reference, Variant };
+
+class FrameScoring {
+public:
+    FrameScoring(DeviceScoring& shared, ScoringRole role, size_t slots, bool has_classes);
+    ~FrameScoring();
+    FrameScoring(const FrameScoring&) = delete;
+    FrameScoring& operator=(const FrameScoring&) = delete;
+
+    bool needsAnalysis() const { return role_ == ScoringRole::Variant; }
+    // The untimed passes of quality frame `frame` in slot `slot`: the reference's display image
+    // into the ring; a variant's display image, class map and analysis into the slot's buffers,
+    // then the metrics (after every timestamp, so never inside a timed interval).
+    void addPasses(graph::Graph& graph, size_t slot, const render::FrameRequest& request, vk::Image& display,
+                   vk::Image* classes, vk::Image* analysis);
+    // After the slot's fence: a variant frame's figures, and its images (reference, variant,
+    // class map) when it is the worst so far by SSIM or by edge crawl.
+    void collect(size_t slot, render::FrameResult& result);
+
+private:
+    struct Slot {
+        vk::Buffer rgba, classes, analysis, result;
+        int frame = -1;
+        bool scored = false;
+    };
+    void copyOut(const Slot& slot, render::FrameResult& result);
+
+    DeviceScoring& shared_;
+    const ScoringRole role_;
+    std::vector<Slot> slots_;
+    std::unique_ptr<DeviceMetrics::Chain> chain_;
+    double worst_ssim_ = 2.0, worst_eci_ = -1.0;  // the figures a frame must beat to be copied out
+};
+
+}  // namespace cbr::scoring
