@@ -6,12 +6,15 @@
 
 namespace cbr::metrics {
 
+// Wall milliseconds of the byte entry points (frame_scores.h) on RGBA8 frames, as the
+// harness scores readbacks; *_cpu_ms: the process's CPU time over the same calls (all threads).
 struct MetricCost {
-    double psnr_ms = 0;  // psnr(reference, variant), including its input checks
-    double ssim_ms = 0;  // ssim(reference, variant): RGB and luma in one pass
-    double eci_ms = 0;   // CrawlTracker::add with a crawl map, as the harness calls it
-    double flip_ms = 0;  // flip(reference, variant, flip_ppd): error map, mean and quartiles
+    double psnr_ms = 0;  // psnrFromMse(mseRgba8(reference, variant)), including its input checks
+    double ssim_ms = 0;  // ssimRgba8(reference, variant): RGB and luma in one pass
+    double eci_ms = 0;   // CrawlTracker::addRgba8 with a crawl map, as the harness calls it
+    double flip_ms = 0;  // flipRgba8(reference, variant, flip_ppd): mean and quartiles, no map
     int threads = 0;     // OpenCV's thread count during the measurement
+    double psnr_cpu_ms = 0, ssim_cpu_ms = 0, eci_cpu_ms = 0, flip_cpu_ms = 0;
 };
 
 // Median milliseconds per frame over `frames` timed frames (at least 1) of a panning,

@@ -24,6 +24,7 @@
 
 #include "metrics/buffers.h"
 #include "metrics/flip_colour.h"
+#include "metrics/frame_scores.h"
 #include "metrics/simd.h"
 
 namespace cbr::metrics {
@@ -352,13 +353,13 @@ constexpr size_t kRingRow = 2 * kImagePlanes;
 constexpr int kBuckets = 4096;
 inline int bucketOf(double v) { return std::min(int(v * kBuckets), kBuckets - 1); }
 
-// FLIP of output columns [x0, x0 + n) and rows [y0, y1) into map (row-major doubles), and
+// FLIP of output columns [x0, x0 + n) and rows [y0, y1) into map (row-major floats), and
 // each error added to its bucket of `buckets` (kBuckets sums); returns the sum of those
 // errors, or NaN when an input value is NaN or infinite.
 CBR_SIMD_CLONES
 double flipTile(const Kernels& k, const Constants& constants, const DecodeTable& table, const Source& reference,
-                const Source& test, int x0, int n, int y0, int y1, TileScratch& s, double* map, double* buckets) {
-    const int width = reference.image->width, height = reference.image->height;
+                const Source& test, int x0, int n, int y0, int y1, TileScratch& s, float* map, double* buckets) {
+    const int width = reference.width, height = reference.height;
     const int halo = k.halo, window = 2 * halo + 1;
     const size_t line = size_t(kTileCols + 2 * halo);
     s.lines.resize(6 * line);
@@ -411,7 +412,7 @@ double flipTile(const Kernels& k, const Constants& constants, const DecodeTable&
         }
         finalRow(s.vertical.data(), s.vertical.data() + size_t(kVerticalPlanes) * kTileCols, n, constants, colour,
                  exponent, error);
-        double* dst = map + size_t(y0 + r) * width + x0;
+        float* dst = map + size_t(y0 + r) * width + x0;
         for (int x = 0; x < n; ++x) {
             dst[x] = error[x];
             sum += error[x];
@@ -424,7 +425,7 @@ double flipTile(const Kernels& k, const Constants& constants, const DecodeTable&
 // The tool's weighted percentile: pixels sorted by error, the first error at which the
 // running sum exceeds p times the total (0 when no error is above 0). Found without a
 // full sort: the bucket sums give the crossing bucket, and only that bucket is sorted.
-std::array<double, 3> weightedQuartiles(const std::vector<double>& values, const std::vector<double>& bucket_sum,
+std::array<double, 3> weightedQuartiles(const float* values, size_t count, const std::vector<double>& bucket_sum,
                                         double total) {
     constexpr double kPercents[3] = {0.25, 0.5, 0.75};
     std::array<int, 3> bucket{-1, -1, -1};
@@ -447,8 +448,8 @@ std::array<double, 3> weightedQuartiles(const std::vector<double>& values, const
     const int strips = 64;
     cv::parallel_for_(cv::Range(0, strips), [&](const cv::Range& range) {
         std::array<std::vector<double>, 3> found;
-        const size_t begin = values.size() * size_t(range.start) / strips;
-        const size_t end = values.size() * size_t(range.end) / strips;
+        const size_t begin = count * size_t(range.start) / strips;
+        const size_t end = count * size_t(range.end) / strips;
         for (size_t i = begin; i < end; ++i) {
             const double v = values[i];
             const int b = bucketOf(v);
@@ -494,26 +495,76 @@ void checkImage(const Image& image) {
 
 }  // namespace
 
+namespace {
+
+void checkPpd(const char* what, double ppd) {
+    if (!(ppd > 0.0) || !std::isfinite(ppd))
+        throw std::invalid_argument(std::string(what) + ": pixels per degree must be finite and > 0, got " +
+                                    std::to_string(ppd));
+}
+
+// FLIP of two sources of the same size: tiles in parallel into a float error map (the
+// errors are floats; 8 MB per 1080p frame), then the mean and weighted quartiles from it.
+// The double map is filled only when asked for.
+FlipResult flipCore(const Source& reference, const Source& test, double ppd, bool want_map) {
+    static const DecodeTable table;
+    const Kernels kernels = makeKernels(ppd);
+    Constants constants;
+    constants.cmax = maxColourError();
+    constants.pccmax = kPc * constants.cmax;
+    const int width = reference.width, height = reference.height;
+    const size_t pixels = size_t(width) * height;
+    const std::unique_ptr<float[]> errors = detail::scratchBuffer<float>(pixels);
+    const int tile_cols = (width + kTileCols - 1) / kTileCols;
+    const int tile_rows = (height + kTileRows - 1) / kTileRows;
+    const int tiles = tile_cols * tile_rows;
+    // One slot per tile, summed in order afterwards: the mean does not depend on scheduling.
+    std::vector<double> tile_sums(size_t(tiles), 0.0);
+    // Bucket sums per tile too, added in tile order below (deterministic, like the mean).
+    std::vector<double> tile_buckets(size_t(tiles) * kBuckets);
+    cv::parallel_for_(cv::Range(0, tiles), [&](const cv::Range& range) {
+        thread_local TileScratch scratch;
+        for (int t = range.start; t < range.end; ++t) {
+            const int x0 = (t % tile_cols) * kTileCols, y0 = (t / tile_cols) * kTileRows;
+            tile_sums[size_t(t)] = flipTile(kernels, constants, table, reference, test, x0,
+                                            std::min(kTileCols, width - x0), y0, std::min(y0 + kTileRows, height),
+                                            scratch, errors.get(), tile_buckets.data() + size_t(t) * kBuckets);
+        }
+    });
+    double total = 0;
+    for (double s : tile_sums) total += s;
+    std::vector<double> bucket_sum(kBuckets, 0.0);
+    for (int t = 0; t < tiles; ++t)
+        for (int b = 0; b < kBuckets; ++b) bucket_sum[size_t(b)] += tile_buckets[size_t(t) * kBuckets + size_t(b)];
+    // A NaN pixel would silently turn every score into NaN; refuse it at the door.
+    if (std::isnan(total)) throw std::invalid_argument("flip: image contains a NaN or infinite value");
+    FlipResult result;
+    result.mean = total / double(pixels);
+    const auto quartiles = weightedQuartiles(errors.get(), pixels, bucket_sum, total);
+    result.q1 = quartiles[0];
+    result.median = quartiles[1];
+    result.q3 = quartiles[2];
+    if (want_map) {
+        result.map = Image{width, height, 1, detail::filledBuffer(pixels, 0.0)};
+        double* map = result.map.data.data();
+        cv::parallel_for_(cv::Range(0, height), [&](const cv::Range& range) {
+            for (size_t i = size_t(range.start) * width; i < size_t(range.end) * width; ++i) map[i] = errors[i];
+        });
+    }
+    return result;
+}
+
+}  // namespace
+
 FlipResult flip(const Image& reference, const Image& test, double ppd) {
     if (!reference.sameShape(test))
         throw std::invalid_argument("flip: image shapes differ (" + shapeText(reference) + " vs " + shapeText(test) +
                                     ")");
     checkImage(reference);
     checkImage(test);
-    if (!(ppd > 0.0) || !std::isfinite(ppd))
-        throw std::invalid_argument("flip: pixels per degree must be finite and > 0, got " + std::to_string(ppd));
+    checkPpd("flip", ppd);
     static const DecodeTable table;
-    const Kernels kernels = makeKernels(ppd);
-    Constants constants;
-    constants.cmax = maxColourError();
-    constants.pccmax = kPc * constants.cmax;
-
     const int width = reference.width, height = reference.height;
-    FlipResult result;
-    result.map = Image{width, height, 1, detail::filledBuffer(size_t(width) * height, 0.0)};
-    const int tile_cols = (width + kTileCols - 1) / kTileCols;
-    const int tile_rows = (height + kTileRows - 1) / kTileRows;
-    const int tiles = tile_cols * tile_rows;
     // The 8-bit codes of both images, or of neither (then each tile decodes the doubles).
     constexpr int kCodeStripRows = 32;
     const int code_strips = (height + kCodeStripRows - 1) / kCodeStripRows;
@@ -528,34 +579,23 @@ FlipResult flip(const Image& reference, const Image& test, double ppd) {
         }
     });
     const bool all_coded = std::find(coded.begin(), coded.end(), 0) == coded.end();
-    const Source reference_source{&reference, all_coded ? codes.get() : nullptr};
-    const Source test_source{&test, all_coded ? codes.get() + reference.data.size() : nullptr};
-    // One slot per tile, summed in order afterwards: the mean does not depend on scheduling.
-    std::vector<double> tile_sums(size_t(tiles), 0.0);
-    // Bucket sums per tile too, added in tile order below (deterministic, like the mean).
-    std::vector<double> tile_buckets(size_t(tiles) * kBuckets);
-    cv::parallel_for_(cv::Range(0, tiles), [&](const cv::Range& range) {
-        thread_local TileScratch scratch;
-        for (int t = range.start; t < range.end; ++t) {
-            const int x0 = (t % tile_cols) * kTileCols, y0 = (t / tile_cols) * kTileRows;
-            tile_sums[size_t(t)] = flipTile(kernels, constants, table, reference_source, test_source, x0,
-                                            std::min(kTileCols, width - x0), y0, std::min(y0 + kTileRows, height),
-                                            scratch, result.map.data.data(), tile_buckets.data() + size_t(t) * kBuckets);
-        }
-    });
-    double total = 0;
-    for (double s : tile_sums) total += s;
-    std::vector<double> bucket_sum(kBuckets, 0.0);
-    for (int t = 0; t < tiles; ++t)
-        for (int b = 0; b < kBuckets; ++b) bucket_sum[size_t(b)] += tile_buckets[size_t(t) * kBuckets + size_t(b)];
-    // A NaN pixel would silently turn every score into NaN; refuse it at the door.
-    if (std::isnan(total)) throw std::invalid_argument("flip: image contains a NaN or infinite value");
-    result.mean = total / double(result.map.data.size());
-    const auto quartiles = weightedQuartiles(result.map.data, bucket_sum, total);
-    result.q1 = quartiles[0];
-    result.median = quartiles[1];
-    result.q3 = quartiles[2];
-    return result;
+    const int c = reference.channels;
+    const Source reference_source{&reference, all_coded ? codes.get() : nullptr, width, height, c, c};
+    const Source test_source{&test, all_coded ? codes.get() + reference.data.size() : nullptr, width, height, c, c};
+    return flipCore(reference_source, test_source, ppd, /*want_map=*/true);
+}
+
+FlipResult flipRgba8(const uint8_t* reference, const uint8_t* test, int width, int height, double ppd,
+                     bool want_map) {
+    if (!reference || !test) throw std::invalid_argument("flipRgba8: null pixel pointer");
+    if (width <= 0 || height <= 0)
+        throw std::invalid_argument("flipRgba8: empty image (" + std::to_string(width) + "x" +
+                                    std::to_string(height) + ")");
+    checkPpd("flipRgba8", ppd);
+    // Every byte is a code value: the tiles read the readback directly, nothing to check.
+    const Source reference_source{nullptr, reference, width, height, 3, 4};
+    const Source test_source{nullptr, test, width, height, 3, 4};
+    return flipCore(reference_source, test_source, ppd, want_map);
 }
 
 }  // namespace cbr::metrics

@@ -65,10 +65,14 @@ inline float decode(const DecodeTable& t, double v, bool& bad) {
     pcz = 200.0f * (Y - Z);
 }
 
-// One image as the tiles read it: its 8-bit codes when every value is one, else its doubles.
+// One image as the tiles read it: its 8-bit codes when every value is one (checked codes of
+// an Image, or RGBA8 bytes as read back), else its doubles.
 struct Source {
-    const Image* image = nullptr;
+    const Image* image = nullptr;    // read when codes is null
     const uint8_t* codes = nullptr;  // k for each value k / 255, or null
+    int width = 0, height = 0;
+    int channels = 3;                // 1: grey
+    int stride = 3;                  // codes per pixel: channels, or 4 for RGBA8 (alpha ignored)
 };
 
 // Columns [first, first + count) of row yy, all inside the image, to YCxCz: codes through
@@ -76,12 +80,11 @@ struct Source {
 [[gnu::always_inline]] inline bool spanToYCxCz(const DecodeTable& table, const Source& source, int yy, int first,
                                                int count, float* __restrict py, float* __restrict pcx,
                                                float* __restrict pcz) {
-    const Image& image = *source.image;
-    const int c = image.channels;
-    const size_t offset = (size_t(yy) * image.width + size_t(first)) * c;
+    const int c = source.channels;
+    const size_t pixel = size_t(yy) * source.width + size_t(first);
     if (!source.codes) {
         bool bad = false;
-        const double* in = image.data.data() + offset;
+        const double* in = source.image->data.data() + pixel * c;
         for (int i = 0; i < count; ++i) {
             const double* p = in + size_t(i) * c;
             const float r = decode(table, p[0], bad);
@@ -91,13 +94,16 @@ struct Source {
         }
         return !bad;
     }
-    const uint8_t* __restrict in = source.codes + offset;
+    const uint8_t* __restrict in = source.codes + pixel * source.stride;
     const float* __restrict linear = table.linear.data();
     if (c == 1) {
         for (int i = 0; i < count; ++i) {
             const float v = linear[in[i]];
             linearToYCxCz(v, v, v, py[i], pcx[i], pcz[i]);
         }
+    } else if (source.stride == 4) {
+        for (int i = 0; i < count; ++i)
+            linearToYCxCz(linear[in[4 * i]], linear[in[4 * i + 1]], linear[in[4 * i + 2]], py[i], pcx[i], pcz[i]);
     } else {
         for (int i = 0; i < count; ++i)
             linearToYCxCz(linear[in[3 * i]], linear[in[3 * i + 1]], linear[in[3 * i + 2]], py[i], pcx[i], pcz[i]);
@@ -110,7 +116,7 @@ struct Source {
 // infinite value.
 [[gnu::always_inline]] inline bool toYCxCz(const DecodeTable& table, const Source& source, int yy, int first,
                                            int count, float* py, float* pcx, float* pcz) {
-    const int lo = std::max(first, 0), hi = std::min(first + count, source.image->width);
+    const int lo = std::max(first, 0), hi = std::min(first + count, source.width);
     const bool ok = spanToYCxCz(table, source, yy, lo, hi - lo, py + (lo - first), pcx + (lo - first),
                                 pcz + (lo - first));
     for (int i = 0; i < lo - first; ++i) {

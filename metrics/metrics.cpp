@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "metrics/buffers.h"
+#include "metrics/frame_scores.h"
 #include "metrics/simd.h"
 
 namespace cbr::metrics {
@@ -172,6 +173,31 @@ inline void lumaProducts(double* const* a, double* const* b, size_t n,
     }
 }
 
+// What the SSIM tiles read: an Image of doubles, or 8-bit RGBA whose codes k stand for
+// k / 255 (fromRgba8's values, through a table: the same doubles bit for bit).
+struct SsimInput {
+    const double* values = nullptr;  // width * height * channels doubles, or null
+    const uint8_t* rgba = nullptr;   // width * height * 4 bytes, or null
+    int width = 0, height = 0, channels = 3;
+};
+
+SsimInput inputOf(const Image& image) { return {image.data.data(), nullptr, image.width, image.height, image.channels}; }
+
+struct CodeTable {
+    std::array<double, 256> value{};
+    CodeTable() {
+        for (int k = 0; k < 256; ++k) value[size_t(k)] = k / 255.0;  // division, as fromRgba8
+    }
+};
+const CodeTable kCodes;
+
+void checkRgba8(const char* what, const uint8_t* a, const uint8_t* b, int width, int height) {
+    if (!a || !b) throw std::invalid_argument(std::string(what) + ": null pixel pointer");
+    if (width <= 0 || height <= 0)
+        throw std::invalid_argument(std::string(what) + ": empty image (" + std::to_string(width) + "x" +
+                                    std::to_string(height) + ")");
+}
+
 // One thread's buffers, kept across calls so that no tile touches fresh pages.
 struct TileScratch {
     std::vector<double> planes = std::vector<double>(size_t(kImagePlanes) * kTileInRows * kTileInCols);
@@ -186,8 +212,8 @@ struct TileScratch {
 // sums; writes the channel mean into map's rows when given. Returns false when an
 // input value of the tile (halo included) is NaN or infinite.
 CBR_SIMD_CLONES
-bool ssimTile(const Image& a, const Image& b, bool with_luma, const double* kernel, int y0, int y1,
-              int x0, int x1, TileScratch& scratch, double* sums, Image* map) {
+bool ssimTile(const SsimInput& a, const SsimInput& b, bool with_luma, const double* kernel, int y0, int y1,
+              int x0, int x1, TileScratch& scratch, double* sums, double* map) {
     const int width = a.width, channels = a.channels;
     const int out_rows = y1 - y0, out_cols = x1 - x0;
     const int in_rows = out_rows + 2 * kRadius, in_cols = out_cols + 2 * kRadius;
@@ -212,7 +238,21 @@ bool ssimTile(const Image& a, const Image& b, bool with_luma, const double* kern
         const size_t offset = (size_t(y0 - kRadius + y) * width + (x0 - kRadius)) * channels;
         const size_t row = size_t(y) * in_cols;
         for (int i = 0; i < 2; ++i) {
-            const double* p = (i == 0 ? a : b).data.data() + offset;
+            const SsimInput& in = i == 0 ? a : b;
+            if (in.rgba) {
+                const uint8_t* p = in.rgba + (size_t(y0 - kRadius + y) * width + (x0 - kRadius)) * 4;
+                const double* code = kCodes.value.data();
+                double* r = image_plane[i][0] + row;
+                double* g = image_plane[i][1] + row;
+                double* bl = image_plane[i][2] + row;
+                for (int x = 0; x < in_cols; ++x) {
+                    r[x] = code[p[4 * x]];
+                    g[x] = code[p[4 * x + 1]];
+                    bl[x] = code[p[4 * x + 2]];
+                }
+                continue;
+            }
+            const double* p = in.values + offset;
             const size_t count = size_t(in_cols) * channels;
             for (size_t k = 0; k < count; ++k)
                 carry |= (std::bit_cast<uint64_t>(p[k]) & kExponentMask) + kExponentOne;
@@ -300,7 +340,7 @@ bool ssimTile(const Image& a, const Image& b, bool with_luma, const double* kern
             for (; x < out_cols; ++x) s0 += values[x];
             channel_sum += (s0 + s1) + (s2 + s3);
             if (map && !is_luma) {
-                double* map_row = map->data.data() + size_t(y0 + r) * width + x0;
+                double* map_row = map + size_t(y0 + r) * width + x0;
                 for (int i = 0; i < out_cols; ++i) {
                     double& v = map_row[i];
                     v = c == 0 ? values[i] : v + values[i];
@@ -318,8 +358,8 @@ bool ssimTile(const Image& a, const Image& b, bool with_luma, const double* kern
 // channel_sums. When map is given (one channel, same size), writes into its valid
 // region the per-pixel mean over the image's own channels (luma excluded); the border
 // is left as the caller filled it. Throws for a NaN or infinite input value.
-void ssimCore(const char* what, const Image& a, const Image& b, bool with_luma,
-              double* channel_sums, Image* map) {
+void ssimCore(const char* what, const SsimInput& a, const SsimInput& b, bool with_luma,
+              double* channel_sums, double* map) {
     static const std::array<double, kTaps> kernel = gaussianKernel();
     const int valid_rows = a.height - 2 * kRadius, valid_cols = a.width - 2 * kRadius;
     const int tile_rows = (valid_rows + kTileRows - 1) / kTileRows;
@@ -392,27 +432,68 @@ double psnrFromMse(double mse) {
 
 double psnr(const Image& a, const Image& b) { return psnrFromMse(mse(a, b)); }
 
-SsimResult ssim(const Image& a, const Image& b) {
-    checkPair("ssim", a, b);
-    checkSsimSize("ssim", a);
+namespace {
+
+// Per-channel mean SSIM, then the plain mean of the three (channel_axis convention); luma
+// rides along as a fourth channel of the same pass, computed per pixel with bt709Luma, so
+// it equals ssim(luma(a), luma(b)) without a second pass.
+SsimResult ssimOf(const char* what, const SsimInput& a, const SsimInput& b) {
     const double valid = double(a.width - 2 * kSsimBorder) * double(a.height - 2 * kSsimBorder);
     SsimResult result;
     if (a.channels == 1) {
         double sum = 0;
-        ssimCore("ssim", a, b, /*with_luma=*/false, &sum, nullptr);
+        ssimCore(what, a, b, /*with_luma=*/false, &sum, nullptr);
         result.ssim = sum / valid;
         // A one-channel image is its own luma.
         result.luma_ssim = result.ssim;
         return result;
     }
-    // Luma rides along as a fourth channel of the same pass, computed per pixel with
-    // bt709Luma, so it equals ssim(luma(a), luma(b)) without a second pass.
     double sums[4] = {0, 0, 0, 0};
-    ssimCore("ssim", a, b, /*with_luma=*/true, sums, nullptr);
-    // Per-channel mean SSIM, then the plain mean of the three (channel_axis convention).
+    ssimCore(what, a, b, /*with_luma=*/true, sums, nullptr);
     result.ssim = (sums[0] / valid + sums[1] / valid + sums[2] / valid) / 3.0;
     result.luma_ssim = sums[3] / valid;
     return result;
+}
+
+}  // namespace
+
+SsimResult ssim(const Image& a, const Image& b) {
+    checkPair("ssim", a, b);
+    checkSsimSize("ssim", a);
+    return ssimOf("ssim", inputOf(a), inputOf(b));
+}
+
+SsimResult ssimRgba8(const uint8_t* a, const uint8_t* b, int width, int height) {
+    checkRgba8("ssimRgba8", a, b, width, height);
+    const SsimInput ia{nullptr, a, width, height, 3}, ib{nullptr, b, width, height, 3};
+    if (width < kTaps || height < kTaps)
+        throw std::invalid_argument("ssimRgba8: image is " + std::to_string(width) + "x" + std::to_string(height) +
+                                    ", SSIM needs at least 11x11 (the Gaussian window)");
+    return ssimOf("ssimRgba8", ia, ib);
+}
+
+double mseRgba8(const uint8_t* a, const uint8_t* b, int width, int height) {
+    checkRgba8("mseRgba8", a, b, width, height);
+    // Squared differences of 8-bit codes are integers: the sum is exact in 64 bits, so the
+    // result is the exact MSE rounded once (the double path rounds each term).
+    const size_t row_bytes = size_t(width) * 4;
+    std::vector<int64_t> row_sums(static_cast<size_t>(height));
+    cv::parallel_for_(cv::Range(0, height), [&](const cv::Range& range) {
+        for (int y = range.start; y < range.end; ++y) {
+            const uint8_t* pa = a + size_t(y) * row_bytes;
+            const uint8_t* pb = b + size_t(y) * row_bytes;
+            int64_t row = 0;
+            for (size_t i = 0; i < row_bytes; i += 4) {
+                const int32_t dr = int32_t(pa[i]) - pb[i], dg = int32_t(pa[i + 1]) - pb[i + 1],
+                              db = int32_t(pa[i + 2]) - pb[i + 2];
+                row += dr * dr + dg * dg + db * db;
+            }
+            row_sums[size_t(y)] = row;
+        }
+    });
+    int64_t total = 0;
+    for (int64_t row : row_sums) total += row;
+    return double(total) / (255.0 * 255.0 * 3.0 * double(width) * double(height));
 }
 
 Image ssimMap(const Image& a, const Image& b) {
@@ -425,7 +506,7 @@ Image ssimMap(const Image& a, const Image& b) {
     // The border has no full window; 1.0 there reads as "no error" in a heat map.
     map.data = detail::filledBuffer(size_t(a.width) * a.height, 1.0);
     double sums[3] = {0, 0, 0};
-    ssimCore("ssimMap", a, b, /*with_luma=*/false, sums, &map);
+    ssimCore("ssimMap", inputOf(a), inputOf(b), /*with_luma=*/false, sums, map.data.data());
     return map;
 }
 

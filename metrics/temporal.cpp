@@ -34,6 +34,13 @@ struct CrawlTracker::State {
     int current = 0;
 };
 
+// What the blur reads: an Image of doubles (RGB or grey), or RGBA8 bytes.
+struct CrawlTracker::Input {
+    const Image* image = nullptr;
+    const uint8_t* rgba = nullptr;
+    int width = 0, height = 0;
+};
+
 namespace {
 
 // Rows per unit of parallel work: long enough that the blur's halo rows (read twice)
@@ -151,10 +158,25 @@ struct BlurScratch {
 // (separable, symmetric taps folded), written to out. Luma rows pass through a ring of
 // 2 radius + 1 rows, so each input row is read about once. Returns false if a value is
 // NaN or infinite: one such pixel would poison the blur around it.
+// BT.709's terms of each 8-bit code, 0.2126 (k / 255) etc.: bt709Luma's products exactly,
+// so luma from bytes equals luma from fromRgba8's doubles bit for bit.
+struct LumaTable {
+    double r[256], g[256], b[256];
+    LumaTable() {
+        for (int k = 0; k < 256; ++k) {
+            const double v = k / 255.0;
+            r[k] = 0.2126 * v;
+            g[k] = 0.7152 * v;
+            b[k] = 0.0722 * v;
+        }
+    }
+};
+const LumaTable kLumaTable;
+
 CBR_SIMD_CLONES
-bool blurredLumaRows(const Image& image, const double* kernel, int radius, int y0, int y1,
-                     BlurScratch& scratch, double* out) {
-    const int width = image.width, height = image.height, channels = image.channels;
+bool blurredLumaRows(const Image* image, const uint8_t* rgba, int width, int height, const double* kernel,
+                     int radius, int y0, int y1, BlurScratch& scratch, double* out) {
+    const int channels = image ? image->channels : 4;
     const int taps = 2 * radius + 1;
     scratch.ring.resize(size_t(taps) * width);
     scratch.padded.resize(size_t(width) + 2 * size_t(radius));
@@ -163,9 +185,15 @@ bool blurredLumaRows(const Image& image, const double* kernel, int radius, int y
     uint64_t carry = 0;
     // Input row j (reflected at the frame's edges) goes to ring slot (j - y0 + radius) % taps.
     auto load = [&](int j) {
-        const double* in =
-            image.data.data() + size_t(reflectIndex(j, height)) * width * channels;
         double* row = scratch.ring.data() + size_t((j - y0 + radius) % taps) * width;
+        if (rgba) {
+            // (0.2126 r + 0.7152 g) + 0.0722 b, bt709Luma's order; codes are always finite.
+            const uint8_t* p = rgba + size_t(reflectIndex(j, height)) * width * 4;
+            for (int x = 0; x < width; ++x)
+                row[x] = (kLumaTable.r[p[4 * x]] + kLumaTable.g[p[4 * x + 1]]) + kLumaTable.b[p[4 * x + 2]];
+            return;
+        }
+        const double* in = image->data.data() + size_t(reflectIndex(j, height)) * width * channels;
         if (channels == 1) {
             for (int x = 0; x < width; ++x) row[x] = in[x];
         } else {
@@ -371,6 +399,26 @@ void CrawlTracker::reset() { previous_.reset(); }
 CrawlFrame CrawlTracker::add(const Image& reference, const Image& variant, const MotionField& motion,
                              bool cut, bool want_map) {
     checkInputs(reference, variant, motion);
+    return addInputs({&reference, nullptr, reference.width, reference.height},
+                     {&variant, nullptr, variant.width, variant.height}, motion, cut, want_map);
+}
+
+CrawlFrame CrawlTracker::addRgba8(const uint8_t* reference_rgba, const uint8_t* variant_rgba,
+                                  const MotionField& motion, bool cut, bool want_map) {
+    if (!reference_rgba || !variant_rgba) throw std::invalid_argument("CrawlTracker::addRgba8: null pixel pointer");
+    if (motion.width <= 0 || motion.height <= 0)
+        throw std::invalid_argument("CrawlTracker::addRgba8: motion field is " +
+                                    sizeText(motion.width, motion.height) + ", the images' size");
+    const size_t pixels = size_t(motion.width) * motion.height;
+    checkField("motion", motion.motion.size(), 2 * pixels, motion);
+    checkField("depth", motion.depth.size(), pixels, motion);
+    checkField("prev_depth_expected", motion.prev_depth_expected.size(), pixels, motion);
+    return addInputs({nullptr, reference_rgba, motion.width, motion.height},
+                     {nullptr, variant_rgba, motion.width, motion.height}, motion, cut, want_map);
+}
+
+CrawlFrame CrawlTracker::addInputs(const Input& reference, const Input& variant, const MotionField& motion,
+                                   bool cut, bool want_map) {
     const int width = reference.width, height = reference.height;
     const bool chained = previous_ && !cut;
     // A new size mid-sequence has no pixel correspondence with the previous frame: the
@@ -405,10 +453,10 @@ CrawlFrame CrawlTracker::add(const Image& reference, const Image& variant, const
     std::vector<uint8_t> strip_finite(static_cast<size_t>(blur_strips), 1);
     forStrips(height, kBlurStripRows, [&](int y0, int y1) {
         thread_local BlurScratch scratch;
-        const bool ok =
-            blurredLumaRows(reference, kernel.data(), radius, y0, y1, scratch,
-                            now.reference_luma.data()) &&
-            blurredLumaRows(variant, kernel.data(), radius, y0, y1, scratch, now.variant_luma.data());
+        const bool ok = blurredLumaRows(reference.image, reference.rgba, width, height, kernel.data(), radius, y0,
+                                        y1, scratch, now.reference_luma.data()) &&
+                        blurredLumaRows(variant.image, variant.rgba, width, height, kernel.data(), radius, y0, y1,
+                                        scratch, now.variant_luma.data());
         strip_finite[size_t(y0 / kBlurStripRows)] = ok ? 1 : 0;
     });
     if (std::find(strip_finite.begin(), strip_finite.end(), 0) != strip_finite.end())

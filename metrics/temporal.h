@@ -2,6 +2,7 @@
 // after motion compensation with the renderer's own motion vectors (method/metrics.md).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -55,10 +56,18 @@ public:
     // crawl_map is 0 wherever nothing was scored.
     CrawlFrame add(const Image& reference, const Image& variant, const MotionField& motion, bool cut,
                    bool want_map = false);
+    // The same from tightly packed 8-bit RGBA readbacks (row stride 4 * width, alpha ignored)
+    // of motion's size, read as fromRgba8's values k / 255: the same figures bit for bit, and
+    // it chains with add() (a sequence may mix both). Null pointers throw.
+    CrawlFrame addRgba8(const uint8_t* reference_rgba, const uint8_t* variant_rgba, const MotionField& motion,
+                        bool cut, bool want_map = false);
     void reset();
 
 private:
     struct State;
+    struct Input;  // an Image or RGBA8 bytes (temporal.cpp)
+    CrawlFrame addInputs(const Input& reference, const Input& variant, const MotionField& motion, bool cut,
+                         bool want_map);
     CrawlSettings settings_;
     std::shared_ptr<State> previous_;
 };
