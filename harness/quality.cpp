@@ -8,6 +8,7 @@
 #include <set>
 
 #include "metrics/flip.h"
+#include "metrics/frame_scores.h"
 #include "metrics/image_encode.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
@@ -128,25 +129,22 @@ void QualityScorer::submitScore(Chain& c, const std::string& variant, FrameRow& 
     int w = width_, h = height_;
     workers_.submit([this, &c, &row, ref, frame, variant, w, h] {
         try {
-            std::optional<WallAccount::WorkerScope> timer(std::in_place, wall_, WorkerTask::Psnr);
-            // PSNR's time includes both images' conversion to [0,1], which the others share.
-            auto a = metrics::fromRgba8(ref->data(), w, h, size_t(w) * 4);
-            auto b = metrics::fromRgba8(frame.rgba->data(), w, h, size_t(w) * 4);
-            double mse = metrics::mse(a, b);
-            timer.emplace(wall_, WorkerTask::Ssim);
-            auto s = metrics::ssim(a, b);
-            row.quality.mse = mse;
-            row.quality.psnr_db = metrics::psnrFromMse(mse);
-            if (std::isfinite(s.ssim)) row.quality.ssim = s.ssim;
+            // Straight from the 8-bit readbacks (metrics/frame_scores.h): no [0,1] image built.
+            const metrics::FrameScores f = metrics::scoreFrame(ref->data(), frame.rgba->data(), w, h, flip_ppd_);
+            if (wall_) {
+                wall_->addWorker(WorkerTask::Psnr, f.mse_ms * 1e-3);
+                wall_->addWorker(WorkerTask::Ssim, f.ssim_ms * 1e-3);
+                wall_->addWorker(WorkerTask::Flip, f.flip_ms * 1e-3);
+            }
+            row.quality.mse = f.mse;
+            row.quality.psnr_db = f.psnr_db;
+            if (std::isfinite(f.ssim)) row.quality.ssim = f.ssim;
             else row.quality.note += "ssim not finite; ";
-            if (std::isfinite(s.luma_ssim)) row.quality.ssim_luma = s.luma_ssim;
-            timer.emplace(wall_, WorkerTask::Flip);
-            const metrics::FlipResult f = metrics::flip(a, b, flip_ppd_);
-            timer.reset();
-            row.quality.flip_mean = f.mean;
-            row.quality.flip_q1 = f.q1;
-            row.quality.flip_median = f.median;
-            row.quality.flip_q3 = f.q3;
+            if (std::isfinite(f.ssim_luma)) row.quality.ssim_luma = f.ssim_luma;
+            row.quality.flip_mean = f.flip_mean;
+            row.quality.flip_q1 = f.flip_q1;
+            row.quality.flip_median = f.flip_median;
+            row.quality.flip_q3 = f.flip_q3;
             std::lock_guard lock(c.mutex);
             if (row.quality.ssim && (c.worst_ssim.frame < 0 || *row.quality.ssim < c.worst_ssim.value))
                 c.worst_ssim = {frame.index, *row.quality.ssim, ref, frame.rgba, frame.classes, nullptr};
@@ -230,9 +228,7 @@ void QualityScorer::crawlStep(const std::string& variant, FrameRow& row, const Q
             motion.depth[i] = a[4 * i + 2];
             motion.prev_depth_expected[i] = a[4 * i + 3];
         }
-        auto r = metrics::fromRgba8(ref->data(), w, h, size_t(w) * 4);
-        auto v = metrics::fromRgba8(frame.rgba->data(), w, h, size_t(w) * 4);
-        metrics::CrawlFrame cf = c.tracker.add(r, v, motion, frame.cut, true);
+        metrics::CrawlFrame cf = c.tracker.addRgba8(ref->data(), frame.rgba->data(), motion, frame.cut, true);
         if (!cf.has_pair) return;  // first frame or after a cut: no pair to compare
         row.quality.eci = cf.eci;
         row.quality.flicker_ratio = cf.flicker_ratio;
