@@ -173,23 +173,14 @@ inline void lumaProducts(double* const* a, double* const* b, size_t n,
     }
 }
 
-// What the SSIM tiles read: an Image of doubles, or 8-bit RGBA whose codes k stand for
-// k / 255 (fromRgba8's values, through a table: the same doubles bit for bit).
+// What the SSIM tiles read: an image's doubles and shape (ssimRgba8, in ssim_rgba8.cpp,
+// reads 8-bit frames itself).
 struct SsimInput {
-    const double* values = nullptr;  // width * height * channels doubles, or null
-    const uint8_t* rgba = nullptr;   // width * height * 4 bytes, or null
+    const double* values = nullptr;  // width * height * channels doubles
     int width = 0, height = 0, channels = 3;
 };
 
-SsimInput inputOf(const Image& image) { return {image.data.data(), nullptr, image.width, image.height, image.channels}; }
-
-struct CodeTable {
-    std::array<double, 256> value{};
-    CodeTable() {
-        for (int k = 0; k < 256; ++k) value[size_t(k)] = k / 255.0;  // division, as fromRgba8
-    }
-};
-const CodeTable kCodes;
+SsimInput inputOf(const Image& image) { return {image.data.data(), image.width, image.height, image.channels}; }
 
 void checkRgba8(const char* what, const uint8_t* a, const uint8_t* b, int width, int height) {
     if (!a || !b) throw std::invalid_argument(std::string(what) + ": null pixel pointer");
@@ -239,19 +230,6 @@ bool ssimTile(const SsimInput& a, const SsimInput& b, bool with_luma, const doub
         const size_t row = size_t(y) * in_cols;
         for (int i = 0; i < 2; ++i) {
             const SsimInput& in = i == 0 ? a : b;
-            if (in.rgba) {
-                const uint8_t* p = in.rgba + (size_t(y0 - kRadius + y) * width + (x0 - kRadius)) * 4;
-                const double* code = kCodes.value.data();
-                double* r = image_plane[i][0] + row;
-                double* g = image_plane[i][1] + row;
-                double* bl = image_plane[i][2] + row;
-                for (int x = 0; x < in_cols; ++x) {
-                    r[x] = code[p[4 * x]];
-                    g[x] = code[p[4 * x + 1]];
-                    bl[x] = code[p[4 * x + 2]];
-                }
-                continue;
-            }
             const double* p = in.values + offset;
             const size_t count = size_t(in_cols) * channels;
             for (size_t k = 0; k < count; ++k)
@@ -461,15 +439,6 @@ SsimResult ssim(const Image& a, const Image& b) {
     checkPair("ssim", a, b);
     checkSsimSize("ssim", a);
     return ssimOf("ssim", inputOf(a), inputOf(b));
-}
-
-SsimResult ssimRgba8(const uint8_t* a, const uint8_t* b, int width, int height) {
-    checkRgba8("ssimRgba8", a, b, width, height);
-    const SsimInput ia{nullptr, a, width, height, 3}, ib{nullptr, b, width, height, 3};
-    if (width < kTaps || height < kTaps)
-        throw std::invalid_argument("ssimRgba8: image is " + std::to_string(width) + "x" + std::to_string(height) +
-                                    ", SSIM needs at least 11x11 (the Gaussian window)");
-    return ssimOf("ssimRgba8", ia, ib);
 }
 
 double mseRgba8(const uint8_t* a, const uint8_t* b, int width, int height) {
