@@ -1,0 +1,74 @@
+// lavapipe tier for --scorer device: a run scored in Vulkan compute gives, frame by frame, the
+// CPU scorer's figures (issue 32's tolerances), in both pipelines, with the validation layer
+// on; the scoring passes stay out of the timed passes; the worst frames are the same.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <string>
+
+#include "tests/render/bench_runner.h"
+
+namespace cbr::test {
+namespace {
+
+struct Tolerance {
+    const char* column;
+    double tolerance;
+};
+// PSNR in dB; identical frames stay inf in both (compared as text first).
+constexpr Tolerance kTolerances[] = {{"psnr_db", 1e-3},     {"ssim", 2e-5},          {"ssim_luma", 2e-5},
+                                     {"flip_mean", 1e-4},   {"flip_q1", 1e-3},       {"flip_median", 1e-3},
+                                     {"flip_q3", 1e-3},     {"eci", 1e-4},           {"flicker_ratio", 1e-4},
+                                     {"crawl_valid_fraction", 1e-6}};
+
+Csv runScored(const std::filesystem::path& work, const std::string& pipeline, const std::string& scorer) {
+    const auto out = work / (pipeline + "-" + scorer);
+    auto r = runBench({"run", "--scene", "atrium", "--path", "flythrough", "--res", "128x72", "--frames", "6",
+                       "--repeat", "1", "--warmup", "1", "--validate", "--pipeline", pipeline, "--variants",
+                       "full,cbr-aso,cbr-cso,drr,taau", "--scorer", scorer, "--out", out.string()},
+                      work);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    auto run = readJson(out / "run.json");
+    EXPECT_EQ(run["metrics"]["scorer"], scorer);
+    EXPECT_EQ(run["validation"]["errors"], 0) << run["validation"]["first_messages"].dump(1);
+    EXPECT_EQ(run["validation"]["warnings"], 0) << run["validation"]["first_messages"].dump(1);
+    std::set<std::string> worst;
+    for (const auto& e : run["worst"])
+        worst.insert(e["variant"].get<std::string>() + " " + e["kind"].get<std::string>() + " " +
+                     std::to_string(e["frame"].get<int>()));
+    EXPECT_EQ(worst.size(), 8u) << "four variants, by SSIM and by ECI";
+    return readCsv(out / "frames.csv");
+}
+
+void expectAgreement(const std::string& pipeline) {
+    auto work = scratchDir("device-scorer-" + pipeline);
+    const Csv cpu = runScored(work, pipeline, "cpu");
+    const Csv device = runScored(work, pipeline, "device");
+    ASSERT_EQ(cpu.rows.size(), device.rows.size());
+    for (const auto& header : device.header) {
+        // Timed passes only: the metrics run after the last timestamp.
+        EXPECT_EQ(header.find("gpu_ms_score"), std::string::npos) << header;
+    }
+    int compared = 0;
+    for (size_t i = 0; i < cpu.rows.size(); ++i) {
+        if (cpu.at(i, "repeat") != "0") continue;
+        ASSERT_EQ(cpu.at(i, "variant"), device.at(i, "variant"));
+        ASSERT_EQ(cpu.at(i, "frame"), device.at(i, "frame"));
+        for (const auto& t : kTolerances) {
+            const std::string a = cpu.at(i, t.column), b = device.at(i, t.column);
+            const std::string where = cpu.at(i, "variant") + " frame " + cpu.at(i, "frame") + " " + t.column;
+            if (a == b) continue;  // equal text: inf, empty (no pair) or the same digits
+            ASSERT_FALSE(a.empty() || b.empty() || a == "inf" || b == "inf") << where << ": " << a << " vs " << b;
+            EXPECT_NEAR(std::stod(a), std::stod(b), t.tolerance) << where;
+            ++compared;
+        }
+    }
+    EXPECT_GT(compared, 0);
+}
+
+TEST(DeviceScorer, AgreesWithTheCpuScorerForward) { expectAgreement("forward"); }
+TEST(DeviceScorer, AgreesWithTheCpuScorerDeferred) { expectAgreement("deferred"); }
+
+}  // namespace
+}  // namespace cbr::test
