@@ -63,6 +63,7 @@ void writeFiles(RunState& s, reports::OutputDir& out) {
     const RunOptions& options = s.options;
     const Prepared& p = s.p;
     RunContext rc{options, p.settings, p.scene, p.path, p.times, p.poses, s.ctx, s.results, &p.placement, &s.wall};
+    s.results.seconds = s.wall.elapsed();  // so far: the files written next show it, run.json gets the total
     {
         WallAccount::Scope scope(s.wall, WallPart::Outputs);
         writeOutputs(out.path(), rc);

@@ -240,11 +240,34 @@ std::string metricConventions(const RunData& d) {
     return out;
 }
 
+// Where the run's wall time went (run.json wall): the main thread's parts, which add up to
+// the total, then the workers' CPU time, which overlaps them. The page is written before the
+// account closes, so its own part reads as not yet known.
+std::string wallTable(const RunData& d) {
+    const auto* wall = jsonAt(d.run, "/wall");
+    if (!wall || !wall->is_object()) return {};
+    Rows rows;
+    // In the order a run meets them (harness/wall_account.h); report and other close after this page.
+    for (const char* key : {"scene_load", "device_open", "upload", "pipelines", "warm_up", "quality_render", "readback",
+                            "scoring", "timed_frames", "worst_images", "bandwidth", "outputs"}) {
+        const auto* value = jsonAt(*wall, std::string("/parts_s/") + key);
+        if (value && value->is_number() && value->get<double>() >= 0.005)
+            rows.push_back({key, fmt(value->get<double>(), 2)});
+    }
+    rows.push_back({"report, other", "written after this page (run.json has them)"});
+    if (const auto* workers = jsonAt(*wall, "/worker_cpu_s"); workers && workers->is_object())
+        for (const auto& [key, value] : workers->items())
+            if (value.is_number() && value.get<double>() >= 0.005)
+                rows.push_back({"worker CPU: " + key, fmt(value.get<double>(), 2)});
+    rows.push_back({"scorer", joined(at(d, "/metrics/scorer"), at(d, "/metrics/scorer_note"), ": ")});
+    return kvTable("Wall time (s)", rows);
+}
+
 }  // namespace
 
 std::string provenanceSection(const RunData& d) {
     return "<section id=\"provenance\"><h2>Provenance and settings</h2><div class=\"kv-grid\">" + runTables(d) +
-           contentTables(d) + "</div>" + validationMessages(d) +
+           contentTables(d) + wallTable(d) + "</div>" + validationMessages(d) +
            checkerboardTables(d) + alignmentTable(d) + metricConventions(d) + "</section>";
 }
 

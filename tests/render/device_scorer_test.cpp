@@ -22,7 +22,8 @@ constexpr Tolerance kTolerances[] = {{"psnr_db", 1e-3},     {"ssim", 2e-5},     
                                      {"flip_q3", 1e-3},     {"eci", 1e-4},           {"flicker_ratio", 1e-4},
                                      {"crawl_valid_fraction", 1e-6}};
 
-Csv runScored(const std::filesystem::path& work, const std::string& pipeline, const std::string& scorer) {
+Csv runScored(const std::filesystem::path& work, const std::string& pipeline, const std::string& scorer,
+              std::set<std::string>& worst) {
     const auto out = work / (pipeline + "-" + scorer);
     auto r = runBench({"run", "--scene", "atrium", "--path", "flythrough", "--res", "128x72", "--frames", "6",
                        "--repeat", "1", "--warmup", "1", "--validate", "--pipeline", pipeline, "--variants",
@@ -33,7 +34,6 @@ Csv runScored(const std::filesystem::path& work, const std::string& pipeline, co
     EXPECT_EQ(run["metrics"]["scorer"], scorer);
     EXPECT_EQ(run["validation"]["errors"], 0) << run["validation"]["first_messages"].dump(1);
     EXPECT_EQ(run["validation"]["warnings"], 0) << run["validation"]["first_messages"].dump(1);
-    std::set<std::string> worst;
     for (const auto& e : run["worst"])
         worst.insert(e["variant"].get<std::string>() + " " + e["kind"].get<std::string>() + " " +
                      std::to_string(e["frame"].get<int>()));
@@ -43,8 +43,10 @@ Csv runScored(const std::filesystem::path& work, const std::string& pipeline, co
 
 void expectAgreement(const std::string& pipeline) {
     auto work = scratchDir("device-scorer-" + pipeline);
-    const Csv cpu = runScored(work, pipeline, "cpu");
-    const Csv device = runScored(work, pipeline, "device");
+    std::set<std::string> cpu_worst, device_worst;
+    const Csv cpu = runScored(work, pipeline, "cpu", cpu_worst);
+    const Csv device = runScored(work, pipeline, "device", device_worst);
+    EXPECT_EQ(cpu_worst, device_worst);
     ASSERT_EQ(cpu.rows.size(), device.rows.size());
     for (const auto& header : device.header) {
         // Timed passes only: the metrics run after the last timestamp.
