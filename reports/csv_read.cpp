@@ -140,7 +140,7 @@ CsvData readCsv(const std::filesystem::path& file, const NumericColumn& numeric,
         throw std::invalid_argument(file.string() + ":1: empty file; accepted: a header row, then one row per record");
     for (const auto& name : required_columns)
         if (!csv.has(name))
-            fail(file, 1, "the header has no column '" + name + "'; accepted: the columns cbrbench writes (README.md)");
+            fail(file, 1, "the header has no column '" + name + "'; accepted: the columns cbrbench writes (docs/reference/outputs.md)");
 
     std::vector<bool> is_numeric(csv.header.size());
     for (size_t c = 0; c < csv.header.size(); ++c) is_numeric[c] = numeric && numeric(csv.header[c]);
