@@ -62,8 +62,8 @@ void requireLimits(const vk::Context& ctx, VkDeviceSize largest_buffer, uint32_t
     if (l.maxComputeWorkGroupInvocations < SCORE_GROUP * SCORE_GROUP || l.maxComputeWorkGroupSize[0] < SCORE_GROUP ||
         l.maxComputeWorkGroupSize[1] < SCORE_GROUP)
         throw vk::Unsupported("device scoring needs 16x16 compute workgroups; " + device + " lacks them");
-    // score_ssim.comp: two 26x26 tiles of uints, 256 vec4 and 256 uint for the sums.
-    const uint32_t shared_bytes = 2 * 26 * 26 * 4 + 256 * 16 + 256 * 4;
+    // score_ssim.comp: two 26x26 tiles of vec4, the 121 weights, 256 vec4 and 256 uint for the sums.
+    const uint32_t shared_bytes = 2 * 26 * 26 * 16 + 121 * 4 + 256 * 16 + 256 * 4;
     if (l.maxComputeSharedMemorySize < shared_bytes)
         throw vk::Unsupported("device scoring needs " + std::to_string(shared_bytes) + " bytes of shared memory; " +
                               device + " offers " + std::to_string(l.maxComputeSharedMemorySize));

@@ -12,26 +12,48 @@ const float kMaxDepth = 3.40282347e38;  // FLT_MAX: larger depths are infinite, 
 shared vec3 sums[SCORE_THREADS];
 shared uvec2 counts[SCORE_THREADS];
 
-// |Sobel / 8| of the blurred reference luma at q above the threshold; neighbours clamped.
-bool edgeAt(int qx, int qy) {
-    const int w = P.width, h = P.height;
-    const int l = max(qx - 1, 0), r = min(qx + 1, w - 1);
-    const int up = max(qy - 1, 0) * w, mid = qy * w, down = min(qy + 1, h - 1) * w;
-    const float gx = ((now[up + r] - now[up + l]) + 2.0 * (now[mid + r] - now[mid + l]) +
-                      (now[down + r] - now[down + l])) * 0.125;
-    const float gy = ((now[down + l] - now[up + l]) + 2.0 * (now[down + qx] - now[up + qx]) +
-                      (now[down + r] - now[up + r])) * 0.125;
-    return gx * gx + gy * gy > P.edge_threshold2;
+// The blurred reference luma around the workgroup (2 pixels of halo, clamped to the frame), and
+// its edges around it (1 pixel of halo): each edge is found once, not once per neighbour.
+const int kLumaTile = SCORE_GROUP + 4;
+const int kEdgeTile = SCORE_GROUP + 2;
+shared float tile_luma[kLumaTile * kLumaTile];
+shared uint tile_edge[kEdgeTile * kEdgeTile];
+
+// |Sobel / 8| above the threshold at edge-tile cell (i, j), frame pixel q; neighbours clamped to
+// the frame, as the CPU's; 0 outside the frame (the dilation reaches only pixels inside).
+uint edgeAt(ivec2 origin, int i, int j) {
+    const ivec2 q = origin + ivec2(i, j) + 1;
+    const ivec2 size = ivec2(P.width, P.height);
+    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) return 0u;
+    const ivec2 lo = max(q - 1, ivec2(0)) - origin, hi = min(q + 1, size - 1) - origin, c = q - origin;
+    #define L(x, y) tile_luma[(y) * kLumaTile + (x)]
+    const float gx = ((L(hi.x, lo.y) - L(lo.x, lo.y)) + 2.0 * (L(hi.x, c.y) - L(lo.x, c.y)) +
+                      (L(hi.x, hi.y) - L(lo.x, hi.y))) * 0.125;
+    const float gy = ((L(lo.x, hi.y) - L(lo.x, lo.y)) + 2.0 * (L(c.x, hi.y) - L(c.x, lo.y)) +
+                      (L(hi.x, hi.y) - L(hi.x, lo.y))) * 0.125;
+    #undef L
+    return gx * gx + gy * gy > P.edge_threshold2 ? 1u : 0u;
 }
 
-// The 3x3 dilation of the edges, over the neighbours inside the frame.
-bool nearEdge(int x, int y) {
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-            const int qx = x + dx, qy = y + dy;
-            if (qx >= 0 && qy >= 0 && qx < P.width && qy < P.height && edgeAt(qx, qy)) return true;
-        }
-    return false;
+void loadEdges(ivec2 origin) {
+    const ivec2 size = ivec2(P.width, P.height);
+    for (uint i = gl_LocalInvocationIndex; i < uint(kLumaTile * kLumaTile); i += SCORE_THREADS) {
+        const ivec2 q = clamp(origin + ivec2(int(i) % kLumaTile, int(i) / kLumaTile), ivec2(0), size - 1);
+        tile_luma[i] = now[q.y * size.x + q.x];
+    }
+    barrier();
+    for (uint i = gl_LocalInvocationIndex; i < uint(kEdgeTile * kEdgeTile); i += SCORE_THREADS)
+        tile_edge[i] = edgeAt(origin, int(i) % kEdgeTile, int(i) / kEdgeTile);
+    barrier();
+}
+
+// The 3x3 dilation of the edges at the invocation's pixel.
+bool nearEdge() {
+    const ivec2 l = ivec2(gl_LocalInvocationID.xy);
+    uint any_edge = 0u;
+    for (int dy = 0; dy <= 2; ++dy)
+        for (int dx = 0; dx <= 2; ++dx) any_edge |= tile_edge[(l.y + dy) * kEdgeTile + l.x + dx];
+    return any_edge != 0u;
 }
 
 // Bilinear sample of previous plane `plane` at pixel (x0 + fx, y0 + fy), 0 <= fx, fy <= 1.
@@ -47,6 +69,7 @@ float warped(int plane, int x0, int y0, float fx, float fy) {
 void main() {
     const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
     const int w = P.width, h = P.height, n = w * h, m = P.margin;
+    loadEdges(ivec2(gl_WorkGroupID.xy) * SCORE_GROUP - 2);
     vec3 s = vec3(0.0);   // (dV - dR)^2, |dV|, max(|dR|, floor)
     uvec2 c = uvec2(0u);  // edge pixels scored, valid pixels
     if (x >= m && y >= m && x < w - m && y < h - m) {
@@ -68,7 +91,7 @@ void main() {
                                  abs(before - expected) <= P.tolerance * expected;
             if (surface) {
                 c.y = 1u;
-                if (nearEdge(x, y)) {
+                if (nearEdge()) {
                     const float dv = now[n + p] - warped(1, x0, y0, frac.x, frac.y);
                     const float dr = now[p] - warped(0, x0, y0, frac.x, frac.y);
                     s = vec3((dv - dr) * (dv - dr), abs(dv), max(abs(dr), P.flicker_floor));

@@ -15,7 +15,7 @@ void main() {
     for (int img = 0; img < 2; ++img) {
         const int py = 3 * img, pcx = py + 1, pcz = py + 2;
         // Correlations, tap 0 first, as the CPU's rowFilter.
-        float hy = 0.0, hcx = 0.0, hcz1 = 0.0, hcz2 = 0.0;
+        precise float hy = 0.0, hcx = 0.0, hcz1 = 0.0, hcz2 = 0.0;
         for (int t = 0; t <= 2 * cr; ++t) {
             const int xx = clamp(x - cr + t, 0, last);
             const float vy = band[bandIndex(py, r, xx)];
@@ -25,7 +25,7 @@ void main() {
             hcz1 += taps[P.flip_cz1 + t] * vcz;
             hcz2 += taps[P.flip_cz2 + t] * vcz;
         }
-        float hg = 0.0, hd = 0.0, hdd = 0.0;
+        precise float hg = 0.0, hd = 0.0, hdd = 0.0;
         for (int t = 0; t <= 2 * fr; ++t) {
             const float vy = band[bandIndex(py, r, clamp(x - fr + t, 0, last))];
             hg += taps[P.flip_g + t] * vy;

@@ -15,8 +15,11 @@ const float kC1 = 6.5025;    // (0.01 * 255)^2
 const float kC2 = 58.5225;   // (0.03 * 255)^2
 const vec3 kLuma = vec3(0.2126, 0.7152, 0.0722);
 
-shared uint tile_a[kIn * kIn];
-shared uint tile_b[kIn * kIn];
+// The tile's pixels as floats once (RGB and BT.709 luma of each image, byte units), and the
+// window's 2D weights: the 121-tap loop then only loads, subtracts and accumulates.
+shared vec4 tile_a[kIn * kIn];
+shared vec4 tile_b[kIn * kIn];
+shared float weights[121];
 shared vec4 sums[SCORE_THREADS];
 shared uint squares[SCORE_THREADS];
 
@@ -27,38 +30,36 @@ float ssimOf(float mua, float mub, float var_sum, float cov) {
 // The window is filtered directly in 2D, every value taken relative to the window's centre pixel:
 // E[x^2] - E[x]^2 then never subtracts two large nearly equal floats (a flat window gives exactly
 // 0), which a separable float filter of the raw values would (errors of 1e-4 in flat regions).
+// Luma's deviations are those of the pixels' luma; its means the BT.709 mix of the channel means
+// (the filter is linear), as on the CPU.
 vec4 ssimAt(ivec2 local) {
-    float k[11];
-    for (int i = 0; i < 11; ++i) k[i] = taps[P.ssim_taps + i];
     const int centre = (local.y + kRadius) * kIn + local.x + kRadius;
-    const vec3 ca = unpackBytes(tile_a[centre]);
-    const vec3 cb = unpackBytes(tile_b[centre]);
-    vec3 sa = vec3(0), sb = vec3(0), sss = vec3(0), sab = vec3(0);
-    float lss = 0.0, lab = 0.0;
+    const vec4 ca = tile_a[centre], cb = tile_b[centre];
+    vec4 sa = vec4(0), sb = vec4(0), sss = vec4(0), sab = vec4(0);
     for (int i = 0; i < 11; ++i) {
         const int row = (local.y + i) * kIn + local.x;
         for (int j = 0; j < 11; ++j) {
-            const float w = k[i] * k[j];
-            const vec3 va = unpackBytes(tile_a[row + j]) - ca;
-            const vec3 vb = unpackBytes(tile_b[row + j]) - cb;
+            const float w = weights[i * 11 + j];
+            const vec4 va = tile_a[row + j] - ca;
+            const vec4 vb = tile_b[row + j] - cb;
             sa += w * va;
             sb += w * vb;
             sss += w * (va * va + vb * vb);
             sab += w * (va * vb);
-            const float la = dot(kLuma, va), lb = dot(kLuma, vb);
-            lss += w * (la * la + lb * lb);
-            lab += w * (la * lb);
         }
     }
-    const vec3 mua = ca + sa, mub = cb + sb;
-    const vec3 var_sum = sss - (sa * sa + sb * sb);
-    const vec3 cov = sab - sa * sb;
+    const vec3 mua = ca.rgb + sa.rgb, mub = cb.rgb + sb.rgb;
+    const vec4 var_sum = sss - (sa * sa + sb * sb);
+    const vec4 cov = sab - sa * sb;
     vec4 s;
     for (int c = 0; c < 3; ++c) s[c] = ssimOf(mua[c], mub[c], var_sum[c], cov[c]);
-    // Luma's means are the BT.709 mix of the channel means (the filter is linear), as on the CPU.
-    const float la = dot(kLuma, sa), lb = dot(kLuma, sb);
-    s.w = ssimOf(dot(kLuma, mua), dot(kLuma, mub), lss - (la * la + lb * lb), lab - la * lb);
+    s.w = ssimOf(dot(kLuma, mua), dot(kLuma, mub), var_sum.w, cov.w);
     return s;
+}
+
+vec4 tilePixel(uint v) {
+    const vec3 c = unpackBytes(v);
+    return vec4(c, dot(kLuma, c));
 }
 
 void main() {
@@ -66,8 +67,12 @@ void main() {
     const ivec2 base = ivec2(gl_WorkGroupID.xy) * SCORE_GROUP - kRadius;
     for (uint i = gl_LocalInvocationIndex; i < uint(kIn * kIn); i += SCORE_THREADS) {
         const ivec2 q = clamp(base + ivec2(int(i) % kIn, int(i) / kIn), ivec2(0), size - 1);
-        tile_a[i] = reference_px[q.y * size.x + q.x];
-        tile_b[i] = variant_px[q.y * size.x + q.x];
+        tile_a[i] = tilePixel(reference_px[q.y * size.x + q.x]);
+        tile_b[i] = tilePixel(variant_px[q.y * size.x + q.x]);
+    }
+    if (gl_LocalInvocationIndex < 121u) {
+        const uint i = gl_LocalInvocationIndex;
+        weights[i] = taps[P.ssim_taps + int(i / 11u)] * taps[P.ssim_taps + int(i % 11u)];
     }
     barrier();
     const ivec2 local = ivec2(gl_LocalInvocationID.xy);
@@ -75,8 +80,8 @@ void main() {
     uint square = 0u;
     vec4 s = vec4(0.0);
     if (all(lessThan(p, size))) {
-        const int centre = (local.y + kRadius) * kIn + local.x + kRadius;
-        const ivec3 d = ivec3(unpackCodes(tile_a[centre])) - ivec3(unpackCodes(tile_b[centre]));
+        const ivec3 d = ivec3(unpackCodes(reference_px[p.y * size.x + p.x])) -
+                        ivec3(unpackCodes(variant_px[p.y * size.x + p.x]));
         square = uint(d.r * d.r + d.g * d.g + d.b * d.b);
         if (all(greaterThanEqual(p, ivec2(kRadius))) && all(lessThan(p, size - kRadius))) s = ssimAt(local);
     }

@@ -4,15 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "metrics/flip.h"
@@ -79,9 +80,11 @@ metrics::Image toImage(const Rgba& image) {
 
 class DeviceMetricsTest : public ::testing::Test {
 public:
+    // CBR_TEST_DEVICE picks another device than the default (lavapipe), as --device does.
     static void SetUpTestSuite() {
+        const char* device = std::getenv("CBR_TEST_DEVICE");
         try {
-            ctx_ = std::make_unique<vk::Context>(vk::ContextOptions{/* validate= */ true, ""});
+            ctx_ = std::make_unique<vk::Context>(vk::ContextOptions{/* validate= */ true, device ? device : ""});
         } catch (const vk::Unsupported& e) {
             skip_reason_ = e.what();
         }
@@ -108,26 +111,19 @@ protected:
     // Scores one frame on the device: the inputs through host-visible buffers, as the renderer's
     // readback buffers would hold them. `analysis`: 4 floats per pixel, or empty (no surface).
     static DeviceScores score(DeviceMetrics& metrics, DeviceMetrics::Chain& chain, const Rgba& reference,
-                              const Rgba& variant, const std::vector<float>& analysis, bool cut,
-                              double* seconds = nullptr) {
+                              const Rgba& variant, const std::vector<float>& analysis, bool cut) {
         vk::Context& ctx = *ctx_;
         const size_t pixels = size_t(reference.width) * reference.height;
+        // Device-local inputs, as the renderer's images copied to buffers would be.
         constexpr VkBufferUsageFlags kIn = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-        vk::Buffer ref = vk::createBuffer(ctx, 4 * pixels, kIn, true);
-        vk::Buffer var = vk::createBuffer(ctx, 4 * pixels, kIn, true);
-        vk::Buffer field = vk::createBuffer(ctx, 16 * pixels, kIn, true);
+        const std::vector<float> no_surface(analysis.empty() ? 4 * pixels : 0, 0.0f);
+        vk::Buffer ref = vk::uploadBuffer(ctx, reference.bytes.data(), 4 * pixels, kIn);
+        vk::Buffer var = vk::uploadBuffer(ctx, variant.bytes.data(), 4 * pixels, kIn);
+        vk::Buffer field = vk::uploadBuffer(ctx, analysis.empty() ? no_surface.data() : analysis.data(), 16 * pixels, kIn);
         vk::Buffer result = vk::createReadbackBuffer(ctx, metrics.resultBytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-        std::memcpy(ref.mapped, reference.bytes.data(), 4 * pixels);
-        std::memcpy(var.mapped, variant.bytes.data(), 4 * pixels);
-        if (analysis.empty())
-            std::memset(field.mapped, 0, 16 * pixels);
-        else
-            std::memcpy(field.mapped, analysis.data(), 16 * pixels);
-        const auto start = std::chrono::steady_clock::now();
         ctx.immediate([&](VkCommandBuffer cmd) {
             metrics.record(cmd, ref.buffer, var.buffer, field.buffer, chain, cut, result.buffer);
         });
-        if (seconds) *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const DeviceScores s = metrics.read(result.mapped, chain);
         for (vk::Buffer* b : {&ref, &var, &field, &result}) vk::destroyBuffer(ctx, *b);
         return s;
@@ -240,7 +236,7 @@ struct PanFrame {
     metrics::MotionField motion;
 };
 
-PanFrame panFrame(int width, int height, int t, int scene) {
+PanFrame panFrame(int width, int height, int t, int scene, int samples = 4) {
     const double dx = 0.37, dy = -0.21;
     const double cell_x = scene == 0 ? 11.0 : 7.0, cell_y = scene == 0 ? 9.0 : 13.0;
     auto pattern = [&](double u, double v, int c) {
@@ -252,9 +248,9 @@ PanFrame panFrame(int width, int height, int t, int scene) {
     PanFrame f;
     f.reference = generate(width, height, [&](int x, int y, int c) {
         double sum = 0;
-        for (int j = 0; j < 4; ++j)
-            for (int i = 0; i < 4; ++i) sum += pattern(x + (i + 0.5) / 4, y + (j + 0.5) / 4, c);
-        return clampByte(sum / 16);
+        for (int j = 0; j < samples; ++j)
+            for (int i = 0; i < samples; ++i) sum += pattern(x + (i + 0.5) / samples, y + (j + 0.5) / samples, c);
+        return clampByte(sum / (samples * samples));
     });
     f.variant = generate(width, height, [&](int x, int y, int c) { return clampByte(pattern(x + 0.5, y + 0.5, c)); });
     const size_t pixels = size_t(width) * height;
@@ -342,20 +338,72 @@ TEST_F(DeviceMetricsTest, IdenticalPairScoresPerfect) {
     EXPECT_EQ(s.flip_q3, 0.0);
 }
 
-// Not a check (timing is measured, never asserted): the wall time of one 1920x1080 frame,
-// submit to fence, with --gtest_also_run_disabled_tests.
-TEST_F(DeviceMetricsTest, DISABLED_Time1920x1080) {
-    const PanFrame a = panFrame(1920, 1080, 0, 0), b = panFrame(1920, 1080, 1, 0);
-    DeviceMetrics& device = scorer(1920, 1080);
-    auto chain = device.makeChain();
-    for (int i = 0; i < 3; ++i) {
-        double seconds = 0;
-        const PanFrame& f = i % 2 ? b : a;
-        score(device, *chain, f.reference, f.variant, f.analysis, false, &seconds);
-        std::printf("1920x1080 frame %d (%s): %.3f s\n", i, ctx_->description.name.c_str(), seconds);
+// Not a check (timing is measured, never asserted): the GPU time of record()'s commands
+// (timestamps) at 1080p and 4K (CBR_TIME_SIZES=WxH,... for others), device-local inputs, with
+// --gtest_also_run_disabled_tests.
+TEST_F(DeviceMetricsTest, DISABLED_TimeFrames) {
+    VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO, nullptr, 0, VK_QUERY_TYPE_TIMESTAMP, 2};
+    VkQueryPool pool;
+    VK_CHECK(vkCreateQueryPool(ctx_->device, &info, nullptr, &pool));
+    std::vector<std::pair<int, int>> sizes = {{1920, 1080}, {3840, 2160}};
+    if (const char* list = std::getenv("CBR_TIME_SIZES")) {  // e.g. 2560x1440,3840x2160
+        sizes.clear();
+        for (const char* p = list; *p;) {
+            int w = 0, h = 0, n = 0;
+            if (std::sscanf(p, "%dx%d%n", &w, &h, &n) != 2) break;
+            sizes.push_back({w, h});
+            p += n + (p[n] == ',' ? 1 : 0);
+        }
     }
-    std::printf("scratch %.1f MB, chain %.1f MB, result %.1f KB\n", device.scratchBytes() / 1e6,
-                device.chainBytes() / 1e6, device.resultBytes() / 1e3);
+    for (auto [width, height] : sizes) {
+        // One sample per pixel for the reference (generating 4K frames is the slow part here), a
+        // variant a few codes off it: the errors spread over the histogram's bins.
+        PanFrame a = panFrame(width, height, 0, 0, 1), b = panFrame(width, height, 1, 0, 1);
+        for (PanFrame* f : {&a, &b})
+            for (size_t i = 0; i < f->variant.bytes.size(); ++i)
+                if (i % 4 != 3) f->variant.bytes[i] = clampByte(f->reference.bytes[i] + int(hash(uint32_t(i)) % 9) - 4);
+        DeviceMetrics& device = scorer(width, height);
+        auto chain = device.makeChain();
+        const size_t pixels = size_t(width) * height;
+        constexpr VkBufferUsageFlags kIn = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        vk::Buffer inputs[2][3];
+        for (int k = 0; k < 2; ++k) {
+            const PanFrame& f = k ? b : a;
+            inputs[k][0] = vk::uploadBuffer(*ctx_, f.reference.bytes.data(), 4 * pixels, kIn);
+            inputs[k][1] = vk::uploadBuffer(*ctx_, f.variant.bytes.data(), 4 * pixels, kIn);
+            inputs[k][2] = vk::uploadBuffer(*ctx_, f.analysis.data(), 16 * pixels, kIn);
+        }
+        vk::Buffer result = vk::createReadbackBuffer(*ctx_, device.resultBytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+        // Frames back to back, as in a run: an idle GPU's clocks take a while to come up, and the
+        // first frames measure that more than the scorer.
+        std::vector<double> gpu_ms;
+        const int frames = ctx_->description.is_lavapipe ? 3 : 60;
+        for (int i = 0; i < frames; ++i) {
+            const vk::Buffer* in = inputs[i % 2];
+            ctx_->immediate([&](VkCommandBuffer cmd) {
+                vkCmdResetQueryPool(cmd, pool, 0, 2);
+                vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool, 0);
+                device.record(cmd, in[0].buffer, in[1].buffer, in[2].buffer, *chain, false, result.buffer);
+                vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool, 1);
+            });
+            uint64_t ticks[2] = {0, 0};
+            VK_CHECK(vkGetQueryPoolResults(ctx_->device, pool, 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
+                                           VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+            gpu_ms.push_back(double(ticks[1] - ticks[0]) * ctx_->caps.timestamp_period_ns * 1e-6);
+        }
+        const DeviceScores s = device.read(result.mapped, *chain);
+        std::vector<double> last(gpu_ms.end() - frames / 3, gpu_ms.end());
+        std::sort(last.begin(), last.end());
+        std::printf("%dx%d (%s): GPU ms per frame: first %.3f, median of the last %d %.3f (min %.3f); eci %.4f\n",
+                    width, height, ctx_->description.name.c_str(), gpu_ms[0], frames / 3, last[last.size() / 2],
+                    last[0], s.eci);
+        std::printf("%dx%d: scratch %.1f MB, chain %.1f MB, result %.1f KB\n", width, height,
+                    device.scratchBytes() / 1e6, device.chainBytes() / 1e6, device.resultBytes() / 1e3);
+        for (auto& k : inputs)
+            for (vk::Buffer& buffer : k) vk::destroyBuffer(*ctx_, buffer);
+        vk::destroyBuffer(*ctx_, result);
+    }
+    vkDestroyQueryPool(ctx_->device, pool, nullptr);
 }
 
 }  // namespace
