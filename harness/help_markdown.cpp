@@ -100,8 +100,10 @@ Command helpCommand(CLI::App& app) {
     auto markdown = std::make_shared<bool>(false);
     cli->add_flag("--markdown", *markdown, "print the reference as one Markdown page");
     return {cli, [&app, markdown] {
-                const std::string text =
-                    *markdown ? commandLineMarkdown(app) : app.help("", CLI::AppFormatMode::All);
+                // app.help() would print the help of the parsed subcommand, this one: format the app.
+                const std::string text = *markdown ? commandLineMarkdown(app)
+                                                   : app.get_formatter()->make_help(&app, "cbrbench",
+                                                                                    CLI::AppFormatMode::All);
                 std::fputs(text.c_str(), stdout);
                 return 0;
             }};
