@@ -442,7 +442,8 @@ Command stressCommand(CLI::App& app) {
     cli->add_option("--device", so.device, "device index or name substring");
     cli->add_option("--cases", a->cases, "comma-separated case names (default: all; `--list` names them)");
     cli->add_option("--pipelines", a->pipelines, "forward and/or deferred")->capture_default_str();
-    cli->add_option("--cbr-route", so.cbr_route, "checkerboard route of every run (default: auto)");
+    cli->add_option("--cbr-route", so.cbr_route,
+                    std::string("checkerboard route of every run: ") + variants::routeNames() + " (default: auto)");
     cli->add_flag("--validate", so.validate, "Khronos validation layer on in every run; any message fails the case");
     cli->add_option("--static-frames", so.static_frames, "length of the static-camera case")->capture_default_str();
     cli->add_option("--subpixel-frames", so.subpixel_frames, "length of the sub-pixel motion case")
