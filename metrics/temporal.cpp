@@ -26,8 +26,11 @@ struct CrawlTracker::State {
     struct Frame {
         int width = 0;
         int height = 0;
-        std::vector<double> reference_luma;  // blurred; e_t = variant - reference
-        std::vector<double> variant_luma;    // blurred
+        // Blurred lumas in single precision: ECI and flicker are ratios of differences of
+        // about 1e-2, so float's 6e-8 moves them by ~1e-7 of the 1e-4 issue 32 allows, and
+        // the blur and the warp read half the bytes.
+        std::vector<float> reference_luma;  // blurred; e_t = variant - reference
+        std::vector<float> variant_luma;    // blurred
         std::vector<float> depth;            // for the next frame's disocclusion test
     };
     Frame frames[2];
@@ -57,8 +60,8 @@ constexpr double kSobelScale = 1.0 / 8.0;
 // Depths above this are infinite (float input): no surface.
 constexpr double kMaxDepth = std::numeric_limits<float>::max();
 
-constexpr uint64_t kExponentMask = 0x7FF0000000000000ull;
-constexpr uint64_t kExponentOne = 0x0010000000000000ull;
+constexpr uint32_t kFloatExponentMask = 0x7F800000u;
+constexpr uint32_t kFloatExponentOne = 0x00800000u;
 
 std::string sizeText(int width, int height) {
     return std::to_string(width) + "x" + std::to_string(height);
@@ -150,8 +153,8 @@ void forStrips(int height, int strip_rows, const Body& body) {
 
 // One thread's buffers, kept across calls so that no strip touches fresh pages.
 struct BlurScratch {
-    std::vector<double> ring;    // luma of the last 2 radius + 1 input rows
-    std::vector<double> padded;  // one vertically filtered row with reflected ends
+    std::vector<float> ring;    // luma of the last 2 radius + 1 input rows
+    std::vector<float> padded;  // one vertically filtered row with reflected ends
 };
 
 // Steps 1-2 of metrics.md for rows [y0, y1): BT.709 luma of `image`, Gaussian-blurred
@@ -174,86 +177,88 @@ struct LumaTable {
 const LumaTable kLumaTable;
 
 CBR_SIMD_CLONES
-bool blurredLumaRows(const Image* image, const uint8_t* rgba, int width, int height, const double* kernel,
-                     int radius, int y0, int y1, BlurScratch& scratch, double* out) {
+bool blurredLumaRows(const Image* image, const uint8_t* rgba, int width, int height, const float* kernel,
+                     int radius, int y0, int y1, BlurScratch& scratch, float* out) {
     const int channels = image ? image->channels : 4;
     const int taps = 2 * radius + 1;
     scratch.ring.resize(size_t(taps) * width);
     scratch.padded.resize(size_t(width) + 2 * size_t(radius));
-    // An all-ones exponent (NaN, inf) plus one carries into the sign bit: integer adds
-    // and ORs, which vectorise where a compare-and-branch per value does not.
-    uint64_t carry = 0;
+    // An all-ones exponent (NaN, inf, or a value beyond float's range) plus one carries into
+    // the sign bit: integer adds and ORs, which vectorise where a compare-and-branch does not.
+    uint32_t carry = 0;
     // Input row j (reflected at the frame's edges) goes to ring slot (j - y0 + radius) % taps.
     auto load = [&](int j) {
-        double* row = scratch.ring.data() + size_t((j - y0 + radius) % taps) * width;
+        float* row = scratch.ring.data() + size_t((j - y0 + radius) % taps) * width;
         if (rgba) {
-            // (0.2126 r + 0.7152 g) + 0.0722 b, bt709Luma's order; codes are always finite.
+            // (0.2126 r + 0.7152 g) + 0.0722 b, bt709Luma's order in double, then rounded
+            // once: the same floats as from the doubles below. Codes are always finite.
             const uint8_t* p = rgba + size_t(reflectIndex(j, height)) * width * 4;
             for (int x = 0; x < width; ++x)
-                row[x] = (kLumaTable.r[p[4 * x]] + kLumaTable.g[p[4 * x + 1]]) + kLumaTable.b[p[4 * x + 2]];
+                row[x] = float((kLumaTable.r[p[4 * x]] + kLumaTable.g[p[4 * x + 1]]) + kLumaTable.b[p[4 * x + 2]]);
             return;
         }
         const double* in = image->data.data() + size_t(reflectIndex(j, height)) * width * channels;
         if (channels == 1) {
-            for (int x = 0; x < width; ++x) row[x] = in[x];
+            for (int x = 0; x < width; ++x) row[x] = float(in[x]);
         } else {
             for (int x = 0; x < width; ++x)
-                row[x] = bt709Luma(in[3 * x], in[3 * x + 1], in[3 * x + 2]);
+                row[x] = float(bt709Luma(in[3 * x], in[3 * x + 1], in[3 * x + 2]));
         }
         for (int x = 0; x < width; ++x)
-            carry |= (std::bit_cast<uint64_t>(row[x]) & kExponentMask) + kExponentOne;
+            carry |= (std::bit_cast<uint32_t>(row[x]) & kFloatExponentMask) + kFloatExponentOne;
     };
     for (int j = y0 - radius; j < y0 + radius; ++j) load(j);
-    double* padded = scratch.padded.data();
-    double* centre = padded + radius;
-    const double mid = kernel[radius];
+    float* padded = scratch.padded.data();
+    float* centre = padded + radius;
+    const float mid = kernel[radius];
     for (int y = y0; y < y1; ++y) {
         load(y + radius);
         // Input row y - radius + i sits in slot (y - y0 + i) % taps.
         auto row = [&](int i) {
             return scratch.ring.data() + size_t((y - y0 + i) % taps) * width;
         };
-        const double* mid_row = row(radius);
+        const float* mid_row = row(radius);
         for (int x = 0; x < width; ++x) centre[x] = mid * mid_row[x];
         for (int i = 0; i < radius; ++i) {
-            const double* lo = row(i);
-            const double* hi = row(2 * radius - i);
-            const double k = kernel[i];
+            const float* lo = row(i);
+            const float* hi = row(2 * radius - i);
+            const float k = kernel[i];
             for (int x = 0; x < width; ++x) centre[x] += k * (lo[x] + hi[x]);
         }
         for (int m = 1; m <= radius; ++m) {
             centre[-m] = centre[reflectIndex(-m, width)];
             centre[width - 1 + m] = centre[reflectIndex(width - 1 + m, width)];
         }
-        double* o = out + size_t(y) * width;
+        float* o = out + size_t(y) * width;
         for (int x = 0; x < width; ++x) o[x] = mid * padded[x + radius];
         for (int i = 0; i < radius; ++i) {
-            const double k = kernel[i];
+            const float k = kernel[i];
             for (int x = 0; x < width; ++x) o[x] += k * (padded[x + i] + padded[x + 2 * radius - i]);
         }
     }
-    return (carry >> 63) == 0;
+    return (carry >> 31) == 0;
 }
 
 // Step 5 for one row: |Sobel / 8| of the blurred reference luma above the threshold,
 // then the horizontal half of the 3x3 dilation. Borders reflect (the same pixel).
 CBR_SIMD_CLONES
-void edgeRow(const double* up, const double* mid, const double* down, int width,
+void edgeRow(const float* up, const float* mid, const float* down, int width,
              double threshold, uint8_t* edge, uint8_t* wide) {
     // Squares compared: the same set as magnitude > threshold, without a square root.
-    const double threshold2 = threshold * threshold;
+    const float threshold2 = float(threshold * threshold);
+    constexpr float kScale = float(kSobelScale);
     auto at = [&](int x) {
         const int l = std::max(x - 1, 0), r = std::min(x + 1, width - 1);
-        const double gx = ((up[r] - up[l]) + 2 * (mid[r] - mid[l]) + (down[r] - down[l])) * kSobelScale;
-        const double gy = ((down[l] - up[l]) + 2 * (down[x] - up[x]) + (down[r] - up[r])) * kSobelScale;
+        const float gx = ((up[r] - up[l]) + 2.0f * (mid[r] - mid[l]) + (down[r] - down[l])) * kScale;
+        const float gy = ((down[l] - up[l]) + 2.0f * (down[x] - up[x]) + (down[r] - up[r])) * kScale;
         return uint8_t(gx * gx + gy * gy > threshold2);
     };
     edge[0] = at(0);
     for (int x = 1; x + 1 < width; ++x) {
-        const double gx = ((up[x + 1] - up[x - 1]) + 2 * (mid[x + 1] - mid[x - 1]) +
-                           (down[x + 1] - down[x - 1])) * kSobelScale;
-        const double gy = ((down[x - 1] - up[x - 1]) + 2 * (down[x] - up[x]) +
-                           (down[x + 1] - up[x + 1])) * kSobelScale;
+        const float gx = ((up[x + 1] - up[x - 1]) + 2.0f * (mid[x + 1] - mid[x - 1]) +
+                           (down[x + 1] - down[x - 1])) * kScale;
+        const float gy = ((down[x - 1] - up[x - 1]) + 2.0f * (down[x] - up[x]) +
+                           (down[x + 1] - up[x + 1])) * kScale;
         edge[x] = uint8_t(gx * gx + gy * gy > threshold2);
     }
     if (width > 1) edge[width - 1] = at(width - 1);
@@ -267,15 +272,16 @@ void edgeRow(const double* up, const double* mid, const double* down, int width,
 // Bilinear sample at continuous pixel-index coordinates (pixel centres on integers).
 // The caller has checked 0 <= sx <= width - 1 and 0 <= sy <= height - 1, so int()
 // truncation is floor().
-inline double bilinear(const double* image, int width, int height, double sx, double sy) {
+inline double bilinear(const float* image, int width, int height, double sx, double sy) {
     const int x0 = int(sx), y0 = int(sy);
     const double fx = sx - x0, fy = sy - y0;
     // On the last row or column the next one has weight 0: clamp the index only.
     const int x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
-    const double* r0 = image + size_t(y0) * width;
-    const double* r1 = image + size_t(y1) * width;
-    const double top = r0[x0] + fx * (r0[x1] - r0[x0]);
-    const double bottom = r1[x0] + fx * (r1[x1] - r1[x0]);
+    const float* r0 = image + size_t(y0) * width;
+    const float* r1 = image + size_t(y1) * width;
+    const double a = r0[x0], b = r0[x1], c = r1[x0], d = r1[x1];
+    const double top = a + fx * (b - a);
+    const double bottom = c + fx * (d - c);
     return top + fy * (bottom - top);
 }
 
@@ -304,13 +310,13 @@ struct RowInputs {
     const uint8_t* above = nullptr;  // horizontally dilated edges of rows y-1, y, y+1
     const uint8_t* centre = nullptr;
     const uint8_t* below = nullptr;
-    const double* reference_now = nullptr;  // row y of the blurred lumas at t
-    const double* variant_now = nullptr;
+    const float* reference_now = nullptr;  // row y of the blurred lumas at t
+    const float* variant_now = nullptr;
     const float* motion = nullptr;  // row y of the motion field at t
     const float* depth = nullptr;
     const float* expected = nullptr;
-    const double* reference_then = nullptr;  // whole frames at t-1
-    const double* variant_then = nullptr;
+    const float* reference_then = nullptr;  // whole frames at t-1
+    const float* variant_then = nullptr;
     const float* depth_then = nullptr;
     double* map_row = nullptr;  // crawl map row, or null
     uint8_t* valid = nullptr;   // scratch rows
@@ -447,7 +453,8 @@ CrawlFrame CrawlTracker::addInputs(const Input& reference, const Input& variant,
 
     // Step 1: luma of both images, blurred with sigma 1 so that bilinear warping (a
     // slight blur itself) does not read as change.
-    const std::vector<double> kernel = blurKernel(settings_.blur_sigma);
+    const std::vector<double> taps = blurKernel(settings_.blur_sigma);
+    const std::vector<float> kernel(taps.begin(), taps.end());
     const int radius = int(kernel.size() / 2);
     const int blur_strips = (height + kBlurStripRows - 1) / kBlurStripRows;
     std::vector<uint8_t> strip_finite(static_cast<size_t>(blur_strips), 1);
@@ -489,7 +496,7 @@ CrawlFrame CrawlTracker::addInputs(const Input& reference, const Input& variant,
         scratch.source.resize(size_t(width));
         scratch.then.resize(size_t(width));
         scratch.wide.resize(size_t(g1 - g0) * width);
-        const double* blurred = now.reference_luma.data();
+        const float* blurred = now.reference_luma.data();
         for (int y = g0; y < g1; ++y)
             edgeRow(blurred + size_t(std::max(y - 1, 0)) * width, blurred + size_t(y) * width,
                     blurred + size_t(std::min(y + 1, height - 1)) * width, width,

@@ -488,12 +488,14 @@ TEST(EdgeCrawl, MatchesStepByStepDefinition) {
     ASSERT_LT(n.valid, 0.8 * (w - 8) * (h - 8));
     EXPECT_EQ(f.denominator, n.denominator);
     EXPECT_DOUBLE_EQ(f.valid_fraction, n.valid / (w * h));
-    EXPECT_NEAR(f.numerator, n.numerator, 1e-10 * n.numerator);
-    EXPECT_NEAR(f.eci, std::sqrt(n.numerator / n.denominator), 1e-10);
-    EXPECT_NEAR(f.flicker_ratio, n.flicker_variant / n.flicker_reference, 1e-10);
+    // The tracker keeps its blurred lumas in float (issue 32 allows 1e-4 on ECI and flicker):
+    // about 1e-7 relative here; the naive definition runs in double throughout.
+    EXPECT_NEAR(f.numerator, n.numerator, 1e-5 * n.numerator);
+    EXPECT_NEAR(f.eci, std::sqrt(n.numerator / n.denominator), 1e-6);
+    EXPECT_NEAR(f.flicker_ratio, n.flicker_variant / n.flicker_reference, 1e-6);
     ASSERT_TRUE(f.crawl_map.has_value());
     ASSERT_EQ(f.crawl_map->channels, 1);
-    for (size_t i = 0; i < n.map.size(); ++i) ASSERT_NEAR(f.crawl_map->data[i], n.map[i], 1e-12) << i;
+    for (size_t i = 0; i < n.map.size(); ++i) ASSERT_NEAR(f.crawl_map->data[i], n.map[i], 1e-6) << i;
 }
 
 // The benchmark command's measurement runs the real functions; its times are not
