@@ -1,5 +1,6 @@
 // Per-frame quality metrics in Vulkan compute: MSE, SSIM, LDR-FLIP and edge crawl of one variant
 // against the reference, equal within issue 32's tolerances to what metrics/ computes on the CPU.
+// Passes and precision: renderer/shaders/score_*.comp; result layout: score_shared.h.
 #pragma once
 
 #include <cstdint>
@@ -61,8 +62,10 @@ public:
     // result: resultBytes() of host-visible memory, written entirely (partial sums, histogram).
     // The inputs are copied first (transfer reads, ordered after all earlier commands by the
     // barrier record() begins with), so they need VK_BUFFER_USAGE_TRANSFER_SRC_BIT and `result`
-    // VK_BUFFER_USAGE_TRANSFER_DST_BIT; record() orders its own buffers against earlier record()
-    // calls on the queue and ends with the result made visible to host reads.
+    // VK_BUFFER_USAGE_TRANSFER_DST_BIT; inputs in host-visible memory would cross the bus every
+    // frame (24 bytes a pixel). record() orders its own buffers against earlier record() calls on
+    // the queue (several variants may share one command buffer) and ends with the result made
+    // visible to host reads. It marks `chain` as having a previous frame: one thread per chain.
     void record(VkCommandBuffer cmd, VkBuffer reference, VkBuffer variant, VkBuffer analysis, Chain& chain, bool cut,
                 VkBuffer result);
 

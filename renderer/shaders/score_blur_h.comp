@@ -11,8 +11,9 @@ void main() {
     if (x >= w || y >= h) return;
     const int radius = P.blur_radius, row = y * w;
     const float mid = taps[P.blur_taps + radius];
-    float a = mid * band[row + x];
-    float b = mid * band[n + row + x];
+    // precise: the reference's and the variant's sums rounded alike (identical images, no crawl).
+    precise float a = mid * band[row + x];
+    precise float b = mid * band[n + row + x];
     for (int i = 0; i < radius; ++i) {
         const float k = taps[P.blur_taps + i];
         const int lo = row + reflectIndex(x - radius + i, w), hi = row + reflectIndex(x + radius - i, w);

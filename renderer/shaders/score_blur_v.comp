@@ -12,8 +12,9 @@ void main() {
     if (x >= w || y >= h) return;
     const int radius = P.blur_radius;
     const float mid = taps[P.blur_taps + radius];
-    float a = mid * lumaOf(reference_px[y * w + x]);
-    float b = mid * lumaOf(variant_px[y * w + x]);
+    // precise: the reference's and the variant's sums rounded alike (identical images, no crawl).
+    precise float a = mid * lumaOf(reference_px[y * w + x]);
+    precise float b = mid * lumaOf(variant_px[y * w + x]);
     for (int i = 0; i < radius; ++i) {
         const float k = taps[P.blur_taps + i];
         const int lo = reflectIndex(y - radius + i, h) * w + x, hi = reflectIndex(y + radius - i, h) * w + x;

@@ -61,9 +61,10 @@ float warped(int plane, int x0, int y0, float fx, float fy) {
     const int w = P.width, base = plane * w * P.height;
     const int x1 = min(x0 + 1, w - 1), y1 = min(y0 + 1, P.height - 1);
     const int r0 = base + y0 * w, r1 = base + y1 * w;
-    const float top = previous[r0 + x0] + fx * (previous[r0 + x1] - previous[r0 + x0]);
-    const float bottom = previous[r1 + x0] + fx * (previous[r1 + x1] - previous[r1 + x0]);
-    return top + fy * (bottom - top);
+    precise float top = previous[r0 + x0] + fx * (previous[r0 + x1] - previous[r0 + x0]);
+    precise float bottom = previous[r1 + x0] + fx * (previous[r1 + x1] - previous[r1 + x0]);
+    precise float value = top + fy * (bottom - top);  // both planes rounded alike
+    return value;
 }
 
 void main() {

@@ -324,6 +324,48 @@ TEST_F(DeviceMetricsTest, CrawlChainMatchesCrawlTracker) {
     compareChain(metrics::CrawlSettings{}, true, "flat frames");
 }
 
+// The renderer's use: several variants against one reference, each with its own chain and
+// result buffer, recorded into one command buffer; the synchronization validation layer checks
+// that record() orders its scratch between the calls, and the figures match one call at a time.
+TEST_F(DeviceMetricsTest, VariantsShareOneCommandBuffer) {
+    constexpr int kWidth = 96, kHeight = 64;
+    DeviceMetrics& device = scorer(kWidth, kHeight);
+    const PanFrame frames[2] = {panFrame(kWidth, kHeight, 0, 0), panFrame(kWidth, kHeight, 1, 0)};
+    const size_t pixels = size_t(kWidth) * kHeight;
+    constexpr VkBufferUsageFlags kIn = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    std::unique_ptr<DeviceMetrics::Chain> chains[2] = {device.makeChain(), device.makeChain()};
+    vk::Buffer results[2];
+    for (vk::Buffer& r : results)
+        r = vk::createReadbackBuffer(*ctx_, device.resultBytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    for (const PanFrame& f : frames) {
+        // Variant 0 is the aliased render, variant 1 the reference itself.
+        vk::Buffer reference = vk::uploadBuffer(*ctx_, f.reference.bytes.data(), 4 * pixels, kIn);
+        vk::Buffer variant = vk::uploadBuffer(*ctx_, f.variant.bytes.data(), 4 * pixels, kIn);
+        vk::Buffer field = vk::uploadBuffer(*ctx_, f.analysis.data(), 16 * pixels, kIn);
+        ctx_->immediate([&](VkCommandBuffer cmd) {
+            device.record(cmd, reference.buffer, variant.buffer, field.buffer, *chains[0], false, results[0].buffer);
+            device.record(cmd, reference.buffer, reference.buffer, field.buffer, *chains[1], false, results[1].buffer);
+        });
+        for (vk::Buffer* b : {&reference, &variant, &field}) vk::destroyBuffer(*ctx_, *b);
+    }
+    const DeviceScores together[2] = {device.read(results[0].mapped, *chains[0]),
+                                      device.read(results[1].mapped, *chains[1])};
+    for (vk::Buffer& r : results) vk::destroyBuffer(*ctx_, r);
+    auto alone = device.makeChain();
+    score(device, *alone, frames[0].reference, frames[0].variant, frames[0].analysis, false);
+    const DeviceScores one = score(device, *alone, frames[1].reference, frames[1].variant, frames[1].analysis, false);
+    EXPECT_TRUE(together[0].has_pair);
+    EXPECT_EQ(together[0].mse, one.mse);
+    EXPECT_EQ(together[0].ssim, one.ssim);
+    EXPECT_EQ(together[0].flip_mean, one.flip_mean);
+    EXPECT_EQ(together[0].eci, one.eci);
+    EXPECT_GT(together[0].eci, 0.0);
+    EXPECT_EQ(together[1].mse, 0.0);
+    EXPECT_EQ(together[1].flip_mean, 0.0);
+    EXPECT_EQ(together[1].crawl_numerator, 0.0);
+    EXPECT_GT(together[1].crawl_denominator, 0.0);
+}
+
 TEST_F(DeviceMetricsTest, IdenticalPairScoresPerfect) {
     const Rgba image = readRgba("atrium_full.png");
     DeviceMetrics& device = scorer(image.width, image.height);
