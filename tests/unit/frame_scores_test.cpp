@@ -6,6 +6,7 @@
 #include "metrics/temporal.h"
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -145,6 +146,37 @@ TEST(FrameScores, BadInputsThrow) {
     EXPECT_THROW(ssimRgba8(a.rgba.data(), a.rgba.data(), 10, 16), std::invalid_argument);
     EXPECT_THROW(flipRgba8(a.rgba.data(), a.rgba.data(), 16, 16, 0.0), std::invalid_argument);
     EXPECT_NO_THROW(mseRgba8(a.rgba.data(), a.rgba.data(), 3, 2));
+}
+
+// Fixed tiles and strips, summed in order: the same figures on one thread as on several.
+TEST(FrameScores, ResultDoesNotDependOnThreadCount) {
+    const Frame a = loadPng("atrium_full.png"), b = loadPng("atrium_cbr_aso.png");
+    const MotionField m = uniformMotion(a.width, a.height, 0.4, -0.2);
+    auto run = [&](FrameScores& s, CrawlFrame& c) {
+        s = scoreFrame(a.rgba.data(), b.rgba.data(), a.width, a.height, kFlipDefaultPpd, true);
+        CrawlTracker tracker;
+        tracker.addRgba8(b.rgba.data(), a.rgba.data(), m, false);
+        c = tracker.addRgba8(a.rgba.data(), b.rgba.data(), m, false, true);
+    };
+    const int threads = cv::getNumThreads();
+    FrameScores one, many;
+    CrawlFrame crawl_one, crawl_many;
+    cv::setNumThreads(1);
+    run(one, crawl_one);
+    cv::setNumThreads(std::max(threads, 3));
+    run(many, crawl_many);
+    cv::setNumThreads(threads);
+    EXPECT_EQ(one.mse, many.mse);
+    EXPECT_EQ(one.ssim, many.ssim);
+    EXPECT_EQ(one.ssim_luma, many.ssim_luma);
+    EXPECT_EQ(one.flip_mean, many.flip_mean);
+    EXPECT_EQ(one.flip_q1, many.flip_q1);
+    EXPECT_EQ(one.flip_median, many.flip_median);
+    EXPECT_EQ(one.flip_q3, many.flip_q3);
+    EXPECT_EQ(one.flip_map->data, many.flip_map->data);
+    EXPECT_EQ(crawl_one.eci, crawl_many.eci);
+    EXPECT_EQ(crawl_one.flicker_ratio, crawl_many.flicker_ratio);
+    EXPECT_EQ(crawl_one.crawl_map->data, crawl_many.crawl_map->data);
 }
 
 MotionField shiftMotion(int w, int h) {
