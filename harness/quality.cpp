@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <set>
+#include <thread>
 
 #include "metrics/flip.h"
 #include "metrics/frame_scores.h"
@@ -304,6 +305,7 @@ public:
     void wait() { workers_.wait(); }
 
 private:
+    static constexpr size_t kQueuedEncodes = 8;
     static constexpr int kFrame = 1280, kMap = 480;  // the page copies' widest (shown at about 660 and 250 px)
     // JPEG quality: above 90 stb_image_write keeps full-resolution chroma (the frames' coloured
     // edges stay sharp); the maps' thumbnails, linked to their PNGs, can take 4:2:0.
@@ -334,17 +336,19 @@ private:
     // The error, 1 - SSIM and FLIP maps of one (variant, frame), computed on a worker.
     void maps(WorstFrame& wf, const std::string& base, Bytes reference, Bytes variant) {
         const char* kWhat[3] = {"error", "ssim_map", "flip_map"};
-        const bool first = !scheduled_.count(base + "_error");
-        if (first)
-            workers_.submit([this, base, reference, variant] {
-                try {
-                    auto [error, ssim, flip] = mapImages(*reference, *variant);
-                    for (auto [what, rgba] : {std::pair{"error", &error}, {"ssim_map", &ssim}, {"flip_map", &flip}})
-                        encodeLater(base + "_" + what, std::move(*rgba));
-                } catch (const std::exception& e) {
-                    std::fprintf(stderr, "cbrbench: maps of %s not written: %s\n", base.c_str(), e.what());
-                }
-            });
+        // On this thread, one frame's maps at a time (each metric is parallel inside): the
+        // full-size intermediate images of several frames at once would not fit in a 4K
+        // run's memory. The encodes go to the workers, their queue kept short for the same reason.
+        if (!scheduled_.count(base + "_error")) {
+            try {
+                auto [error, ssim, flip] = mapImages(*reference, *variant);
+                for (auto [what, rgba] : {std::pair{"error", &error}, {"ssim_map", &ssim}, {"flip_map", &flip}})
+                    encodeLater(base + "_" + what, std::move(*rgba));
+            } catch (const std::exception& e) {
+                std::fprintf(stderr, "cbrbench: maps of %s not written: %s\n", base.c_str(), e.what());
+            }
+            workers_.waitUntilAtMost(kQueuedEncodes);
+        }
         for (const char* what : kWhat) {
             const std::string stem = base + "_" + what;
             wf.files.push_back({what, "worst/" + stem + ".png"});
@@ -372,23 +376,24 @@ private:
         std::vector<uint8_t> error, ssim, flip;
     };
     Maps mapImages(const std::vector<uint8_t>& reference, const std::vector<uint8_t>& variant) const {
-        auto ref = metrics::fromRgba8(reference.data(), w_, h_, size_t(w_) * 4);
-        auto img = metrics::fromRgba8(variant.data(), w_, h_, size_t(w_) * 4);
         metrics::Image error{w_, h_, 1, std::vector<double>(size_t(w_) * h_)};
         for (size_t i = 0; i < error.data.size(); ++i)
-            error.data[i] = (std::abs(ref.data[3 * i] - img.data[3 * i]) + std::abs(ref.data[3 * i + 1] - img.data[3 * i + 1]) +
-                             std::abs(ref.data[3 * i + 2] - img.data[3 * i + 2])) / 3.0;
+            error.data[i] = (std::abs(int(reference[4 * i]) - int(variant[4 * i])) +
+                             std::abs(int(reference[4 * i + 1]) - int(variant[4 * i + 1])) +
+                             std::abs(int(reference[4 * i + 2]) - int(variant[4 * i + 2]))) / (3.0 * 255.0);
         Maps m;
         m.error = heatMap(error, 4.0);
+        error = {};
         {
             WallAccount::WorkerScope timer(wall_, WorkerTask::Ssim);
-            auto ssim = metrics::ssimMap(ref, img);
+            auto ssim = metrics::ssimMap(metrics::fromRgba8(reference.data(), w_, h_, size_t(w_) * 4),
+                                         metrics::fromRgba8(variant.data(), w_, h_, size_t(w_) * 4));
             for (double& v : ssim.data) v = 1.0 - v;  // dissimilarity: bright where worse
             m.ssim = heatMap(ssim, 2.0);
         }
         WallAccount::WorkerScope timer(wall_, WorkerTask::Flip);
         // FLIP's error is already in perceptual units on [0,1]: unscaled.
-        m.flip = heatMap(metrics::flip(ref, img, flip_ppd_).map, 1.0);
+        m.flip = heatMap(metrics::flipRgba8(reference.data(), variant.data(), w_, h_, flip_ppd_, true).map, 1.0);
         return m;
     }
 
@@ -406,7 +411,9 @@ std::vector<WorstFrame> QualityScorer::finish(const std::filesystem::path& dir) 
     bool any = false;
     for (auto& [variant, c] : chains_) any |= c->worst_ssim.frame >= 0 || c->worst_eci.frame >= 0;
     if (!any) return out;
-    Writer writer(dir, width_, height_, flip_ppd_, workers_, wall_);
+    // Nothing else runs now: every core encodes.
+    WorkerPool encoders(std::max(1u, std::thread::hardware_concurrency()));
+    Writer writer(dir, width_, height_, flip_ppd_, encoders, wall_);
     for (const auto& variant : variant_order_) {
         Chain& c = *chains_.at(variant);
         for (auto [kind, worst] : {std::pair<const char*, Worst*>{"ssim", &c.worst_ssim}, {"eci", &c.worst_eci}}) {

@@ -6,6 +6,7 @@
 
 #include "harness/interrupt.h"
 #include "harness/run_internal.h"
+#include "metrics/frame_scores.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
 #include "renderer/vk/check.h"
@@ -126,13 +127,14 @@ bool moving(const std::vector<paths::CameraPose>& poses, size_t mid) {
 AlignmentCheck checkAlignment(const std::vector<uint8_t>& variant, const std::vector<uint8_t>& ref_prev,
                               const std::vector<uint8_t>& ref_same, const std::vector<uint8_t>& ref_next, int w, int h,
                               int frame) {
-    auto image = [&](const std::vector<uint8_t>& rgba) { return metrics::fromRgba8(rgba.data(), w, h, size_t(w) * 4); };
-    auto v = image(variant);
+    auto psnr = [&](const std::vector<uint8_t>& ref) {
+        return metrics::psnrFromMse(metrics::mseRgba8(ref.data(), variant.data(), w, h));
+    };
     AlignmentCheck a;
     a.frame = frame;
-    a.psnr_same = metrics::psnr(image(ref_same), v);
-    a.psnr_prev = metrics::psnr(image(ref_prev), v);
-    a.psnr_next = metrics::psnr(image(ref_next), v);
+    a.psnr_same = psnr(ref_same);
+    a.psnr_prev = psnr(ref_prev);
+    a.psnr_next = psnr(ref_next);
     a.ok = a.psnr_same > a.psnr_prev && a.psnr_same > a.psnr_next;
     return a;
 }
@@ -145,9 +147,9 @@ bool isReference(const RunState& s, size_t vi) { return vi == 0 && s.options.ref
 // back only where the host needs the image (the alignment check's frames, --save-frames).
 render::FrameRequest qualityRequest(const RunState& s, size_t i) {
     if (!s.device_scoring) return request(s.p, i, true);
-    const bool host = s.options.save_frames || (i + 1 >= s.mid && i <= s.mid + 1);
-    render::FrameRequest req = request(s.p, i, host);
+    render::FrameRequest req = request(s.p, i, false);
     req.score = true;
+    req.keep_image = s.options.save_frames || (i + 1 >= s.mid && i <= s.mid + 1);
     return req;
 }
 

@@ -164,14 +164,6 @@ Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants:
         }
         slot->frame_ubo = vk::createBuffer(ctx, sizeof(shaders::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                            true);
-        slot->readback = vk::createReadbackBuffer(ctx, VkDeviceSize(settings.width) * settings.height * 4,
-                                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-        if (variant_->diagnosticImage())
-            slot->diagnostic = vk::createReadbackBuffer(ctx, VkDeviceSize(settings.width) * settings.height,
-                                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-        if (settings.analysis)
-            slot->analysis = vk::createReadbackBuffer(ctx, VkDeviceSize(settings.width) * settings.height * 16,
-                                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT);
         constexpr VkDeviceSize kStatsBytes = variants::kFrameStats * sizeof(uint32_t);
         slot->stats = vk::createBuffer(ctx, kStatsBytes,
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
@@ -291,6 +283,7 @@ void Renderer::addReadbacks(graph::Graph& graph, size_t slot_index, const FrameR
     Slot& slot = *slots_[slot_index];
     const bool host = request.readback, device = request.score && scoring_;
     if (host) {
+        allocateHostReadback(slot);
         passes::addReadbackPass(graph, variant_->display(), slot.readback.buffer);
         if (vk::Image* diagnostic = variant_->diagnosticImage()) passes::addReadbackPass(graph, *diagnostic, slot.diagnostic.buffer);
     }
@@ -300,6 +293,17 @@ void Renderer::addReadbacks(graph::Graph& graph, size_t slot_index, const FrameR
     if (device)
         scoring_->addPasses(graph, slot_index, request, variant_->display(), variant_->diagnosticImage(),
                             analysis ? &analysis_ : nullptr);
+}
+
+// Host-visible copies of a quality frame (173 MB a slot at 4K), made on a slot's first host
+// readback: a run scored on the device never needs them.
+void Renderer::allocateHostReadback(Slot& slot) {
+    if (slot.readback.buffer) return;
+    const VkDeviceSize pixels = VkDeviceSize(settings_.width) * settings_.height;
+    slot.readback = vk::createReadbackBuffer(ctx_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    if (variant_->diagnosticImage())
+        slot.diagnostic = vk::createReadbackBuffer(ctx_, pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    if (settings_.analysis) slot.analysis = vk::createReadbackBuffer(ctx_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 }
 
 void Renderer::scoreOnDevice(scoring::DeviceScoring& shared, scoring::ScoringRole role) {

@@ -54,6 +54,7 @@ private:
     void addReadbacks(graph::Graph& graph, size_t slot_index, const FrameRequest& request,
                       const std::shared_ptr<passes::SceneFrame>& frame);
     void addAnalysis(graph::Graph& graph, const std::shared_ptr<passes::SceneFrame>& frame);
+    void allocateHostReadback(Slot& slot);
     void addSlowdownSpin(graph::Graph& graph, const FrameRequest& request);
     void recordFrame(Slot& slot, graph::Graph& graph);
 

@@ -101,6 +101,7 @@ struct FrameRequest {
     bool history_reset = false;  // first frame or a camera cut
     bool readback = false;       // copy the display image back (quality frames)
     bool score = false;          // a quality frame scored on the device (Renderer::scoreOnDevice)
+    bool keep_image = false;     // scored on the device, and its display image (and class map) wanted on the host
 };
 
 struct PassTime {

@@ -67,6 +67,7 @@ FrameScoring::FrameScoring(DeviceScoring& shared, ScoringRole role, size_t slots
 
 FrameScoring::~FrameScoring() {
     chain_.reset();
+    vk::destroyBuffer(shared_.context(), host_);
     for (Slot& s : slots_)
         for (vk::Buffer* b : {&s.rgba, &s.classes, &s.analysis, &s.result}) vk::destroyBuffer(shared_.context(), *b);
 }
@@ -76,6 +77,7 @@ void FrameScoring::addPasses(graph::Graph& graph, size_t slot_index, const rende
     Slot& slot = slots_.at(slot_index);
     slot.frame = request.index;
     slot.scored = role_ == ScoringRole::Variant;
+    slot.keep_image = request.keep_image;
     if (role_ == ScoringRole::Reference) return addReferencePass(graph, display, shared_.referenceFrame(request.index).buffer);
     if (!analysis) throw vk::Error("device scoring of a variant needs its analysis pass (motion and depth)");
     passes::addReadbackPass(graph, display, slot.rgba.buffer);
@@ -97,7 +99,12 @@ void FrameScoring::addPasses(graph::Graph& graph, size_t slot_index, const rende
 
 void FrameScoring::collect(size_t slot_index, render::FrameResult& result) {
     Slot& slot = slots_.at(slot_index);
-    if (!slot.scored) return;
+    const bool keep = slot.keep_image;
+    slot.keep_image = false;
+    if (!slot.scored) {
+        if (keep && slot.frame >= 0) copyOut(slot, result);
+        return;
+    }
     slot.scored = false;
     auto scores = std::make_shared<DeviceScores>(shared_.metrics().read(slot.result.mapped, *chain_));
     result.device_scores = scores;
@@ -107,7 +114,7 @@ void FrameScoring::collect(size_t slot_index, render::FrameResult& result) {
     if (worse_eci) worst_eci_ = scores->eci;
     // The slot's buffers and the ring still hold this frame: the next frame into this slot is
     // recorded only after collect(), and the ring is two frames longer than the slots.
-    if (worse_ssim || worse_eci) copyOut(slot, result);
+    if (keep || worse_ssim || worse_eci) copyOut(slot, result);
 }
 
 // A one-off copy to host-visible memory and a wait: only for frames that become the worst
@@ -115,24 +122,28 @@ void FrameScoring::collect(size_t slot_index, render::FrameResult& result) {
 void FrameScoring::copyOut(const Slot& slot, render::FrameResult& result) {
     vk::Context& ctx = shared_.context();
     const VkDeviceSize pixels = VkDeviceSize(shared_.settings().width) * shared_.settings().height;
+    const bool variant = role_ == ScoringRole::Variant;
     const VkDeviceSize class_bytes = slot.classes.buffer ? pixels : 0;
-    vk::Buffer host = vk::createReadbackBuffer(ctx, 8 * pixels + class_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    if (!host_.buffer) host_ = vk::createReadbackBuffer(ctx, 8 * pixels + class_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     const VkBuffer reference = shared_.referenceFrame(slot.frame).buffer;
     ctx.immediate([&](VkCommandBuffer cmd) {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         VkBufferCopy regions[3] = {{0, 0, 4 * pixels}, {0, 4 * pixels, 4 * pixels}, {0, 8 * pixels, class_bytes}};
-        vkCmdCopyBuffer(cmd, reference, host.buffer, 1, &regions[0]);
-        vkCmdCopyBuffer(cmd, slot.rgba.buffer, host.buffer, 1, &regions[1]);
-        if (class_bytes) vkCmdCopyBuffer(cmd, slot.classes.buffer, host.buffer, 1, &regions[2]);
+        vkCmdCopyBuffer(cmd, reference, host_.buffer, 1, &regions[0]);
+        if (variant) vkCmdCopyBuffer(cmd, slot.rgba.buffer, host_.buffer, 1, &regions[1]);
+        if (variant && class_bytes) vkCmdCopyBuffer(cmd, slot.classes.buffer, host_.buffer, 1, &regions[2]);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });
-    const auto* bytes = static_cast<const uint8_t*>(host.mapped);
+    const auto* bytes = static_cast<const uint8_t*>(host_.mapped);
+    if (!variant) {
+        result.rgba.assign(bytes, bytes + 4 * pixels);  // the reference's own frame
+        return;
+    }
     result.reference_rgba.assign(bytes, bytes + 4 * pixels);
     result.rgba.assign(bytes + 4 * pixels, bytes + 8 * pixels);
     if (class_bytes) result.diagnostic.assign(bytes + 8 * pixels, bytes + 8 * pixels + class_bytes);
-    vk::destroyBuffer(ctx, host);
 }
 
 }  // namespace cbr::scoring

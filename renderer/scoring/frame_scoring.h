@@ -60,14 +60,18 @@ private:
     struct Slot {
         vk::Buffer rgba, classes, analysis, result;
         int frame = -1;
-        bool scored = false;
+        bool scored = false;      // a variant frame with figures to read
+        bool keep_image = false;  // its images wanted on the host (FrameRequest::keep_image)
     };
+    // Copies the frame's images to the host: the reference frame it was scored against (the
+    // reference's own frame, for the reference), and a variant's image and class map.
     void copyOut(const Slot& slot, render::FrameResult& result);
 
     DeviceScoring& shared_;
     const ScoringRole role_;
     std::vector<Slot> slots_;
     std::unique_ptr<DeviceMetrics::Chain> chain_;
+    vk::Buffer host_;  // copyOut's host-visible buffer, made on first use
     double worst_ssim_ = 2.0, worst_eci_ = -1.0;  // the figures a frame must beat to be copied out
 };
 
