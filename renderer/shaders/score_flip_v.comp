@@ -42,6 +42,16 @@ void addToHistogram(float error) {
     }
 }
 
+// Columns of horizontal plane `plane` through two kernels at once (each load used twice).
+vec2 columns(int plane, int k1, int k2, int radius, int x, int y) {
+    precise vec2 sum = vec2(0.0);
+    for (int t = 0; t <= 2 * radius; ++t) {
+        const float v = band[bandIndex(plane, clamp(y - radius + t, 0, P.height - 1) - push.r0, x)];
+        sum += vec2(taps[k1 + t], taps[k2 + t]) * v;
+    }
+    return sum;
+}
+
 void main() {
     const int x = int(gl_GlobalInvocationID.x), y = push.y0 + int(gl_GlobalInvocationID.y);
     if (x >= P.width || y >= push.y1) return;
@@ -56,7 +66,7 @@ void main() {
         colour[img] = vec3(column(h + 0, P.flip_y, cr, x, y), column(h + 1, P.flip_cx, cr, x, y), cz);
         // Edges and points along x (derivative rows, Gaussian columns) and y (the reverse).
         features[img] = vec4(column(h + 5, P.flip_g, fr, x, y), column(h + 6, P.flip_g, fr, x, y),
-                             column(h + 4, P.flip_d, fr, x, y), column(h + 4, P.flip_dd, fr, x, y));
+                             columns(h + 4, P.flip_d, P.flip_dd, fr, x, y));
     }
     const float error = flipError(colour[0], colour[1], features[0], features[1]);
     addToHistogram(error);
