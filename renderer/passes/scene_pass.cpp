@@ -150,7 +150,7 @@ VkPipeline createScenePipeline(vk::Context& ctx, VkPipelineLayout layout, const 
     info.pDynamicState = &dynamic_state;
     info.layout = layout;
     VkPipeline pipeline;
-    VK_CHECK(vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    VK_CHECK(vkCreateGraphicsPipelines(ctx.device, ctx.pipeline_cache, 1, &info, nullptr, &pipeline));
     vkDestroyShaderModule(ctx.device, vert, nullptr);
     vkDestroyShaderModule(ctx.device, frag, nullptr);
     return pipeline;

@@ -358,11 +358,16 @@ Context::Context(const ContextOptions& options) {
     pinfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     pinfo.queueFamilyIndex = queue_family;
     VK_CHECK(vkCreateCommandPool(device, &pinfo, nullptr, &command_pool));
+    // One cache for the process: a run's renderers build many of the same pipelines (one
+    // renderer per configuration), each compiled once.
+    VkPipelineCacheCreateInfo cinfo{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+    VK_CHECK(vkCreatePipelineCache(device, &cinfo, nullptr, &pipeline_cache));
 }
 
 Context::~Context() {
     if (device) {
         vkDeviceWaitIdle(device);
+        vkDestroyPipelineCache(device, pipeline_cache, nullptr);
         vkDestroyCommandPool(device, command_pool, nullptr);
         vkDestroyDevice(device, nullptr);
     }

@@ -67,6 +67,7 @@ public:
     VkQueue queue = VK_NULL_HANDLE;
     uint32_t queue_family = 0;
     VkCommandPool command_pool = VK_NULL_HANDLE;
+    VkPipelineCache pipeline_cache = VK_NULL_HANDLE;  // every pipeline of the process
     VkPhysicalDeviceProperties properties{};
     VkPhysicalDeviceMemoryProperties memory{};
     DeviceDescription description;

@@ -107,7 +107,7 @@ ComputeKernel createComputeKernel(Context& ctx, const uint32_t* spirv, size_t si
     info.stage.pName = "main";
     info.stage.pSpecializationInfo = spec.empty() ? nullptr : &sinfo;
     info.layout = k.layout;
-    VK_CHECK(vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &k.pipeline));
+    VK_CHECK(vkCreateComputePipelines(ctx.device, ctx.pipeline_cache, 1, &info, nullptr, &k.pipeline));
     vkDestroyShaderModule(ctx.device, module, nullptr);
     return k;
 }
