@@ -20,6 +20,8 @@ namespace cbr::metrics {
 double mseRgba8(const uint8_t* a, const uint8_t* b, int width, int height);
 SsimResult ssimRgba8(const uint8_t* a, const uint8_t* b, int width, int height);
 // want_map: fill FlipResult::map (16 MB of doubles at 1080p); without it map stays empty.
+// flip() and flipRgba8 keep their float error map (4 bytes a pixel) per calling thread
+// for the next frame of the same size, so a scoring thread holds 8 MB at 1080p.
 FlipResult flipRgba8(const uint8_t* reference, const uint8_t* test, int width, int height,
                      double ppd = kFlipDefaultPpd, bool want_map = false);
 
@@ -38,7 +40,10 @@ struct FrameScores {
 };
 
 // MSE/PSNR, SSIM (RGB and luma) and LDR-FLIP of one frame pair, as
-// mse/ssim/flip(fromRgba8(reference), fromRgba8(variant), flip_ppd) give them.
+// mse/ssim/flip(fromRgba8(reference), fromRgba8(variant), flip_ppd) give them (within the
+// tolerances above). Each metric runs on OpenCV's thread pool in fixed tiles summed in
+// order: the figures do not depend on the thread count. Edge crawl, which needs the frame
+// before, is CrawlTracker::addRgba8 (temporal.h).
 FrameScores scoreFrame(const uint8_t* reference_rgba, const uint8_t* variant_rgba, int width, int height,
                        double flip_ppd = kFlipDefaultPpd, bool want_flip_map = false);
 
