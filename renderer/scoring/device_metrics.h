@@ -66,8 +66,12 @@ public:
     // frame (24 bytes a pixel). record() orders its own buffers against earlier record() calls on
     // the queue (several variants may share one command buffer) and ends with the result made
     // visible to host reads. It marks `chain` as having a previous frame: one thread per chain.
+    // crawl_map, unless VK_NULL_HANDLE: a float per pixel (4 * width * height bytes, rows tightly
+    // packed, VK_BUFFER_USAGE_TRANSFER_DST_BIT) receives metrics::CrawlTracker's crawl map,
+    // |e_t - warp(e_t-1)| at the scored pixels and 0 at every other (all 0 without a pair); it is
+    // written by transfers, made visible to later transfer reads on the queue (the caller's copy).
     void record(VkCommandBuffer cmd, VkBuffer reference, VkBuffer variant, VkBuffer analysis, Chain& chain, bool cut,
-                VkBuffer result);
+                VkBuffer result, VkBuffer crawl_map = VK_NULL_HANDLE);
 
     // After the command buffer's fence: the figures from the mapped result buffer, summed in
     // double in a fixed order. `chain` is the one recorded with it (checked for its size).
@@ -80,9 +84,9 @@ public:
 private:
     void release();
     void recordFlip(VkCommandBuffer cmd) const;
-    void recordCrawl(VkCommandBuffer cmd, const Chain& chain, bool pair) const;
+    void recordCrawl(VkCommandBuffer cmd, const Chain& chain, bool pair, bool write_map) const;
     void dispatch(VkCommandBuffer cmd, const vk::ComputeKernel& kernel, VkDescriptorSet set, int y0, int y1, int r0,
-                  int r1, uint32_t groups_x, uint32_t groups_y) const;
+                  int r1, uint32_t groups_x, uint32_t groups_y, bool write_map = false) const;
 
     vk::Context& ctx_;
     DeviceMetricsSettings settings_;
@@ -92,7 +96,7 @@ private:
     int band_plane_ = 0;      // floats per band plane
     VkDeviceSize result_bytes_ = 0;
     vk::ComputeKernel ssim_, flip_ycc_, flip_h_, flip_v_, blur_v_, blur_h_, crawl_;
-    vk::Buffer reference_, variant_, analysis_, params_, band_, now_, out_;
+    vk::Buffer reference_, variant_, analysis_, params_, band_, now_, out_, map_;  // map_: the crawl map
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     VkDescriptorSet set_ = VK_NULL_HANDLE;  // binding 7 (the previous frame) is `now_`, unused
 };

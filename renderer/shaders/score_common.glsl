@@ -13,6 +13,7 @@ layout(std430, set = 0, binding = 4) buffer Band { float band[]; };    // FLIP b
 layout(std430, set = 0, binding = 5) buffer Now { float now[]; };      // blurred lumas and depth at t
 layout(std430, set = 0, binding = 6) buffer Out { uint result[]; };    // the result record
 layout(std430, set = 0, binding = 7) readonly buffer Previous { float previous[]; };  // the chain: t-1
+layout(std430, set = 0, binding = 8) writeonly buffer CrawlMap { float crawl_map[]; };  // |crawl| per pixel
 
 layout(push_constant) uniform Push { ScorePush push; };
 

@@ -2,7 +2,8 @@
 // Edge crawl, steps 3-6 of method/metrics.md ("Edge crawl"), as metrics/temporal.cpp: the valid
 // mask (margin, warp source inside the margin, no disocclusion by the nearest previous depth),
 // the reference's dilated Sobel edges, the bilinear backward warp of the previous blurred lumas,
-// and per workgroup the sums of (dV - dR)^2, |dV|, max(|dR|, 1/255), edge pixels, valid pixels.
+// and per workgroup the sums of (dV - dR)^2, |dV|, max(|dR|, 1/255), edge pixels, valid pixels;
+// on request the crawl map, |dV - dR| at each scored pixel and 0 at every other.
 #extension GL_GOOGLE_include_directive : require
 #include "score_common.glsl"
 layout(local_size_x = SCORE_GROUP, local_size_y = SCORE_GROUP) in;
@@ -72,6 +73,7 @@ void main() {
     const int w = P.width, h = P.height, n = w * h, m = P.margin;
     loadEdges(ivec2(gl_WorkGroupID.xy) * SCORE_GROUP - 2);
     vec3 s = vec3(0.0);   // (dV - dR)^2, |dV|, max(|dR|, floor)
+    float crawl = 0.0;    // |dV - dR|, the map's value
     uvec2 c = uvec2(0u);  // edge pixels scored, valid pixels
     if (x >= m && y >= m && x < w - m && y < h - m) {
         const int p = y * w + x;
@@ -96,11 +98,13 @@ void main() {
                     const float dv = now[n + p] - warped(1, x0, y0, frac.x, frac.y);
                     const float dr = now[p] - warped(0, x0, y0, frac.x, frac.y);
                     s = vec3((dv - dr) * (dv - dr), abs(dv), max(abs(dr), P.flicker_floor));
+                    crawl = abs(dv - dr);
                     c.x = 1u;
                 }
             }
         }
     }
+    if (push.write_map != 0 && x < w && y < h) crawl_map[y * w + x] = crawl;
     const uint t = gl_LocalInvocationIndex;
     sums[t] = s;
     counts[t] = c;

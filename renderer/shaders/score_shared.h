@@ -49,7 +49,8 @@ struct ScorePush {
     int y0, y1;   // output rows [y0, y1)
     int r0, r1;   // band rows [r0, r1) (FLIP); 0, height otherwise
     int plane;    // floats per band plane
-    int pad0, pad1, pad2;
+    int write_map;  // score_crawl.comp: 1 writes every pixel's |crawl| (0 where not scored)
+    int pad1, pad2;
 };
 
 #ifdef __cplusplus

@@ -39,6 +39,7 @@ constexpr double kSsim = 2e-5;
 constexpr double kFlipMean = 1e-4;
 constexpr double kFlipQuartile = 1e-3;
 constexpr double kCrawl = 1e-4;
+constexpr double kCrawlMap = 1e-5;  // per pixel of the crawl map (lumas on [0, 1])
 
 struct Rgba {
     int width = 0, height = 0;
@@ -108,10 +109,11 @@ protected:
         EXPECT_EQ(ctx_->validation.warnings.load(), 0) << messages;
     }
 
-    // Scores one frame on the device: the inputs through host-visible buffers, as the renderer's
-    // readback buffers would hold them. `analysis`: 4 floats per pixel, or empty (no surface).
+    // Scores one frame on the device. `analysis`: 4 floats per pixel, or empty (no surface).
+    // `crawl_map`, when given, receives the crawl map (through a buffer filled with NaN first).
     static DeviceScores score(DeviceMetrics& metrics, DeviceMetrics::Chain& chain, const Rgba& reference,
-                              const Rgba& variant, const std::vector<float>& analysis, bool cut) {
+                              const Rgba& variant, const std::vector<float>& analysis, bool cut,
+                              std::vector<float>* crawl_map = nullptr) {
         vk::Context& ctx = *ctx_;
         const size_t pixels = size_t(reference.width) * reference.height;
         // Device-local inputs, as the renderer's images copied to buffers would be.
@@ -121,11 +123,20 @@ protected:
         vk::Buffer var = vk::uploadBuffer(ctx, variant.bytes.data(), 4 * pixels, kIn);
         vk::Buffer field = vk::uploadBuffer(ctx, analysis.empty() ? no_surface.data() : analysis.data(), 16 * pixels, kIn);
         vk::Buffer result = vk::createReadbackBuffer(ctx, metrics.resultBytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+        vk::Buffer map;
+        if (crawl_map) {
+            map = vk::createReadbackBuffer(ctx, 4 * pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+            std::memset(map.mapped, 0xFF, 4 * pixels);  // NaN: a pixel left unwritten shows
+        }
         ctx.immediate([&](VkCommandBuffer cmd) {
-            metrics.record(cmd, ref.buffer, var.buffer, field.buffer, chain, cut, result.buffer);
+            metrics.record(cmd, ref.buffer, var.buffer, field.buffer, chain, cut, result.buffer, map.buffer);
         });
         const DeviceScores s = metrics.read(result.mapped, chain);
-        for (vk::Buffer* b : {&ref, &var, &field, &result}) vk::destroyBuffer(ctx, *b);
+        if (crawl_map) {
+            const auto* values = static_cast<const float*>(map.mapped);
+            crawl_map->assign(values, values + pixels);
+        }
+        for (vk::Buffer* b : {&ref, &var, &field, &result, &map}) vk::destroyBuffer(ctx, *b);
         return s;
     }
 
@@ -289,7 +300,30 @@ void expectRelative(const std::string& metric, double device, double cpu, double
     expectNear(metric + " (relative)", device / cpu, 1.0, tolerance, what);
 }
 
-// Four frames of one chain, a cut before the third: each frame's crawl figures on both paths.
+// The device's crawl map against CrawlTracker's, pixel by pixel (0 wherever the CPU scored
+// nothing: a NaN the device left unwritten fails too). Returns the pixels with crawl.
+size_t expectSameMap(const std::vector<float>& device, const metrics::Image& cpu, const std::string& what) {
+    EXPECT_EQ(cpu.channels, 1) << what;
+    EXPECT_EQ(device.size(), cpu.data.size()) << what;
+    if (device.size() != cpu.data.size()) return 0;
+    double worst = 0;
+    size_t differ = 0, crawling = 0;
+    for (size_t i = 0; i < device.size(); ++i) {
+        const double d = std::abs(double(device[i]) - cpu.data[i]);
+        const bool same = cpu.data[i] == 0 ? device[i] == 0.0f : d <= kCrawlMap;
+        if (!same && differ++ == 0)
+            ADD_FAILURE() << what << ": crawl map pixel " << i << " device " << device[i] << " cpu " << cpu.data[i];
+        if (std::isfinite(d)) worst = std::max(worst, d);
+        crawling += cpu.data[i] != 0;
+    }
+    EXPECT_EQ(differ, 0u) << what << ": crawl map pixels that differ";
+    double& record = deviations()["crawl_map (pixel)"];
+    record = std::max(record, worst);
+    return crawling;
+}
+
+// Four frames of one chain, a cut before the third: each frame's crawl figures and map on both
+// paths (the map all 0 on the frames without a pair).
 void DeviceMetricsTest::compareChain(const metrics::CrawlSettings& crawl, bool flat, const std::string& what) {
     constexpr int kWidth = 160, kHeight = 120;
     DeviceMetrics& device = scorer(kWidth, kHeight, metrics::kFlipDefaultPpd, crawl);
@@ -299,9 +333,16 @@ void DeviceMetricsTest::compareChain(const metrics::CrawlSettings& crawl, bool f
         const bool cut = t == 2;
         PanFrame f = panFrame(kWidth, kHeight, t, t >= 2 ? 1 : 0);
         if (flat) f.reference = f.variant = generate(kWidth, kHeight, [t](int, int, int c) { return uint8_t(90 + t + c); });
-        const DeviceScores s = score(device, *chain, f.reference, f.variant, f.analysis, cut);
-        const metrics::CrawlFrame c = tracker.add(toImage(f.reference), toImage(f.variant), f.motion, cut);
+        std::vector<float> map;
+        const DeviceScores s = score(device, *chain, f.reference, f.variant, f.analysis, cut, &map);
+        const metrics::CrawlFrame c = tracker.add(toImage(f.reference), toImage(f.variant), f.motion, cut, true);
         const std::string frame = what + ", frame " + std::to_string(t);
+        const size_t crawling = expectSameMap(map, *c.crawl_map, frame);
+        if (c.has_pair && !flat) {
+            EXPECT_GT(crawling, 100u) << frame;
+        } else {
+            EXPECT_EQ(crawling, 0u) << frame;
+        }
         ASSERT_EQ(c.has_pair, t == 1 || t == 3) << frame;
         EXPECT_EQ(s.has_pair, c.has_pair) << frame;
         EXPECT_EQ(s.no_edges, c.no_edges) << frame;
@@ -334,26 +375,37 @@ TEST_F(DeviceMetricsTest, VariantsShareOneCommandBuffer) {
     const size_t pixels = size_t(kWidth) * kHeight;
     constexpr VkBufferUsageFlags kIn = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     std::unique_ptr<DeviceMetrics::Chain> chains[2] = {device.makeChain(), device.makeChain()};
-    vk::Buffer results[2];
+    vk::Buffer results[2], maps[2];
     for (vk::Buffer& r : results)
         r = vk::createReadbackBuffer(*ctx_, device.resultBytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    for (vk::Buffer& m : maps) m = vk::createReadbackBuffer(*ctx_, 4 * pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     for (const PanFrame& f : frames) {
         // Variant 0 is the aliased render, variant 1 the reference itself.
         vk::Buffer reference = vk::uploadBuffer(*ctx_, f.reference.bytes.data(), 4 * pixels, kIn);
         vk::Buffer variant = vk::uploadBuffer(*ctx_, f.variant.bytes.data(), 4 * pixels, kIn);
         vk::Buffer field = vk::uploadBuffer(*ctx_, f.analysis.data(), 16 * pixels, kIn);
         ctx_->immediate([&](VkCommandBuffer cmd) {
-            device.record(cmd, reference.buffer, variant.buffer, field.buffer, *chains[0], false, results[0].buffer);
-            device.record(cmd, reference.buffer, reference.buffer, field.buffer, *chains[1], false, results[1].buffer);
+            device.record(cmd, reference.buffer, variant.buffer, field.buffer, *chains[0], false, results[0].buffer,
+                          maps[0].buffer);
+            device.record(cmd, reference.buffer, reference.buffer, field.buffer, *chains[1], false, results[1].buffer,
+                          maps[1].buffer);
         });
         for (vk::Buffer* b : {&reference, &variant, &field}) vk::destroyBuffer(*ctx_, *b);
     }
     const DeviceScores together[2] = {device.read(results[0].mapped, *chains[0]),
                                       device.read(results[1].mapped, *chains[1])};
-    for (vk::Buffer& r : results) vk::destroyBuffer(*ctx_, r);
+    const auto* map_values = static_cast<const float*>(maps[0].mapped);
+    const std::vector<float> map_together(map_values, map_values + pixels);
+    map_values = static_cast<const float*>(maps[1].mapped);
+    const bool reference_map_zero = std::all_of(map_values, map_values + pixels, [](float v) { return v == 0.0f; });
+    for (vk::Buffer* b : {&results[0], &results[1], &maps[0], &maps[1]}) vk::destroyBuffer(*ctx_, *b);
     auto alone = device.makeChain();
     score(device, *alone, frames[0].reference, frames[0].variant, frames[0].analysis, false);
-    const DeviceScores one = score(device, *alone, frames[1].reference, frames[1].variant, frames[1].analysis, false);
+    std::vector<float> map_alone;
+    const DeviceScores one =
+        score(device, *alone, frames[1].reference, frames[1].variant, frames[1].analysis, false, &map_alone);
+    EXPECT_EQ(map_together, map_alone);
+    EXPECT_TRUE(reference_map_zero);
     EXPECT_TRUE(together[0].has_pair);
     EXPECT_EQ(together[0].mse, one.mse);
     EXPECT_EQ(together[0].ssim, one.ssim);
