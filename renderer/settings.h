@@ -126,6 +126,7 @@ struct FrameResult {
     // images (rgba, diagnostic, and the reference frame it was scored against).
     std::shared_ptr<const scoring::DeviceScores> device_scores;
     std::vector<uint8_t> reference_rgba;
+    std::vector<float> crawl_map;      // width * height, with a new worst frame by edge crawl: |crawl|, 0 where not scored
     std::vector<std::pair<std::string, double>> stats;  // e.g. px_shaded: fraction of the frame's pixels
     std::vector<std::pair<std::string, std::string>> left_out;  // (pass, reason)
 };

@@ -61,6 +61,7 @@ FrameScoring::FrameScoring(DeviceScoring& shared, ScoringRole role, size_t slots
         if (has_classes) s.classes = vk::createBuffer(ctx, pixels, kDeviceCopy, false);
         s.analysis = vk::createBuffer(ctx, 16 * pixels, kDeviceCopy, false);
         s.result = vk::createReadbackBuffer(ctx, shared_.metrics().resultBytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+        s.crawl_map = vk::createBuffer(ctx, 4 * pixels, kDeviceCopy, false);
     }
     chain_ = shared_.metrics().makeChain();
 }
@@ -69,7 +70,8 @@ FrameScoring::~FrameScoring() {
     chain_.reset();
     vk::destroyBuffer(shared_.context(), host_);
     for (Slot& s : slots_)
-        for (vk::Buffer* b : {&s.rgba, &s.classes, &s.analysis, &s.result}) vk::destroyBuffer(shared_.context(), *b);
+        for (vk::Buffer* b : {&s.rgba, &s.classes, &s.analysis, &s.result, &s.crawl_map})
+            vk::destroyBuffer(shared_.context(), *b);
 }
 
 void FrameScoring::addPasses(graph::Graph& graph, size_t slot_index, const render::FrameRequest& request,
@@ -92,7 +94,8 @@ void FrameScoring::addPasses(graph::Graph& graph, size_t slot_index, const rende
     VkBuffer reference = shared_.referenceFrame(request.index).buffer;
     score.record = [this, &slot, reference, cut](VkCommandBuffer cmd) {
         // record() begins with a barrier after every earlier command: the copies above included.
-        shared_.metrics().record(cmd, reference, slot.rgba.buffer, slot.analysis.buffer, *chain_, cut, slot.result.buffer);
+        shared_.metrics().record(cmd, reference, slot.rgba.buffer, slot.analysis.buffer, *chain_, cut, slot.result.buffer,
+                                 slot.crawl_map.buffer);
     };
     graph.addPass(std::move(score));
 }
@@ -114,25 +117,34 @@ void FrameScoring::collect(size_t slot_index, render::FrameResult& result) {
     if (worse_eci) worst_eci_ = scores->eci;
     // The slot's buffers and the ring still hold this frame: the next frame into this slot is
     // recorded only after collect(), and the ring is two frames longer than the slots.
-    if (keep || worse_ssim || worse_eci) copyOut(slot, result);
+    if (keep || worse_ssim || worse_eci) copyOut(slot, result, worse_eci);
 }
 
 // A one-off copy to host-visible memory and a wait: only for frames that become the worst
-// so far, which grow rarer as the path goes on.
-void FrameScoring::copyOut(const Slot& slot, render::FrameResult& result) {
+// so far, which grow rarer as the path goes on. Host layout: reference, variant, class map,
+// then the crawl map (4-byte aligned).
+void FrameScoring::copyOut(const Slot& slot, render::FrameResult& result, bool crawl_map) {
     vk::Context& ctx = shared_.context();
     const VkDeviceSize pixels = VkDeviceSize(shared_.settings().width) * shared_.settings().height;
     const bool variant = role_ == ScoringRole::Variant;
     const VkDeviceSize class_bytes = slot.classes.buffer ? pixels : 0;
-    if (!host_.buffer) host_ = vk::createReadbackBuffer(ctx, 8 * pixels + class_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    const VkDeviceSize map_at = (8 * pixels + class_bytes + 3) / 4 * 4;
+    const VkDeviceSize map_bytes = variant && crawl_map ? 4 * pixels : 0;
+    const VkDeviceSize need = map_bytes ? map_at + map_bytes : 8 * pixels + class_bytes;
+    if (host_.buffer && host_.size < need) vk::destroyBuffer(ctx, host_);
+    if (!host_.buffer) host_ = vk::createReadbackBuffer(ctx, need, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     const VkBuffer reference = shared_.referenceFrame(slot.frame).buffer;
     ctx.immediate([&](VkCommandBuffer cmd) {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-        VkBufferCopy regions[3] = {{0, 0, 4 * pixels}, {0, 4 * pixels, 4 * pixels}, {0, 8 * pixels, class_bytes}};
+        VkBufferCopy regions[4] = {{0, 0, 4 * pixels},
+                                   {0, 4 * pixels, 4 * pixels},
+                                   {0, 8 * pixels, class_bytes},
+                                   {0, map_at, map_bytes}};
         vkCmdCopyBuffer(cmd, reference, host_.buffer, 1, &regions[0]);
         if (variant) vkCmdCopyBuffer(cmd, slot.rgba.buffer, host_.buffer, 1, &regions[1]);
         if (variant && class_bytes) vkCmdCopyBuffer(cmd, slot.classes.buffer, host_.buffer, 1, &regions[2]);
+        if (map_bytes) vkCmdCopyBuffer(cmd, slot.crawl_map.buffer, host_.buffer, 1, &regions[3]);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });
@@ -144,6 +156,10 @@ void FrameScoring::copyOut(const Slot& slot, render::FrameResult& result) {
     result.reference_rgba.assign(bytes, bytes + 4 * pixels);
     result.rgba.assign(bytes + 4 * pixels, bytes + 8 * pixels);
     if (class_bytes) result.diagnostic.assign(bytes + 8 * pixels, bytes + 8 * pixels + class_bytes);
+    if (map_bytes) {
+        const auto* values = reinterpret_cast<const float*>(bytes + map_at);
+        result.crawl_map.assign(values, values + pixels);
+    }
 }
 
 }  // namespace cbr::scoring
