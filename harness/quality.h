@@ -50,9 +50,10 @@ public:
     // the variant is the reference itself (PSNR inf, SSIM 1, ECI 0, FLIP 0 without computing).
     void score(const std::string& variant, bool is_reference, FrameRow& row, QualityFrame frame);
     // A frame scored elsewhere (on the device) that may be the variant's worst by SSIM or by
-    // edge crawl: its images, kept if so.
+    // edge crawl: its images, kept if so, and for the latter its crawl map (a float per pixel,
+    // as CrawlFrame::crawl_map; may be null), kept as its heat map.
     void offerWorst(const std::string& variant, int frame, const Quality& quality, Bytes reference, Bytes image,
-                    Bytes classes);
+                    Bytes classes, std::shared_ptr<const std::vector<float>> crawl_map = nullptr);
     // Waits for every job; writes the worst frames (by SSIM and by ECI) of each variant
     // as PNGs under dir/worst/, with their error, SSIM, FLIP, crawl and class maps, each
     // distinct image once, encoded on the workers, and the report's smaller copies under

@@ -318,7 +318,10 @@ private:
             s_.scorer.score(vr_.name, true, row, QualityFrame{fr.index, image, nullptr, nullptr, false});
         } else if (fr.device_scores) {
             fillQuality(row.quality, *fr.device_scores);
-            if (reference && image) s_.scorer.offerWorst(vr_.name, fr.index, row.quality, reference, image, classes);
+            std::shared_ptr<const std::vector<float>> crawl_map;
+            if (!fr.crawl_map.empty()) crawl_map = std::make_shared<const std::vector<float>>(std::move(fr.crawl_map));
+            if (reference && image)
+                s_.scorer.offerWorst(vr_.name, fr.index, row.quality, reference, image, classes, std::move(crawl_map));
         } else {
             row.quality.note += "not scored on the device; ";
         }

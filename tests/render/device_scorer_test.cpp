@@ -1,12 +1,17 @@
 // lavapipe tier for --scorer device: a run scored in Vulkan compute gives, frame by frame, the
 // CPU scorer's figures (issue 32's tolerances), in both pipelines, with the validation layer
-// on; the scoring passes stay out of the timed passes; the worst frames are the same.
+// on; the scoring passes stay out of the timed passes; the worst frames are the same, each
+// worst frame by ECI with its crawl map.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <map>
 #include <set>
 #include <string>
 
+#include "metrics/image_io.h"
 #include "tests/render/bench_runner.h"
 
 namespace cbr::test {
@@ -22,8 +27,14 @@ constexpr Tolerance kTolerances[] = {{"psnr_db", 1e-3},     {"ssim", 2e-5},     
                                      {"flip_q3", 1e-3},     {"eci", 1e-4},           {"flicker_ratio", 1e-4},
                                      {"crawl_valid_fraction", 1e-6}};
 
+// The worst frames as "variant kind frame", and the crawl map file of each worst ECI frame.
+struct Worst {
+    std::set<std::string> frames;
+    std::map<std::string, std::filesystem::path> crawl_maps;
+};
+
 Csv runScored(const std::filesystem::path& work, const std::string& pipeline, const std::string& scorer,
-              std::set<std::string>& worst) {
+              Worst& worst) {
     const auto out = work / (pipeline + "-" + scorer);
     auto r = runBench({"run", "--scene", "atrium", "--path", "flythrough", "--res", "128x72", "--frames", "6",
                        "--repeat", "1", "--warmup", "1", "--validate", "--pipeline", pipeline, "--variants",
@@ -34,19 +45,35 @@ Csv runScored(const std::filesystem::path& work, const std::string& pipeline, co
     EXPECT_EQ(run["metrics"]["scorer"], scorer);
     EXPECT_EQ(run["validation"]["errors"], 0) << run["validation"]["first_messages"].dump(1);
     EXPECT_EQ(run["validation"]["warnings"], 0) << run["validation"]["first_messages"].dump(1);
-    for (const auto& e : run["worst"])
-        worst.insert(e["variant"].get<std::string>() + " " + e["kind"].get<std::string>() + " " +
-                     std::to_string(e["frame"].get<int>()));
-    EXPECT_EQ(worst.size(), 8u) << "four variants, by SSIM and by ECI";
+    for (const auto& e : run["worst"]) {
+        const std::string key = e["variant"].get<std::string>() + " " + e["kind"].get<std::string>() + " " +
+                                std::to_string(e["frame"].get<int>());
+        worst.frames.insert(key);
+        if (e["kind"] != "eci") continue;
+        const bool has_map = e["files"].contains("crawl_map");
+        EXPECT_TRUE(has_map) << scorer << ": " << key << " has no crawl_map";
+        if (has_map) worst.crawl_maps[key] = out / e["files"]["crawl_map"].get<std::string>();
+    }
+    EXPECT_EQ(worst.frames.size(), 8u) << "four variants, by SSIM and by ECI";
+    EXPECT_EQ(worst.crawl_maps.size(), 4u) << scorer << ": a crawl map per variant's worst ECI frame";
     return readCsv(out / "frames.csv");
 }
 
 void expectAgreement(const std::string& pipeline) {
     auto work = scratchDir("device-scorer-" + pipeline);
-    std::set<std::string> cpu_worst, device_worst;
+    Worst cpu_worst, device_worst;
     const Csv cpu = runScored(work, pipeline, "cpu", cpu_worst);
     const Csv device = runScored(work, pipeline, "device", device_worst);
-    EXPECT_EQ(cpu_worst, device_worst);
+    EXPECT_EQ(cpu_worst.frames, device_worst.frames);
+    // The same crawl maps: heat maps of values within 1e-5 of each other, at most a code apart.
+    for (const auto& [key, file] : device_worst.crawl_maps) {
+        ASSERT_TRUE(cpu_worst.crawl_maps.count(key)) << key;
+        const metrics::Rgba8Image a = metrics::readPng(cpu_worst.crawl_maps[key]), b = metrics::readPng(file);
+        ASSERT_EQ(a.pixels.size(), b.pixels.size()) << key;
+        int differ = 0;
+        for (size_t i = 0; i < a.pixels.size(); ++i) differ = std::max(differ, std::abs(a.pixels[i] - b.pixels[i]));
+        EXPECT_LE(differ, 1) << key << ": crawl maps differ by " << differ << " codes";
+    }
     ASSERT_EQ(cpu.rows.size(), device.rows.size());
     for (const auto& header : device.header) {
         // Timed passes only: the metrics run after the last timestamp.
