@@ -11,9 +11,8 @@
 namespace cbr::metrics {
 
 // An 8-bit PNG of the image (PNG spec, ISO/IEC 15948): RGB when every alpha is 255, else
-// RGBA; each row filtered with the PNG filter that gives the smallest sum of absolute
-// values (the spec's suggested heuristic); one zlib stream from libdeflate at `level`
-// (1 fastest ... 12 smallest). readPng and every PNG reader read it back byte for byte.
+// RGBA; every row Paeth-filtered; one zlib stream from libdeflate at `level` (1 fastest ...
+// 12 smallest). readPng and every PNG reader read it back byte for byte.
 // Throws std::invalid_argument for an empty image or a size mismatch.
 std::string encodePng(const Rgba8Image& image, int level = 4);
 
