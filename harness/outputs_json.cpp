@@ -279,7 +279,9 @@ json wallJson(const WallAccount& wall) {
     json parts = json::object(), workers = json::object();
     for (size_t i = 0; i < kWallParts; ++i) parts[wallPartKey(WallPart(i))] = wall.part(WallPart(i));
     for (size_t i = 0; i < kWorkerTasks; ++i) workers[workerTaskKey(WorkerTask(i))] = wall.worker(WorkerTask(i));
-    return {{"seconds", wall.total()}, {"parts_s", parts}, {"worker_cpu_s", workers}};
+    json rss = json::object();
+    for (const auto& [after, mib] : wall.peakRss()) rss[after] = mib;
+    return {{"seconds", wall.total()}, {"parts_s", parts}, {"worker_cpu_s", workers}, {"peak_rss_mib_after", rss}};
 }
 
 // What the run directory holds.

@@ -173,8 +173,11 @@ int runBenchmark(const RunOptions& options) {
     chooseScorer(s);
     calibrateSlowdown(s);
     renderQualityFrames(s);
+    s.wall.notePeakRss("quality_pass", peakRssMib());
     renderRepetitions(s);
+    s.wall.notePeakRss("timed_frames", peakRssMib());
     scoreFrames(s);
+    s.wall.notePeakRss("worst_images", peakRssMib());
     releaseAndMeasure(s);
     writeFiles(s, out);
     if (!options.quiet) std::fprintf(stderr, "cbrbench: %s\n", s.wall.line().c_str());

@@ -399,7 +399,7 @@ void chooseScorer(RunState& s) {
     }
     int in_flight = 1;
     for (const auto& c : s.p.configs) in_flight = std::max(in_flight, c.settings.frames_in_flight);
-    WallAccount::Scope scope(s.wall, WallPart::Pipelines);
+    WallAccount::Scope scope(s.wall, WallPart::ScorerSetup);
     try {
         scoring::DeviceMetricsSettings settings;
         settings.width = uint32_t(s.w);

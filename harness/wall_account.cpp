@@ -7,7 +7,7 @@ namespace cbr::harness {
 
 const char* wallPartKey(WallPart part) {
     static const char* const kKeys[kWallParts] = {
-        "scene_load", "device_open", "upload",       "pipelines", "warm_up",   "quality_render", "readback",
+        "scene_load", "device_open", "upload",       "pipelines", "scorer_setup", "warm_up",   "quality_render", "readback",
         "scoring",    "timed_frames", "worst_images", "bandwidth", "outputs",  "report",         "other"};
     return kKeys[size_t(part)];
 }

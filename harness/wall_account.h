@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace cbr::harness {
 
@@ -16,6 +18,7 @@ enum class WallPart {
     DeviceOpen,     // Vulkan instance and device
     Upload,         // the scene's buffers and textures to the device
     Pipelines,      // one renderer per configuration: pipelines and targets
+    ScorerSetup,    // the device scorer's pipelines and buffers (--scorer device)
     WarmUp,         // untimed frames before each pass (and a slowdown's calibration)
     QualityRender,  // the untimed quality pass's rendering and submission
     Readback,       // copying read-back images out of mapped memory
@@ -60,6 +63,10 @@ public:
     double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
     void close();
     double total() const { return total_; }
+    // The process's peak RSS so far, noted after a step (run.json wall.peak_rss_mib_after):
+    // where a run's memory peaks.
+    void notePeakRss(const char* after, double mib) { peak_rss_.push_back({after, mib}); }
+    const std::vector<std::pair<std::string, double>>& peakRss() const { return peak_rss_; }
     // One line for stderr: the total, then every part above 0.05 s, then the workers.
     std::string line() const;
 
@@ -98,6 +105,7 @@ private:
     std::array<double, kWallParts> parts_{};
     std::array<std::atomic<int64_t>, kWorkerTasks> worker_ns_{};
     double total_ = 0;
+    std::vector<std::pair<std::string, double>> peak_rss_;
 };
 
 }  // namespace cbr::harness
