@@ -24,7 +24,7 @@
 namespace cbr::scoring {
 namespace {
 
-constexpr int kBindings = 9;
+constexpr int kBindings = 11;
 // FLIP's 20 band planes (YCxCz and the horizontal filter rows of both images) stay within this
 // many bytes: 128 MB holds about 400 rows of a 3840-wide frame, so 4K runs in 6 bands.
 constexpr VkDeviceSize kBandBudget = VkDeviceSize(128) << 20;
@@ -125,7 +125,8 @@ DeviceMetrics::DeviceMetrics(vk::Context& ctx, const DeviceMetricsSettings& s) :
         band_ = vk::createBuffer(ctx, band_bytes, usage, false);
         now_ = vk::createBuffer(ctx, 12 * pixels, usage, false);
         out_ = vk::createBuffer(ctx, result_bytes_, usage, false);
-        map_ = vk::createBuffer(ctx, 4 * pixels, usage, false);
+        for (vk::Buffer* map : {&crawl_map_, &ssim_map_, &flip_map_})
+            *map = vk::createBuffer(ctx, 4 * pixels, usage, false);
         const std::vector<vk::Binding> b = bindings();
         constexpr uint32_t push = sizeof(shaders::ScorePush);
         ssim_ = vk::createComputeKernel(ctx, kSpirv_score_ssim_comp, sizeof(kSpirv_score_ssim_comp), b, push);
@@ -137,11 +138,7 @@ DeviceMetrics::DeviceMetrics(vk::Context& ctx, const DeviceMetricsSettings& s) :
         crawl_ = vk::createComputeKernel(ctx, kSpirv_score_crawl_comp, sizeof(kSpirv_score_crawl_comp), b, push);
         pool_ = vk::createPool(ctx, b, 1);
         set_ = vk::allocateSet(ctx, pool_, ssim_.set_layout);
-        const VkBuffer buffers[kBindings] = {reference_.buffer, variant_.buffer, analysis_.buffer,
-                                             params_.buffer,    band_.buffer,    now_.buffer,
-                                             out_.buffer,       now_.buffer,     map_.buffer};
-        for (uint32_t i = 0; i < kBindings; ++i)
-            vk::writeBuffer(ctx, set_, i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, buffers[i], 0, VK_WHOLE_SIZE);
+        writeSet(set_, now_.buffer);
     } catch (...) {
         release();
         throw;
@@ -155,7 +152,8 @@ void DeviceMetrics::release() {
         vk::destroyComputeKernel(ctx_, *k);
     if (pool_) vkDestroyDescriptorPool(ctx_.device, pool_, nullptr);
     pool_ = VK_NULL_HANDLE;
-    for (vk::Buffer* b : {&reference_, &variant_, &analysis_, &params_, &band_, &now_, &out_, &map_})
+    for (vk::Buffer* b : {&reference_, &variant_, &analysis_, &params_, &band_, &now_, &out_, &crawl_map_, &ssim_map_,
+                          &flip_map_})
         vk::destroyBuffer(ctx_, *b);
 }
 
@@ -168,19 +166,25 @@ std::unique_ptr<DeviceMetrics::Chain> DeviceMetrics::makeChain() {
     const std::vector<vk::Binding> b = bindings();
     chain->pool = vk::createPool(ctx_, b, 1);
     chain->set = vk::allocateSet(ctx_, chain->pool, crawl_.set_layout);
-    const VkBuffer buffers[kBindings] = {reference_.buffer, variant_.buffer, analysis_.buffer,
-                                         params_.buffer,    band_.buffer,    now_.buffer,
-                                         out_.buffer,       chain->state.buffer, map_.buffer};
-    for (uint32_t i = 0; i < kBindings; ++i)
-        vk::writeBuffer(ctx_, chain->set, i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, buffers[i], 0, VK_WHOLE_SIZE);
+    writeSet(chain->set, chain->state.buffer);
     return chain;
+}
+
+// Bindings 0-10 as score_common.glsl declares them; `previous` at binding 7.
+void DeviceMetrics::writeSet(VkDescriptorSet set, VkBuffer previous) const {
+    const VkBuffer buffers[kBindings] = {reference_.buffer, variant_.buffer,  analysis_.buffer, params_.buffer,
+                                         band_.buffer,      now_.buffer,      out_.buffer,      previous,
+                                         crawl_map_.buffer, ssim_map_.buffer, flip_map_.buffer};
+    for (uint32_t i = 0; i < kBindings; ++i)
+        vk::writeBuffer(ctx_, set, i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, buffers[i], 0, VK_WHOLE_SIZE);
 }
 
 VkDeviceSize DeviceMetrics::resultBytes() const { return result_bytes_; }
 
 VkDeviceSize DeviceMetrics::scratchBytes() const {
     VkDeviceSize total = 0;
-    for (const vk::Buffer* b : {&reference_, &variant_, &analysis_, &params_, &band_, &now_, &out_, &map_})
+    for (const vk::Buffer* b : {&reference_, &variant_, &analysis_, &params_, &band_, &now_, &out_, &crawl_map_,
+                                &ssim_map_, &flip_map_})
         total += b->size;
     return total;
 }
@@ -188,8 +192,8 @@ VkDeviceSize DeviceMetrics::scratchBytes() const {
 VkDeviceSize DeviceMetrics::chainBytes() const { return 12 * VkDeviceSize(settings_.width) * settings_.height; }
 
 void DeviceMetrics::dispatch(VkCommandBuffer cmd, const vk::ComputeKernel& kernel, VkDescriptorSet set, int y0, int y1,
-                             int r0, int r1, uint32_t groups_x, uint32_t groups_y, bool write_map) const {
-    const shaders::ScorePush push{y0, y1, r0, r1, band_plane_, write_map ? 1 : 0, 0, 0};
+                             int r0, int r1, uint32_t groups_x, uint32_t groups_y, int maps) const {
+    const shaders::ScorePush push{y0, y1, r0, r1, band_plane_, maps, 0, 0};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.layout, 0, 1, &set, 0, nullptr);
     vkCmdPushConstants(cmd, kernel.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
@@ -197,8 +201,9 @@ void DeviceMetrics::dispatch(VkCommandBuffer cmd, const vk::ComputeKernel& kerne
 }
 
 // FLIP band by band: YCxCz of the band's rows and its halo, the horizontal filters, then the
-// vertical filters and the error of the band's own rows into the histogram.
-void DeviceMetrics::recordFlip(VkCommandBuffer cmd) const {
+// vertical filters and the error of the band's own rows into the histogram (and the FLIP map
+// when `maps` asks for it).
+void DeviceMetrics::recordFlip(VkCommandBuffer cmd, int maps) const {
     const int height = int(settings_.height);
     for (int y0 = 0; y0 < height; y0 += band_rows_) {
         const int y1 = std::min(height, y0 + band_rows_);
@@ -207,24 +212,24 @@ void DeviceMetrics::recordFlip(VkCommandBuffer cmd) const {
         computeBarrier(cmd);
         dispatch(cmd, flip_h_, set_, y0, y1, r0, r1, groups_x_, groupsFor(uint32_t(r1 - r0)));
         computeBarrier(cmd);
-        dispatch(cmd, flip_v_, set_, y0, y1, r0, r1, groups_x_, groupsFor(uint32_t(y1 - y0)));
+        dispatch(cmd, flip_v_, set_, y0, y1, r0, r1, groups_x_, groupsFor(uint32_t(y1 - y0)), maps);
         computeBarrier(cmd);
     }
 }
 
 // Blur both lumas into `now_` (with this frame's depth); score against the chain when paired,
-// writing every pixel of `map_` when asked.
-void DeviceMetrics::recordCrawl(VkCommandBuffer cmd, const Chain& chain, bool pair, bool write_map) const {
+// writing every pixel of `crawl_map_` when `maps` asks for it.
+void DeviceMetrics::recordCrawl(VkCommandBuffer cmd, const Chain& chain, bool pair, int maps) const {
     const int height = int(settings_.height);
     dispatch(cmd, blur_v_, set_, 0, height, 0, height, groups_x_, groups_y_);
     computeBarrier(cmd);
     dispatch(cmd, blur_h_, set_, 0, height, 0, height, groups_x_, groups_y_);
     computeBarrier(cmd);
-    if (pair) dispatch(cmd, crawl_, chain.set, 0, height, 0, height, groups_x_, groups_y_, write_map);
+    if (pair) dispatch(cmd, crawl_, chain.set, 0, height, 0, height, groups_x_, groups_y_, maps);
 }
 
 void DeviceMetrics::record(VkCommandBuffer cmd, VkBuffer reference, VkBuffer variant, VkBuffer analysis, Chain& chain,
-                           bool cut, VkBuffer result, VkBuffer crawl_map) {
+                           bool cut, VkBuffer result, VkBuffer crawl_map, VkBuffer ssim_map, VkBuffer flip_map) {
     if (chain.width != settings_.width || chain.height != settings_.height || chain.set == VK_NULL_HANDLE)
         throw std::invalid_argument("DeviceMetrics::record: the chain is not one of this scorer's (made for " +
                                     std::to_string(chain.width) + "x" + std::to_string(chain.height) + ")");
@@ -246,17 +251,21 @@ void DeviceMetrics::record(VkCommandBuffer cmd, VkBuffer reference, VkBuffer var
     if (crawl_map && !pair) vkCmdFillBuffer(cmd, crawl_map, 0, 4 * pixels, 0u);
     vk::memoryBarrier(cmd, kTransfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, kCompute, kShaderReadWrite);
 
+    const int maps =
+        (crawl_map ? SCORE_MAP_CRAWL : 0) | (ssim_map ? SCORE_MAP_SSIM : 0) | (flip_map ? SCORE_MAP_FLIP : 0);
     const int height = int(settings_.height);
-    dispatch(cmd, ssim_, set_, 0, height, 0, height, groups_x_, groups_y_);
+    dispatch(cmd, ssim_, set_, 0, height, 0, height, groups_x_, groups_y_, maps);
     computeBarrier(cmd);
-    recordFlip(cmd);
-    recordCrawl(cmd, chain, pair, crawl_map != VK_NULL_HANDLE);
+    recordFlip(cmd, maps);
+    recordCrawl(cmd, chain, pair, maps);
 
     vk::memoryBarrier(cmd, kCompute, kShaderReadWrite, kTransfer, kTransferReadWrite);
     copyBuffer(cmd, now_.buffer, chain.state.buffer, chainBytes());
     copyBuffer(cmd, out_.buffer, result, result_bytes_);
-    if (crawl_map && pair) copyBuffer(cmd, map_.buffer, crawl_map, 4 * pixels);
-    // The result for the host; the map for the caller's copies.
+    if (crawl_map && pair) copyBuffer(cmd, crawl_map_.buffer, crawl_map, 4 * pixels);
+    if (ssim_map) copyBuffer(cmd, ssim_map_.buffer, ssim_map, 4 * pixels);
+    if (flip_map) copyBuffer(cmd, flip_map_.buffer, flip_map, 4 * pixels);
+    // The result for the host; the maps for the caller's copies.
     vk::memoryBarrier(cmd, kTransfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT | kTransfer,
                       VK_ACCESS_2_HOST_READ_BIT | kTransferReadWrite);
     chain.has_previous = true;

@@ -70,8 +70,11 @@ public:
     // packed, VK_BUFFER_USAGE_TRANSFER_DST_BIT) receives metrics::CrawlTracker's crawl map,
     // |e_t - warp(e_t-1)| at the scored pixels and 0 at every other (all 0 without a pair); it is
     // written by transfers, made visible to later transfer reads on the queue (the caller's copy).
+    // ssim_map and flip_map, unless VK_NULL_HANDLE, the same way: metrics::ssimMap (the mean of
+    // the R, G, B SSIM at each pixel, 1.0 on the 5-pixel border) and metrics::flip's error map.
     void record(VkCommandBuffer cmd, VkBuffer reference, VkBuffer variant, VkBuffer analysis, Chain& chain, bool cut,
-                VkBuffer result, VkBuffer crawl_map = VK_NULL_HANDLE);
+                VkBuffer result, VkBuffer crawl_map = VK_NULL_HANDLE, VkBuffer ssim_map = VK_NULL_HANDLE,
+                VkBuffer flip_map = VK_NULL_HANDLE);
 
     // After the command buffer's fence: the figures from the mapped result buffer, summed in
     // double in a fixed order. `chain` is the one recorded with it (checked for its size).
@@ -83,10 +86,12 @@ public:
 
 private:
     void release();
-    void recordFlip(VkCommandBuffer cmd) const;
-    void recordCrawl(VkCommandBuffer cmd, const Chain& chain, bool pair, bool write_map) const;
+    void writeSet(VkDescriptorSet set, VkBuffer previous) const;
+    // maps: the SCORE_MAP_* bits of the maps to write (score_shared.h).
+    void recordFlip(VkCommandBuffer cmd, int maps) const;
+    void recordCrawl(VkCommandBuffer cmd, const Chain& chain, bool pair, int maps) const;
     void dispatch(VkCommandBuffer cmd, const vk::ComputeKernel& kernel, VkDescriptorSet set, int y0, int y1, int r0,
-                  int r1, uint32_t groups_x, uint32_t groups_y, bool write_map = false) const;
+                  int r1, uint32_t groups_x, uint32_t groups_y, int maps = 0) const;
 
     vk::Context& ctx_;
     DeviceMetricsSettings settings_;
@@ -96,7 +101,8 @@ private:
     int band_plane_ = 0;      // floats per band plane
     VkDeviceSize result_bytes_ = 0;
     vk::ComputeKernel ssim_, flip_ycc_, flip_h_, flip_v_, blur_v_, blur_h_, crawl_;
-    vk::Buffer reference_, variant_, analysis_, params_, band_, now_, out_, map_;  // map_: the crawl map
+    vk::Buffer reference_, variant_, analysis_, params_, band_, now_, out_;
+    vk::Buffer crawl_map_, ssim_map_, flip_map_;  // bindings 8-10, copied to the caller's maps
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     VkDescriptorSet set_ = VK_NULL_HANDLE;  // binding 7 (the previous frame) is `now_`, unused
 };

@@ -46,6 +46,20 @@ int append(std::vector<float>& taps, const std::vector<double>& w) {
     return at;
 }
 
+// A FLIP kernel as floats, its outer tap pairs below 1e-9 of its largest tap set to 0 where
+// flip.cpp's toFloat drops them: the shaders' folded sums (score_flip_h/v.comp) add those
+// zeros first, which leaves every filtered value as the CPU's, bit for bit.
+int appendFlip(std::vector<float>& taps, const std::vector<double>& w) {
+    double peak = 0;
+    for (double v : w) peak = std::max(peak, std::abs(v));
+    size_t cut = 0;
+    while (2 * cut + 1 < w.size() && std::abs(w[cut]) < 1e-9 * peak && std::abs(w[w.size() - 1 - cut]) < 1e-9 * peak)
+        ++cut;
+    const int at = append(taps, w);
+    for (size_t t = 0; t < cut; ++t) taps[size_t(at) + t] = taps[size_t(at) + w.size() - 1 - t] = 0.0f;
+    return at;
+}
+
 // scipy.ndimage._gaussian_kernel1d at sigma 1.5, radius 5 (Wang's 11 taps), as metrics.cpp.
 std::vector<double> ssimKernel() {
     std::vector<double> k(11);
@@ -98,10 +112,10 @@ void flipColourKernels(double ppd, Params& p) {
     const double sz = std::sqrt(s1 * s1 + s2 * s2);
     for (size_t i = 0; i < taps; ++i) y[i] /= sy, cx[i] /= scx, cz1[i] /= sz, cz2[i] /= sz;
     p.head.flip_colour_radius = radius;
-    p.head.flip_y = append(p.taps, y);
-    p.head.flip_cx = append(p.taps, cx);
-    p.head.flip_cz1 = append(p.taps, cz1);
-    p.head.flip_cz2 = append(p.taps, cz2);
+    p.head.flip_y = appendFlip(p.taps, y);
+    p.head.flip_cx = appendFlip(p.taps, cx);
+    p.head.flip_cz1 = appendFlip(p.taps, cz1);
+    p.head.flip_cz2 = appendFlip(p.taps, cz2);
 }
 
 // Edge and point detectors: first and second derivative of a Gaussian of standard deviation
@@ -129,9 +143,9 @@ void flipFeatureKernels(double ppd, Params& p) {
         dd[i] = ddn > 0 ? dd[i] / ddn : 0.0;
     }
     p.head.flip_feature_radius = radius;
-    p.head.flip_g = append(p.taps, g);
-    p.head.flip_d = append(p.taps, d);
-    p.head.flip_dd = append(p.taps, dd);
+    p.head.flip_g = appendFlip(p.taps, g);
+    p.head.flip_d = appendFlip(p.taps, d);
+    p.head.flip_dd = appendFlip(p.taps, dd);
 }
 
 // flip.cpp's cube root (a guess from the float's bits, two Halley steps), for the same cmax.

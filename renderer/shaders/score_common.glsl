@@ -14,6 +14,8 @@ layout(std430, set = 0, binding = 5) buffer Now { float now[]; };      // blurre
 layout(std430, set = 0, binding = 6) buffer Out { uint result[]; };    // the result record
 layout(std430, set = 0, binding = 7) readonly buffer Previous { float previous[]; };  // the chain: t-1
 layout(std430, set = 0, binding = 8) writeonly buffer CrawlMap { float crawl_map[]; };  // |crawl| per pixel
+layout(std430, set = 0, binding = 9) writeonly buffer SsimMap { float ssim_map[]; };    // SSIM per pixel
+layout(std430, set = 0, binding = 10) writeonly buffer FlipMap { float flip_map[]; };   // FLIP error per pixel
 
 layout(push_constant) uniform Push { ScorePush push; };
 

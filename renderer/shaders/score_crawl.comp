@@ -104,7 +104,7 @@ void main() {
             }
         }
     }
-    if (push.write_map != 0 && x < w && y < h) crawl_map[y * w + x] = crawl;
+    if ((push.maps & SCORE_MAP_CRAWL) != 0 && x < w && y < h) crawl_map[y * w + x] = crawl;
     const uint t = gl_LocalInvocationIndex;
     sums[t] = s;
     counts[t] = c;

@@ -1,7 +1,8 @@
 #version 460
 // FLIP, step 3 of a band: the vertical half of the filters (rows clamped to the image), the
 // per-pixel error, and the error's histogram: per bin a count and a 64-bit fixed-point sum
-// (low word and carry), from which the host reads the mean and the weighted quartiles.
+// (low word and carry), from which the host reads the mean and the weighted quartiles; on
+// request the error itself, per pixel (metrics::flip's map).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
@@ -9,12 +10,15 @@
 #include "score_flip.glsl"
 layout(local_size_x = SCORE_GROUP, local_size_y = SCORE_GROUP) in;
 
-// Column filter of horizontal plane `plane` with `radius` taps at offset `k` of taps[].
+// Column filter of horizontal plane `plane` with the symmetric kernel of `radius` taps at offset
+// `k` of taps[], folded as the horizontal pass (score_flip_h.comp) and flip.cpp.
 float column(int plane, int k, int radius, int x, int y) {
-    precise float sum = 0.0;  // see score_flip.glsl on precise
-    for (int t = 0; t <= 2 * radius; ++t) {
-        const int r = clamp(y - radius + t, 0, P.height - 1) - push.r0;
-        sum += taps[k + t] * band[bandIndex(plane, r, x)];
+    precise float sum = taps[k + radius] * band[bandIndex(plane, y - push.r0, x)];  // see score_flip.glsl on precise
+    for (int t = 0; t < radius; ++t) {
+        const int above = clamp(y - radius + t, 0, P.height - 1) - push.r0;
+        const int below = clamp(y + radius - t, 0, P.height - 1) - push.r0;
+        precise float pair = band[bandIndex(plane, above, x)] + band[bandIndex(plane, below, x)];
+        sum += taps[k + t] * pair;
     }
     return sum;
 }
@@ -42,12 +46,15 @@ void addToHistogram(float error) {
     }
 }
 
-// Columns of horizontal plane `plane` through two kernels at once (each load used twice).
+// Columns of horizontal plane `plane` through the antisymmetric kernel at k1 (first derivative)
+// and the symmetric one at k2 (second derivative) at once, each load used twice.
 vec2 columns(int plane, int k1, int k2, int radius, int x, int y) {
-    precise vec2 sum = vec2(0.0);
-    for (int t = 0; t <= 2 * radius; ++t) {
-        const float v = band[bandIndex(plane, clamp(y - radius + t, 0, P.height - 1) - push.r0, x)];
-        sum += vec2(taps[k1 + t], taps[k2 + t]) * v;
+    precise vec2 sum = vec2(0.0, taps[k2 + radius] * band[bandIndex(plane, y - push.r0, x)]);
+    for (int t = 0; t < radius; ++t) {
+        const float above = band[bandIndex(plane, clamp(y - radius + t, 0, P.height - 1) - push.r0, x)];
+        const float below = band[bandIndex(plane, clamp(y + radius - t, 0, P.height - 1) - push.r0, x)];
+        precise vec2 pair = vec2(above - below, above + below);
+        sum += vec2(taps[k1 + t], taps[k2 + t]) * pair;
     }
     return sum;
 }
@@ -69,5 +76,6 @@ void main() {
                              columns(h + 4, P.flip_d, P.flip_dd, fr, x, y));
     }
     const float error = flipError(colour[0], colour[1], features[0], features[1]);
+    if ((push.maps & SCORE_MAP_FLIP) != 0) flip_map[y * P.width + x] = error;
     addToHistogram(error);
 }

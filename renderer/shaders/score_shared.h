@@ -44,12 +44,18 @@ struct ScoreParams {
     float srgb_to_linear[256];
 };
 
+// ScorePush::maps: score_crawl.comp writes |crawl| at every pixel (0 where not scored),
+// score_ssim.comp the channel-mean SSIM (1 on the border), score_flip_v.comp the FLIP error.
+#define SCORE_MAP_CRAWL 1
+#define SCORE_MAP_SSIM 2
+#define SCORE_MAP_FLIP 4
+
 // Per dispatch: the rows it produces and the rows the band buffer holds.
 struct ScorePush {
     int y0, y1;   // output rows [y0, y1)
     int r0, r1;   // band rows [r0, r1) (FLIP); 0, height otherwise
     int plane;    // floats per band plane
-    int write_map;  // score_crawl.comp: 1 writes every pixel's |crawl| (0 where not scored)
+    int maps;     // SCORE_MAP_* bits: the per-pixel maps this frame's passes write
     int pad1, pad2;
 };
 

@@ -3,7 +3,8 @@
 // from error visibility to structural similarity", IEEE TIP 13(4), 2004) of one 16x16 tile:
 // squared byte differences summed exactly in integers; SSIM with the 11x11 Gaussian window of
 // sigma 1.5, K1 0.01, K2 0.03, population variances, on the valid region (5-pixel border out),
-// per channel and for BT.709 luma, as metrics/metrics.cpp. One partial record per workgroup.
+// per channel and for BT.709 luma, as metrics/metrics.cpp. One partial record per workgroup;
+// on request the SSIM map (metrics::ssimMap).
 #extension GL_GOOGLE_include_directive : require
 #include "score_common.glsl"
 layout(local_size_x = SCORE_GROUP, local_size_y = SCORE_GROUP) in;
@@ -83,7 +84,10 @@ void main() {
         const ivec3 d = ivec3(unpackCodes(reference_px[p.y * size.x + p.x])) -
                         ivec3(unpackCodes(variant_px[p.y * size.x + p.x]));
         square = uint(d.r * d.r + d.g * d.g + d.b * d.b);
-        if (all(greaterThanEqual(p, ivec2(kRadius))) && all(lessThan(p, size - kRadius))) s = ssimAt(local);
+        const bool inside = all(greaterThanEqual(p, ivec2(kRadius))) && all(lessThan(p, size - kRadius));
+        if (inside) s = ssimAt(local);
+        // metrics::ssimMap: the channel mean, 1 ("no error") where the window does not fit.
+        if ((push.maps & SCORE_MAP_SSIM) != 0) ssim_map[p.y * size.x + p.x] = inside ? (s.r + s.g + s.b) / 3.0 : 1.0;
     }
     const uint t = gl_LocalInvocationIndex;
     sums[t] = s;

@@ -1,6 +1,7 @@
 // The device scorer (renderer/scoring) against the CPU metrics (metrics/) on lavapipe with the
-// validation layer on: MSE, SSIM, FLIP on real and generated pairs, edge crawl over a chain of
-// frames with a sub-pixel pan, a cut, disocclusion, sky and NaN motion; issue 32's tolerances.
+// validation layer on: MSE, SSIM, FLIP (figures and per-pixel maps) on real and generated pairs,
+// edge crawl over a chain of frames with a sub-pixel pan, a cut, disocclusion, sky and NaN
+// motion; issue 32's tolerances.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -40,6 +41,8 @@ constexpr double kFlipMean = 1e-4;
 constexpr double kFlipQuartile = 1e-3;
 constexpr double kCrawl = 1e-4;
 constexpr double kCrawlMap = 1e-5;  // per pixel of the crawl map (lumas on [0, 1])
+constexpr double kSsimMap = 1e-5;   // per pixel of the SSIM map (float windows; lavapipe: 3.6e-6)
+constexpr double kFlipMap = 1e-5;   // per pixel of the FLIP map (lavapipe: 5.4e-7)
 
 struct Rgba {
     int width = 0, height = 0;
@@ -79,6 +82,12 @@ metrics::Image toImage(const Rgba& image) {
     return metrics::fromRgba8(image.bytes.data(), image.width, image.height, size_t(image.width) * 4);
 }
 
+// The maps record() may write, each through a buffer filled with NaN first (a pixel left
+// unwritten shows); a null pointer asks for no map.
+struct Maps {
+    std::vector<float>*crawl = nullptr, *ssim = nullptr, *flip = nullptr;
+};
+
 class DeviceMetricsTest : public ::testing::Test {
 public:
     // CBR_TEST_DEVICE picks another device than the default (lavapipe), as --device does.
@@ -110,10 +119,8 @@ protected:
     }
 
     // Scores one frame on the device. `analysis`: 4 floats per pixel, or empty (no surface).
-    // `crawl_map`, when given, receives the crawl map (through a buffer filled with NaN first).
     static DeviceScores score(DeviceMetrics& metrics, DeviceMetrics::Chain& chain, const Rgba& reference,
-                              const Rgba& variant, const std::vector<float>& analysis, bool cut,
-                              std::vector<float>* crawl_map = nullptr) {
+                              const Rgba& variant, const std::vector<float>& analysis, bool cut, Maps maps = {}) {
         vk::Context& ctx = *ctx_;
         const size_t pixels = size_t(reference.width) * reference.height;
         // Device-local inputs, as the renderer's images copied to buffers would be.
@@ -123,20 +130,24 @@ protected:
         vk::Buffer var = vk::uploadBuffer(ctx, variant.bytes.data(), 4 * pixels, kIn);
         vk::Buffer field = vk::uploadBuffer(ctx, analysis.empty() ? no_surface.data() : analysis.data(), 16 * pixels, kIn);
         vk::Buffer result = vk::createReadbackBuffer(ctx, metrics.resultBytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-        vk::Buffer map;
-        if (crawl_map) {
-            map = vk::createReadbackBuffer(ctx, 4 * pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-            std::memset(map.mapped, 0xFF, 4 * pixels);  // NaN: a pixel left unwritten shows
+        std::vector<float>* wanted[3] = {maps.crawl, maps.ssim, maps.flip};
+        vk::Buffer map[3];
+        for (int i = 0; i < 3; ++i) {
+            if (!wanted[i]) continue;
+            map[i] = vk::createReadbackBuffer(ctx, 4 * pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+            std::memset(map[i].mapped, 0xFF, 4 * pixels);
         }
         ctx.immediate([&](VkCommandBuffer cmd) {
-            metrics.record(cmd, ref.buffer, var.buffer, field.buffer, chain, cut, result.buffer, map.buffer);
+            metrics.record(cmd, ref.buffer, var.buffer, field.buffer, chain, cut, result.buffer, map[0].buffer,
+                           map[1].buffer, map[2].buffer);
         });
         const DeviceScores s = metrics.read(result.mapped, chain);
-        if (crawl_map) {
-            const auto* values = static_cast<const float*>(map.mapped);
-            crawl_map->assign(values, values + pixels);
+        for (int i = 0; i < 3; ++i) {
+            if (!wanted[i]) continue;
+            const auto* values = static_cast<const float*>(map[i].mapped);
+            wanted[i]->assign(values, values + pixels);
         }
-        for (vk::Buffer* b : {&ref, &var, &field, &result, &map}) vk::destroyBuffer(ctx, *b);
+        for (vk::Buffer* b : {&ref, &var, &field, &result, &map[0], &map[1], &map[2]}) vk::destroyBuffer(ctx, *b);
         return s;
     }
 
@@ -160,12 +171,13 @@ protected:
         return *slot;
     }
 
-    // One pair on both paths, compared within the tolerances.
+    // One pair on both paths, compared within the tolerances: the figures, the SSIM and FLIP maps.
     static DeviceScores comparePair(const Rgba& a, const Rgba& b, const std::string& what,
                                     double ppd = metrics::kFlipDefaultPpd) {
         DeviceMetrics& device = scorer(a.width, a.height, ppd);
         auto chain = device.makeChain();
-        const DeviceScores s = score(device, *chain, a, b, {}, false);
+        std::vector<float> ssim_map, flip_map;
+        const DeviceScores s = score(device, *chain, a, b, {}, false, {nullptr, &ssim_map, &flip_map});
         const metrics::Image ia = toImage(a), ib = toImage(b);
         const double mse = metrics::mse(ia, ib);
         if (mse == 0) {
@@ -176,7 +188,9 @@ protected:
         const metrics::SsimResult ssim = metrics::ssim(ia, ib);
         expectNear("ssim", s.ssim, ssim.ssim, kSsim, what);
         expectNear("ssim_luma", s.ssim_luma, ssim.luma_ssim, kSsim, what);
+        expectMapNear("ssim_map (pixel)", ssim_map, metrics::ssimMap(ia, ib), kSsimMap, what);
         const metrics::FlipResult flip = metrics::flip(ia, ib, ppd);
+        expectMapNear("flip_map (pixel)", flip_map, flip.map, kFlipMap, what);
         expectNear("flip_mean", s.flip_mean, flip.mean, kFlipMean, what);
         expectNear("flip_q1", s.flip_q1, flip.q1, kFlipQuartile, what);
         expectNear("flip_median", s.flip_median, flip.median, kFlipQuartile, what);
@@ -186,11 +200,32 @@ protected:
     }
 
     static void compareChain(const metrics::CrawlSettings& crawl, bool flat, const std::string& what);
+    static void expectMapNear(const std::string& metric, const std::vector<float>& device, const metrics::Image& cpu,
+                              double tolerance, const std::string& what);
 
     static inline std::unique_ptr<vk::Context> ctx_;
     static inline std::string skip_reason_;
     static inline std::map<std::string, std::unique_ptr<DeviceMetrics>> scorers_;
 };
+
+// A device map against the CPU's, pixel by pixel (a NaN the device left unwritten fails).
+void DeviceMetricsTest::expectMapNear(const std::string& metric, const std::vector<float>& device,
+                                      const metrics::Image& cpu, double tolerance, const std::string& what) {
+    ASSERT_EQ(cpu.channels, 1) << what;
+    ASSERT_EQ(device.size(), cpu.data.size()) << what << ": " << metric;
+    double worst = 0;
+    size_t differ = 0;
+    for (size_t i = 0; i < device.size(); ++i) {
+        const double d = std::abs(double(device[i]) - cpu.data[i]);
+        if (!(d <= tolerance) && differ++ == 0)
+            ADD_FAILURE() << what << ": " << metric << " at " << i % size_t(cpu.width) << "," << i / size_t(cpu.width)
+                          << " device " << device[i] << " cpu " << cpu.data[i];
+        if (std::isfinite(d)) worst = std::max(worst, d);
+    }
+    EXPECT_EQ(differ, 0u) << what << ": " << metric << " pixels further apart than " << tolerance;
+    double& record = deviations()[metric];
+    record = std::max(record, worst);
+}
 
 Rgba readRgba(const char* name) {
     const metrics::Rgba8Image image = metrics::readPng(std::string(CBR_TEST_DATA) + "/flip/" + name);
@@ -334,7 +369,7 @@ void DeviceMetricsTest::compareChain(const metrics::CrawlSettings& crawl, bool f
         PanFrame f = panFrame(kWidth, kHeight, t, t >= 2 ? 1 : 0);
         if (flat) f.reference = f.variant = generate(kWidth, kHeight, [t](int, int, int c) { return uint8_t(90 + t + c); });
         std::vector<float> map;
-        const DeviceScores s = score(device, *chain, f.reference, f.variant, f.analysis, cut, &map);
+        const DeviceScores s = score(device, *chain, f.reference, f.variant, f.analysis, cut, {&map});
         const metrics::CrawlFrame c = tracker.add(toImage(f.reference), toImage(f.variant), f.motion, cut, true);
         const std::string frame = what + ", frame " + std::to_string(t);
         const size_t crawling = expectSameMap(map, *c.crawl_map, frame);
@@ -367,7 +402,8 @@ TEST_F(DeviceMetricsTest, CrawlChainMatchesCrawlTracker) {
 
 // The renderer's use: several variants against one reference, each with its own chain and
 // result buffer, recorded into one command buffer; the synchronization validation layer checks
-// that record() orders its scratch between the calls, and the figures match one call at a time.
+// that record() orders its scratch between the calls, and the figures and maps (crawl, SSIM,
+// FLIP) match one call at a time.
 TEST_F(DeviceMetricsTest, VariantsShareOneCommandBuffer) {
     constexpr int kWidth = 96, kHeight = 64;
     DeviceMetrics& device = scorer(kWidth, kHeight);
@@ -375,10 +411,12 @@ TEST_F(DeviceMetricsTest, VariantsShareOneCommandBuffer) {
     const size_t pixels = size_t(kWidth) * kHeight;
     constexpr VkBufferUsageFlags kIn = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     std::unique_ptr<DeviceMetrics::Chain> chains[2] = {device.makeChain(), device.makeChain()};
-    vk::Buffer results[2], maps[2];
+    vk::Buffer results[2], maps[2][3];  // per variant: crawl, SSIM, FLIP
     for (vk::Buffer& r : results)
         r = vk::createReadbackBuffer(*ctx_, device.resultBytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-    for (vk::Buffer& m : maps) m = vk::createReadbackBuffer(*ctx_, 4 * pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    for (auto& variant_maps : maps)
+        for (vk::Buffer& m : variant_maps)
+            m = vk::createReadbackBuffer(*ctx_, 4 * pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     for (const PanFrame& f : frames) {
         // Variant 0 is the aliased render, variant 1 the reference itself.
         vk::Buffer reference = vk::uploadBuffer(*ctx_, f.reference.bytes.data(), 4 * pixels, kIn);
@@ -386,26 +424,34 @@ TEST_F(DeviceMetricsTest, VariantsShareOneCommandBuffer) {
         vk::Buffer field = vk::uploadBuffer(*ctx_, f.analysis.data(), 16 * pixels, kIn);
         ctx_->immediate([&](VkCommandBuffer cmd) {
             device.record(cmd, reference.buffer, variant.buffer, field.buffer, *chains[0], false, results[0].buffer,
-                          maps[0].buffer);
+                          maps[0][0].buffer, maps[0][1].buffer, maps[0][2].buffer);
             device.record(cmd, reference.buffer, reference.buffer, field.buffer, *chains[1], false, results[1].buffer,
-                          maps[1].buffer);
+                          maps[1][0].buffer, maps[1][1].buffer, maps[1][2].buffer);
         });
         for (vk::Buffer* b : {&reference, &variant, &field}) vk::destroyBuffer(*ctx_, *b);
     }
     const DeviceScores together[2] = {device.read(results[0].mapped, *chains[0]),
                                       device.read(results[1].mapped, *chains[1])};
-    const auto* map_values = static_cast<const float*>(maps[0].mapped);
-    const std::vector<float> map_together(map_values, map_values + pixels);
-    map_values = static_cast<const float*>(maps[1].mapped);
-    const bool reference_map_zero = std::all_of(map_values, map_values + pixels, [](float v) { return v == 0.0f; });
-    for (vk::Buffer* b : {&results[0], &results[1], &maps[0], &maps[1]}) vk::destroyBuffer(*ctx_, *b);
+    std::vector<float> together_maps[2][3];
+    for (int v = 0; v < 2; ++v)
+        for (int m = 0; m < 3; ++m) {
+            const auto* values = static_cast<const float*>(maps[v][m].mapped);
+            together_maps[v][m].assign(values, values + pixels);
+            vk::destroyBuffer(*ctx_, maps[v][m]);
+        }
+    for (vk::Buffer* b : {&results[0], &results[1]}) vk::destroyBuffer(*ctx_, *b);
     auto alone = device.makeChain();
     score(device, *alone, frames[0].reference, frames[0].variant, frames[0].analysis, false);
-    std::vector<float> map_alone;
-    const DeviceScores one =
-        score(device, *alone, frames[1].reference, frames[1].variant, frames[1].analysis, false, &map_alone);
-    EXPECT_EQ(map_together, map_alone);
-    EXPECT_TRUE(reference_map_zero);
+    std::vector<float> alone_maps[3];
+    const DeviceScores one = score(device, *alone, frames[1].reference, frames[1].variant, frames[1].analysis, false,
+                                   {&alone_maps[0], &alone_maps[1], &alone_maps[2]});
+    for (int m = 0; m < 3; ++m) EXPECT_EQ(together_maps[0][m], alone_maps[m]) << "map " << m;
+    auto all = [](const std::vector<float>& map, float value) {
+        return std::all_of(map.begin(), map.end(), [value](float v) { return v == value; });
+    };
+    EXPECT_TRUE(all(together_maps[1][0], 0.0f)) << "the reference against itself crawls";
+    EXPECT_TRUE(all(together_maps[1][2], 0.0f)) << "the reference against itself has a FLIP error";
+    EXPECT_FALSE(all(together_maps[0][2], 0.0f));
     EXPECT_TRUE(together[0].has_pair);
     EXPECT_EQ(together[0].mse, one.mse);
     EXPECT_EQ(together[0].ssim, one.ssim);
