@@ -22,6 +22,9 @@ struct QualityScorer::Worst {
     double value = 0;  // SSIM (lower is worse) or ECI (higher is worse)
     Bytes reference, image, classes;
     Bytes crawl_map;  // the ECI kind's crawl map, as its heat map (RGBA8)
+    // Scored on the device: its SSIM and FLIP maps, made into heat maps only if the frame stays
+    // the worst (the writer computes them from the images otherwise).
+    Floats ssim_map, flip_map;
 };
 
 // Frames of one variant arrive out of order; the crawl metric needs them in order.
@@ -169,19 +172,22 @@ void QualityScorer::submitScore(Chain& c, const std::string& variant, FrameRow& 
 }
 
 void QualityScorer::offerWorst(const std::string& variant, int frame, const Quality& q, Bytes reference, Bytes image,
-                               Bytes classes, std::shared_ptr<const std::vector<float>> crawl_map) {
+                               Bytes classes, Floats crawl_map, Floats ssim_map, Floats flip_map) {
+    const size_t pixels = size_t(width_) * size_t(height_);
+    for (Floats* map : {&ssim_map, &flip_map})
+        if (*map && (*map)->size() != pixels) *map = nullptr;
     Chain& c = chain(variant);
     std::lock_guard lock(c.mutex);
     if (q.ssim && (c.worst_ssim.frame < 0 || *q.ssim < c.worst_ssim.value))
-        c.worst_ssim = {frame, *q.ssim, reference, image, classes, nullptr};
+        c.worst_ssim = {frame, *q.ssim, reference, image, classes, nullptr, ssim_map, flip_map};
     if (q.eci && (c.worst_eci.frame < 0 || *q.eci > c.worst_eci.value)) {
         Bytes heat;
-        if (crawl_map && crawl_map->size() == size_t(width_) * size_t(height_)) {
+        if (crawl_map && crawl_map->size() == pixels) {
             // The heat map crawlStep keeps for the CPU scorer's frames, from the same values.
             const metrics::Image map{width_, height_, 1, std::vector<double>(crawl_map->begin(), crawl_map->end())};
             heat = std::make_shared<const std::vector<uint8_t>>(heatMap(map, 8.0));
         }
-        c.worst_eci = {frame, *q.eci, reference, image, classes, heat};
+        c.worst_eci = {frame, *q.eci, reference, image, classes, heat, ssim_map, flip_map};
     }
 }
 
@@ -302,7 +308,7 @@ public:
         std::snprintf(stem, sizeof stem, "reference_%04d", wf.frame);
         image(wf, "reference", stem, worst.reference, kFrame);
         image(wf, "variant", base, worst.image, kFrame);
-        maps(wf, base, worst.reference, worst.image);
+        maps(wf, base, worst);
         if (worst.crawl_map) image(wf, "crawl_map", base + "_crawl_map", worst.crawl_map, kMap);
         if (worst.classes && !worst.classes->empty())
             image(wf, "class_map", base + "_class_map", worst.classes, kMap, classMapRgba);
@@ -340,15 +346,15 @@ private:
         });
     }
 
-    // The error, 1 - SSIM and FLIP maps of one (variant, frame), computed on a worker.
-    void maps(WorstFrame& wf, const std::string& base, Bytes reference, Bytes variant) {
+    // The error, 1 - SSIM and FLIP maps of one (variant, frame), encoded on a worker.
+    void maps(WorstFrame& wf, const std::string& base, const Worst& worst) {
         const char* kWhat[3] = {"error", "ssim_map", "flip_map"};
         // On this thread, one frame's maps at a time (each metric is parallel inside): the
         // full-size intermediate images of several frames at once would not fit in a 4K
         // run's memory. The encodes go to the workers, their queue kept short for the same reason.
         if (!scheduled_.count(base + "_error")) {
             try {
-                auto [error, ssim, flip] = mapImages(*reference, *variant);
+                auto [error, ssim, flip] = mapImages(*worst.reference, *worst.image, worst.ssim_map, worst.flip_map);
                 for (auto [what, rgba] : {std::pair{"error", &error}, {"ssim_map", &ssim}, {"flip_map", &flip}})
                     encodeLater(base + "_" + what, std::move(*rgba));
             } catch (const std::exception& e) {
@@ -382,7 +388,10 @@ private:
     struct Maps {
         std::vector<uint8_t> error, ssim, flip;
     };
-    Maps mapImages(const std::vector<uint8_t>& reference, const std::vector<uint8_t>& variant) const {
+    // The SSIM and FLIP maps from the device's values when given (the same definitions), else
+    // computed here from the 8-bit images; the error map from the bytes either way (cheap).
+    Maps mapImages(const std::vector<uint8_t>& reference, const std::vector<uint8_t>& variant, const Floats& ssim_map,
+                   const Floats& flip_map) const {
         metrics::Image error{w_, h_, 1, std::vector<double>(size_t(w_) * h_)};
         for (size_t i = 0; i < error.data.size(); ++i)
             error.data[i] = (std::abs(int(reference[4 * i]) - int(variant[4 * i])) +
@@ -391,16 +400,22 @@ private:
         Maps m;
         m.error = heatMap(error, 4.0);
         error = {};
+        auto image = [this](const std::vector<float>& map) {
+            return metrics::Image{w_, h_, 1, std::vector<double>(map.begin(), map.end())};
+        };
         {
-            WallAccount::WorkerScope timer(wall_, WorkerTask::Ssim);
-            auto ssim = metrics::ssimMap(metrics::fromRgba8(reference.data(), w_, h_, size_t(w_) * 4),
-                                         metrics::fromRgba8(variant.data(), w_, h_, size_t(w_) * 4));
+            WallAccount::WorkerScope timer(ssim_map ? nullptr : wall_, WorkerTask::Ssim);
+            auto ssim = ssim_map ? image(*ssim_map)
+                                 : metrics::ssimMap(metrics::fromRgba8(reference.data(), w_, h_, size_t(w_) * 4),
+                                                    metrics::fromRgba8(variant.data(), w_, h_, size_t(w_) * 4));
             for (double& v : ssim.data) v = 1.0 - v;  // dissimilarity: bright where worse
             m.ssim = heatMap(ssim, 2.0);
         }
-        WallAccount::WorkerScope timer(wall_, WorkerTask::Flip);
+        WallAccount::WorkerScope timer(flip_map ? nullptr : wall_, WorkerTask::Flip);
         // FLIP's error is already in perceptual units on [0,1]: unscaled.
-        m.flip = heatMap(metrics::flipRgba8(reference.data(), variant.data(), w_, h_, flip_ppd_, true).map, 1.0);
+        m.flip = heatMap(flip_map ? image(*flip_map)
+                                  : metrics::flipRgba8(reference.data(), variant.data(), w_, h_, flip_ppd_, true).map,
+                         1.0);
         return m;
     }
 
@@ -418,8 +433,8 @@ std::vector<WorstFrame> QualityScorer::finish(const std::filesystem::path& dir) 
     bool any = false;
     for (auto& [variant, c] : chains_) any |= c->worst_ssim.frame >= 0 || c->worst_eci.frame >= 0;
     if (!any) return out;
-    // Nothing else runs now: every core encodes.
-    WorkerPool encoders(std::max(1u, std::thread::hardware_concurrency()));
+    // Nothing else runs now: the cores encode, eight at most (a 4K encode holds about 50 MB).
+    WorkerPool encoders(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
     Writer writer(dir, width_, height_, flip_ppd_, encoders, wall_);
     for (const auto& variant : variant_order_) {
         Chain& c = *chains_.at(variant);
