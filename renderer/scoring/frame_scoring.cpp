@@ -2,6 +2,8 @@
 #include "renderer/scoring/frame_scoring.h"
 
 #include <cstring>
+#include <utility>
+#include <vector>
 
 #include "renderer/passes/readback_pass.h"
 #include "renderer/vk/check.h"
@@ -61,7 +63,8 @@ FrameScoring::FrameScoring(DeviceScoring& shared, ScoringRole role, size_t slots
         if (has_classes) s.classes = vk::createBuffer(ctx, pixels, kDeviceCopy, false);
         s.analysis = vk::createBuffer(ctx, 16 * pixels, kDeviceCopy, false);
         s.result = vk::createReadbackBuffer(ctx, shared_.metrics().resultBytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-        s.crawl_map = vk::createBuffer(ctx, 4 * pixels, kDeviceCopy, false);
+        for (vk::Buffer* map : {&s.crawl_map, &s.ssim_map, &s.flip_map})
+            *map = vk::createBuffer(ctx, 4 * pixels, kDeviceCopy, false);
     }
     chain_ = shared_.metrics().makeChain();
 }
@@ -70,7 +73,7 @@ FrameScoring::~FrameScoring() {
     chain_.reset();
     vk::destroyBuffer(shared_.context(), host_);
     for (Slot& s : slots_)
-        for (vk::Buffer* b : {&s.rgba, &s.classes, &s.analysis, &s.result, &s.crawl_map})
+        for (vk::Buffer* b : {&s.rgba, &s.classes, &s.analysis, &s.result, &s.crawl_map, &s.ssim_map, &s.flip_map})
             vk::destroyBuffer(shared_.context(), *b);
 }
 
@@ -95,7 +98,7 @@ void FrameScoring::addPasses(graph::Graph& graph, size_t slot_index, const rende
     score.record = [this, &slot, reference, cut](VkCommandBuffer cmd) {
         // record() begins with a barrier after every earlier command: the copies above included.
         shared_.metrics().record(cmd, reference, slot.rgba.buffer, slot.analysis.buffer, *chain_, cut, slot.result.buffer,
-                                 slot.crawl_map.buffer);
+                                 slot.crawl_map.buffer, slot.ssim_map.buffer, slot.flip_map.buffer);
     };
     graph.addPass(std::move(score));
 }
@@ -117,34 +120,39 @@ void FrameScoring::collect(size_t slot_index, render::FrameResult& result) {
     if (worse_eci) worst_eci_ = scores->eci;
     // The slot's buffers and the ring still hold this frame: the next frame into this slot is
     // recorded only after collect(), and the ring is two frames longer than the slots.
-    if (keep || worse_ssim || worse_eci) copyOut(slot, result, worse_eci);
+    if (keep || worse_ssim || worse_eci) copyOut(slot, result, worse_eci, worse_ssim || worse_eci);
 }
 
 // A one-off copy to host-visible memory and a wait: only for frames that become the worst
 // so far, which grow rarer as the path goes on. Host layout: reference, variant, class map,
-// then the crawl map (4-byte aligned).
-void FrameScoring::copyOut(const Slot& slot, render::FrameResult& result, bool crawl_map) {
+// then the maps asked for (4-byte aligned), each 4 bytes a pixel.
+void FrameScoring::copyOut(const Slot& slot, render::FrameResult& result, bool crawl_map, bool error_maps) {
     vk::Context& ctx = shared_.context();
     const VkDeviceSize pixels = VkDeviceSize(shared_.settings().width) * shared_.settings().height;
     const bool variant = role_ == ScoringRole::Variant;
     const VkDeviceSize class_bytes = slot.classes.buffer ? pixels : 0;
+    std::vector<std::pair<VkBuffer, std::vector<float>*>> maps;
+    if (variant && crawl_map) maps.push_back({slot.crawl_map.buffer, &result.crawl_map});
+    if (variant && error_maps) {
+        maps.push_back({slot.ssim_map.buffer, &result.ssim_map});
+        maps.push_back({slot.flip_map.buffer, &result.flip_map});
+    }
     const VkDeviceSize map_at = (8 * pixels + class_bytes + 3) / 4 * 4;
-    const VkDeviceSize map_bytes = variant && crawl_map ? 4 * pixels : 0;
-    const VkDeviceSize need = map_bytes ? map_at + map_bytes : 8 * pixels + class_bytes;
+    const VkDeviceSize need = maps.empty() ? 8 * pixels + class_bytes : map_at + 4 * pixels * maps.size();
     if (host_.buffer && host_.size < need) vk::destroyBuffer(ctx, host_);
     if (!host_.buffer) host_ = vk::createReadbackBuffer(ctx, need, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     const VkBuffer reference = shared_.referenceFrame(slot.frame).buffer;
     ctx.immediate([&](VkCommandBuffer cmd) {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-        VkBufferCopy regions[4] = {{0, 0, 4 * pixels},
-                                   {0, 4 * pixels, 4 * pixels},
-                                   {0, 8 * pixels, class_bytes},
-                                   {0, map_at, map_bytes}};
+        VkBufferCopy regions[3] = {{0, 0, 4 * pixels}, {0, 4 * pixels, 4 * pixels}, {0, 8 * pixels, class_bytes}};
         vkCmdCopyBuffer(cmd, reference, host_.buffer, 1, &regions[0]);
         if (variant) vkCmdCopyBuffer(cmd, slot.rgba.buffer, host_.buffer, 1, &regions[1]);
         if (variant && class_bytes) vkCmdCopyBuffer(cmd, slot.classes.buffer, host_.buffer, 1, &regions[2]);
-        if (map_bytes) vkCmdCopyBuffer(cmd, slot.crawl_map.buffer, host_.buffer, 1, &regions[3]);
+        for (size_t i = 0; i < maps.size(); ++i) {
+            const VkBufferCopy region{0, map_at + 4 * pixels * i, 4 * pixels};
+            vkCmdCopyBuffer(cmd, maps[i].first, host_.buffer, 1, &region);
+        }
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });
@@ -156,9 +164,9 @@ void FrameScoring::copyOut(const Slot& slot, render::FrameResult& result, bool c
     result.reference_rgba.assign(bytes, bytes + 4 * pixels);
     result.rgba.assign(bytes + 4 * pixels, bytes + 8 * pixels);
     if (class_bytes) result.diagnostic.assign(bytes + 8 * pixels, bytes + 8 * pixels + class_bytes);
-    if (map_bytes) {
-        const auto* values = reinterpret_cast<const float*>(bytes + map_at);
-        result.crawl_map.assign(values, values + pixels);
+    for (size_t i = 0; i < maps.size(); ++i) {
+        const auto* values = reinterpret_cast<const float*>(bytes + map_at + 4 * pixels * i);
+        maps[i].second->assign(values, values + pixels);
     }
 }
 

@@ -53,27 +53,27 @@ public:
     void addPasses(graph::Graph& graph, size_t slot, const render::FrameRequest& request, vk::Image& display,
                    vk::Image* classes, vk::Image* analysis);
     // After the slot's fence: a variant frame's figures, and its images (reference, variant,
-    // class map) when it is the worst so far by SSIM or by edge crawl, with its crawl map when
-    // by edge crawl.
+    // class map) when it is the worst so far by SSIM or by edge crawl, then with its SSIM and
+    // FLIP maps, and its crawl map when by edge crawl.
     void collect(size_t slot, render::FrameResult& result);
 
 private:
     struct Slot {
-        vk::Buffer rgba, classes, analysis, result, crawl_map;
+        vk::Buffer rgba, classes, analysis, result, crawl_map, ssim_map, flip_map;
         int frame = -1;
         bool scored = false;      // a variant frame with figures to read
         bool keep_image = false;  // its images wanted on the host (FrameRequest::keep_image)
     };
     // Copies the frame's images to the host: the reference frame it was scored against (the
     // reference's own frame, for the reference), and a variant's image, class map and, when
-    // `crawl_map`, its crawl map.
-    void copyOut(const Slot& slot, render::FrameResult& result, bool crawl_map = false);
+    // `crawl_map`, its crawl map, when `error_maps`, its SSIM and FLIP maps.
+    void copyOut(const Slot& slot, render::FrameResult& result, bool crawl_map = false, bool error_maps = false);
 
     DeviceScoring& shared_;
     const ScoringRole role_;
     std::vector<Slot> slots_;
     std::unique_ptr<DeviceMetrics::Chain> chain_;
-    vk::Buffer host_;  // copyOut's host-visible buffer, made on first use, grown for a crawl map
+    vk::Buffer host_;  // copyOut's host-visible buffer, made on first use, grown for the maps
     double worst_ssim_ = 2.0, worst_eci_ = -1.0;  // the figures a frame must beat to be copied out
 };
 
