@@ -21,6 +21,7 @@
 namespace cbr::harness {
 
 using Bytes = std::shared_ptr<const std::vector<uint8_t>>;
+using Floats = std::shared_ptr<const std::vector<float>>;
 
 // One quality frame of a variant, as read back.
 struct QualityFrame {
@@ -51,9 +52,11 @@ public:
     void score(const std::string& variant, bool is_reference, FrameRow& row, QualityFrame frame);
     // A frame scored elsewhere (on the device) that may be the variant's worst by SSIM or by
     // edge crawl: its images, kept if so, and for the latter its crawl map (a float per pixel,
-    // as CrawlFrame::crawl_map; may be null), kept as its heat map.
+    // as CrawlFrame::crawl_map; may be null), kept as its heat map. ssim_map and flip_map (a
+    // float per pixel, as metrics::ssimMap and metrics::flip's map; may be null) are kept with
+    // either kind and replace finish()'s recomputing them from the images.
     void offerWorst(const std::string& variant, int frame, const Quality& quality, Bytes reference, Bytes image,
-                    Bytes classes, std::shared_ptr<const std::vector<float>> crawl_map = nullptr);
+                    Bytes classes, Floats crawl_map = nullptr, Floats ssim_map = nullptr, Floats flip_map = nullptr);
     // Waits for every job; writes the worst frames (by SSIM and by ECI) of each variant
     // as PNGs under dir/worst/, with their error, SSIM, FLIP, crawl and class maps, each
     // distinct image once, encoded on the workers, and the report's smaller copies under

@@ -305,7 +305,7 @@ private:
     }
 
     // Scored on the device: the figures into the row; a frame that is the worst so far came
-    // with its images, for worst/.
+    // with its images and maps, for worst/.
     void keepDeviceScored(FrameRow& row, render::FrameResult&& fr) {
         const size_t i = size_t(fr.index);
         auto bytes = [](std::vector<uint8_t>& v) {
@@ -318,10 +318,12 @@ private:
             s_.scorer.score(vr_.name, true, row, QualityFrame{fr.index, image, nullptr, nullptr, false});
         } else if (fr.device_scores) {
             fillQuality(row.quality, *fr.device_scores);
-            std::shared_ptr<const std::vector<float>> crawl_map;
-            if (!fr.crawl_map.empty()) crawl_map = std::make_shared<const std::vector<float>>(std::move(fr.crawl_map));
+            auto floats = [](std::vector<float>& v) {
+                return v.empty() ? nullptr : std::make_shared<const std::vector<float>>(std::move(v));
+            };
             if (reference && image)
-                s_.scorer.offerWorst(vr_.name, fr.index, row.quality, reference, image, classes, std::move(crawl_map));
+                s_.scorer.offerWorst(vr_.name, fr.index, row.quality, reference, image, classes, floats(fr.crawl_map),
+                                     floats(fr.ssim_map), floats(fr.flip_map));
         } else {
             row.quality.note += "not scored on the device; ";
         }

@@ -1,7 +1,7 @@
 // lavapipe tier for --scorer device: a run scored in Vulkan compute gives, frame by frame, the
 // CPU scorer's figures (issue 32's tolerances), in both pipelines, with the validation layer
-// on; the scoring passes stay out of the timed passes; the worst frames are the same, each
-// worst frame by ECI with its crawl map.
+// on; the scoring passes stay out of the timed passes; the worst frames are the same, with the
+// same SSIM and FLIP maps (the device's, the CPU's), each worst frame by ECI with its crawl map.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -27,11 +27,13 @@ constexpr Tolerance kTolerances[] = {{"psnr_db", 1e-3},     {"ssim", 2e-5},     
                                      {"flip_q3", 1e-3},     {"eci", 1e-4},           {"flicker_ratio", 1e-4},
                                      {"crawl_valid_fraction", 1e-6}};
 
-// The worst frames as "variant kind frame", and the crawl map file of each worst ECI frame.
+// The worst frames as "variant kind frame"; the map files of each: "variant kind frame map"
+// -> path, for its SSIM and FLIP maps and a worst ECI frame's crawl map.
 struct Worst {
     std::set<std::string> frames;
-    std::map<std::string, std::filesystem::path> crawl_maps;
+    std::map<std::string, std::filesystem::path> maps;
 };
+constexpr const char* kMaps[] = {"ssim_map", "flip_map", "crawl_map"};
 
 Csv runScored(const std::filesystem::path& work, const std::string& pipeline, const std::string& scorer,
               Worst& worst) {
@@ -45,17 +47,24 @@ Csv runScored(const std::filesystem::path& work, const std::string& pipeline, co
     EXPECT_EQ(run["metrics"]["scorer"], scorer);
     EXPECT_EQ(run["validation"]["errors"], 0) << run["validation"]["first_messages"].dump(1);
     EXPECT_EQ(run["validation"]["warnings"], 0) << run["validation"]["first_messages"].dump(1);
+    if (scorer == "device") {
+        // No SSIM or FLIP on the CPU, not even for the worst frames' maps: they came from the device.
+        EXPECT_EQ(run["wall"]["worker_cpu_s"]["ssim"], 0.0);
+        EXPECT_EQ(run["wall"]["worker_cpu_s"]["flip"], 0.0);
+    }
     for (const auto& e : run["worst"]) {
         const std::string key = e["variant"].get<std::string>() + " " + e["kind"].get<std::string>() + " " +
                                 std::to_string(e["frame"].get<int>());
         worst.frames.insert(key);
-        if (e["kind"] != "eci") continue;
-        const bool has_map = e["files"].contains("crawl_map");
-        EXPECT_TRUE(has_map) << scorer << ": " << key << " has no crawl_map";
-        if (has_map) worst.crawl_maps[key] = out / e["files"]["crawl_map"].get<std::string>();
+        for (const char* map : kMaps) {
+            if (std::string(map) == "crawl_map" && e["kind"] != "eci") continue;
+            const bool has_map = e["files"].contains(map);
+            EXPECT_TRUE(has_map) << scorer << ": " << key << " has no " << map;
+            if (has_map) worst.maps[key + " " + map] = out / e["files"][map].get<std::string>();
+        }
     }
     EXPECT_EQ(worst.frames.size(), 8u) << "four variants, by SSIM and by ECI";
-    EXPECT_EQ(worst.crawl_maps.size(), 4u) << scorer << ": a crawl map per variant's worst ECI frame";
+    EXPECT_EQ(worst.maps.size(), 8u + 8u + 4u) << scorer << ": SSIM and FLIP maps per worst frame, crawl per ECI";
     return readCsv(out / "frames.csv");
 }
 
@@ -65,14 +74,15 @@ void expectAgreement(const std::string& pipeline) {
     const Csv cpu = runScored(work, pipeline, "cpu", cpu_worst);
     const Csv device = runScored(work, pipeline, "device", device_worst);
     EXPECT_EQ(cpu_worst.frames, device_worst.frames);
-    // The same crawl maps: heat maps of values within 1e-5 of each other, at most a code apart.
-    for (const auto& [key, file] : device_worst.crawl_maps) {
-        ASSERT_TRUE(cpu_worst.crawl_maps.count(key)) << key;
-        const metrics::Rgba8Image a = metrics::readPng(cpu_worst.crawl_maps[key]), b = metrics::readPng(file);
+    // The same maps: heat maps of values within 1e-5 of each other, at most a code apart.
+    EXPECT_EQ(cpu_worst.maps.size(), device_worst.maps.size());
+    for (const auto& [key, file] : device_worst.maps) {
+        ASSERT_TRUE(cpu_worst.maps.count(key)) << key;
+        const metrics::Rgba8Image a = metrics::readPng(cpu_worst.maps[key]), b = metrics::readPng(file);
         ASSERT_EQ(a.pixels.size(), b.pixels.size()) << key;
         int differ = 0;
         for (size_t i = 0; i < a.pixels.size(); ++i) differ = std::max(differ, std::abs(a.pixels[i] - b.pixels[i]));
-        EXPECT_LE(differ, 1) << key << ": crawl maps differ by " << differ << " codes";
+        EXPECT_LE(differ, 1) << key << ": the maps differ by " << differ << " codes";
     }
     ASSERT_EQ(cpu.rows.size(), device.rows.size());
     for (const auto& header : device.header) {
