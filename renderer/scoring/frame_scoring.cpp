@@ -45,6 +45,13 @@ DeviceScoring::DeviceScoring(vk::Context& ctx, const DeviceMetricsSettings& sett
 
 DeviceScoring::~DeviceScoring() {
     for (auto& b : ring_) vk::destroyBuffer(ctx_, b);
+    vk::destroyBuffer(ctx_, host_);
+}
+
+vk::Buffer& DeviceScoring::hostBuffer(VkDeviceSize bytes) {
+    if (host_.buffer && host_.size < bytes) vk::destroyBuffer(ctx_, host_);
+    if (!host_.buffer) host_ = vk::createReadbackBuffer(ctx_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    return host_;
 }
 
 VkDeviceSize DeviceScoring::deviceBytes() const {
@@ -71,7 +78,6 @@ FrameScoring::FrameScoring(DeviceScoring& shared, ScoringRole role, size_t slots
 
 FrameScoring::~FrameScoring() {
     chain_.reset();
-    vk::destroyBuffer(shared_.context(), host_);
     for (Slot& s : slots_)
         for (vk::Buffer* b : {&s.rgba, &s.classes, &s.analysis, &s.result, &s.crawl_map, &s.ssim_map, &s.flip_map})
             vk::destroyBuffer(shared_.context(), *b);
@@ -139,24 +145,23 @@ void FrameScoring::copyOut(const Slot& slot, render::FrameResult& result, bool c
     }
     const VkDeviceSize map_at = (8 * pixels + class_bytes + 3) / 4 * 4;
     const VkDeviceSize need = maps.empty() ? 8 * pixels + class_bytes : map_at + 4 * pixels * maps.size();
-    if (host_.buffer && host_.size < need) vk::destroyBuffer(ctx, host_);
-    if (!host_.buffer) host_ = vk::createReadbackBuffer(ctx, need, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    vk::Buffer& host = shared_.hostBuffer(need);
     const VkBuffer reference = shared_.referenceFrame(slot.frame).buffer;
     ctx.immediate([&](VkCommandBuffer cmd) {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         VkBufferCopy regions[3] = {{0, 0, 4 * pixels}, {0, 4 * pixels, 4 * pixels}, {0, 8 * pixels, class_bytes}};
-        vkCmdCopyBuffer(cmd, reference, host_.buffer, 1, &regions[0]);
-        if (variant) vkCmdCopyBuffer(cmd, slot.rgba.buffer, host_.buffer, 1, &regions[1]);
-        if (variant && class_bytes) vkCmdCopyBuffer(cmd, slot.classes.buffer, host_.buffer, 1, &regions[2]);
+        vkCmdCopyBuffer(cmd, reference, host.buffer, 1, &regions[0]);
+        if (variant) vkCmdCopyBuffer(cmd, slot.rgba.buffer, host.buffer, 1, &regions[1]);
+        if (variant && class_bytes) vkCmdCopyBuffer(cmd, slot.classes.buffer, host.buffer, 1, &regions[2]);
         for (size_t i = 0; i < maps.size(); ++i) {
             const VkBufferCopy region{0, map_at + 4 * pixels * i, 4 * pixels};
-            vkCmdCopyBuffer(cmd, maps[i].first, host_.buffer, 1, &region);
+            vkCmdCopyBuffer(cmd, maps[i].first, host.buffer, 1, &region);
         }
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });
-    const auto* bytes = static_cast<const uint8_t*>(host_.mapped);
+    const auto* bytes = static_cast<const uint8_t*>(host.mapped);
     if (!variant) {
         result.rgba.assign(bytes, bytes + 4 * pixels);  // the reference's own frame
         return;

@@ -29,12 +29,17 @@ public:
     const DeviceMetricsSettings& settings() const { return settings_; }
     const vk::Buffer& referenceFrame(int frame) const { return ring_[size_t(frame) % ring_.size()]; }
     VkDeviceSize deviceBytes() const;  // the metrics' scratch and the ring
+    // The host-visible buffer frames are copied out through (one at a time, on the thread
+    // that collects them), at least `bytes` large: shared, so a run holds one, not one per
+    // renderer (174 MB at 4K with the maps).
+    vk::Buffer& hostBuffer(VkDeviceSize bytes);
 
 private:
     vk::Context& ctx_;
     DeviceMetricsSettings settings_;
     DeviceMetrics metrics_;
     std::vector<vk::Buffer> ring_;
+    vk::Buffer host_;
 };
 
 enum class ScoringRole { Reference, Variant };
@@ -73,7 +78,6 @@ private:
     const ScoringRole role_;
     std::vector<Slot> slots_;
     std::unique_ptr<DeviceMetrics::Chain> chain_;
-    vk::Buffer host_;  // copyOut's host-visible buffer, made on first use, grown for the maps
     double worst_ssim_ = 2.0, worst_eci_ = -1.0;  // the figures a frame must beat to be copied out
 };
 
