@@ -159,8 +159,9 @@ void keepReference(RunState& s, size_t i, const Bytes& image) {
     if (!image) return;
     if (i + 1 >= s.mid && i <= s.mid + 1) s.reference_frames[i] = image;
     if (s.device_scoring) return;  // the device keeps its own
+    // Every other configuration: one that did not run, or stops, gives its frames back (skip).
     int uses = 0;
-    for (size_t vi = 0; vi < s.p.configs.size(); ++vi) uses += !isReference(s, vi) && s.results.variants[vi].status == "ok";
+    for (size_t vi = 0; vi < s.p.configs.size(); ++vi) uses += !isReference(s, vi);
     s.scorer.setReference(i, image, uses);
 }
 
