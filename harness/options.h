@@ -37,7 +37,7 @@ struct RunOptions {
     std::string cbr_history = "quarter";  // quarter | full: the checkerboard resolve's history
     std::string history_filter = "catmull-rom";  // full history's read: catmull-rom | bilinear
     std::string history_format = "b10g11r11";    // full history's storage: b10g11r11 | rgba16f
-    double cbr_lod_bias = -1.0;      // chosen by a sweep over the built-in paths (README); -0.5 is the paper's
+    double cbr_lod_bias = -1.0;      // chosen by a sweep over the built-in paths (docs/history); -0.5 is the paper's
     double cso_tolerance = 0.05;
     std::string cso_mode = "relative";
     std::string resolve_impl = "fused";  // fused | separate | reference (renderer/settings.h)

@@ -1,4 +1,4 @@
-// frames.csv, summary.csv and sweep.csv: one schema each, documented in the README.
+// frames.csv, summary.csv and sweep.csv: one schema each, documented in docs/reference/outputs.md.
 #include <algorithm>
 #include <cstdio>
 #include <map>

@@ -49,7 +49,7 @@ bool hugePagesOff() {
 // free top to the kernel, so each next large buffer (a decoded texture, a vertex array, a
 // frame read back) was faulted in again page by page: loading the 1M-triangle test scene
 // took 0.84 s (0.69 s keeping freed memory) with 186k faults, and lavapipe's timed frames
-// were 7-11% faster once freed memory was kept (README, "Loading large scenes", sessions 11
+// were 7-11% faster once freed memory was kept (docs/history/development-record.md, "Loading large scenes", sessions 11
 // and 14). Huge pages fault 2 MiB at a time: the same load in 0.20 s.
 void setUpProcessMemory(char** argv) {
     if (!hugePagesOff() && hugeTunable() < 0 && thpMode() == "madvise") {

@@ -10,7 +10,7 @@
 
 namespace cbr::harness {
 
-// The rule, stated once: compare.html, the printed output and the README say the same.
+// The rule, stated once: compare.html, the printed output and docs/method/measurement.md say the same.
 extern const char* const kTimeRule;
 
 struct VerdictRule {

@@ -35,7 +35,7 @@ const char* targetClearName(TargetClear clear);  // auto | load-op | compute
 // How the full history (--cbr-history full) stores the previous resolved frame
 // (`--history-format`): B10G11R11, 4 bytes a pixel (6- and 5-bit mantissas), where the
 // device can store that format, else RGBA16F; or RGBA16F, 8 bytes. At 4K the full history's
-// extra cost is mostly these bytes (README, issue 17).
+// extra cost is mostly these bytes (docs/method/full-history.md).
 enum class HistoryFormat { B10g11r11, Rgba16f };
 const char* historyFormatName(HistoryFormat format);  // b10g11r11 | rgba16f
 
@@ -70,7 +70,7 @@ struct Settings {
     bool cbr_full_history = false;
     bool cbr_history_catmull_rom = true;  // the full history's read filter (--history-filter), else bilinear
     HistoryFormat cbr_history_format = HistoryFormat::B10g11r11;  // the full history's storage (--history-format)
-    float cbr_lod_bias = -1.0f;      // matches full-res derivatives (README: chosen by a sweep); the paper: -0.5
+    float cbr_lod_bias = -1.0f;      // matches full-res derivatives (chosen by a sweep: docs/history); the paper: -0.5
     double cso_tolerance = 0.05;
     bool cso_absolute = false;       // false: relative to the mean neighbour depth
     ResolveImpl resolve_impl = ResolveImpl::Fused;

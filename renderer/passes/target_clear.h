@@ -2,7 +2,7 @@
 //
 // On the NVIDIA H100 a load-op clear (or vkCmdClearAttachments, or vkCmdClearColorImage)
 // of a colour target costs about 0.6 ms per 33 MB at 4K, the rate of a few tens of GB/s,
-// while loading the old contents costs nothing measurable (README, "Session 15"): full's
+// while loading the old contents costs nothing measurable (docs/history/development-record.md, "Session 15"): full's
 // opaque pass paid 1.2 ms for its colour clear, the checkerboard scene pass 0.6 ms for its
 // motion target's and the deferred CFB pass 0.6 of its 0.9 ms. A compute pass that stores
 // the clear value writes the same bytes at the device's bandwidth. On lavapipe a clear is

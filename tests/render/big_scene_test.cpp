@@ -1,6 +1,6 @@
 // The largest scene the tests make (issue 16): 1M triangles and 50 PNG textures through
 // `cbrbench run` on lavapipe with the validation layer on; run.json's and the report's
-// load figures. CBR_BIG_SCENE_DIR=DIR writes the scene there for measurements (README).
+// load figures. CBR_BIG_SCENE_DIR=DIR writes the scene there for measurements (docs/history).
 #include <cstdlib>
 #include <string>
 
@@ -13,7 +13,7 @@
 namespace cbr::test {
 namespace {
 
-// The README's "Loading large scenes" figures use this spec (texture size 512 and 1024).
+// The "Loading large scenes" figures (docs/history/development-record.md) use this spec (texture size 512 and 1024).
 testsupport::BigSceneSpec bigSpec() {
     testsupport::BigSceneSpec spec;  // 50 meshes of 100x100 quads: 1,000,000 triangles
     spec.textures = 50;
@@ -84,7 +84,7 @@ TEST(ProcessMemory, HeapHugePagesWhereTheKernelWantsThemAskedForAndOffOnRequest)
     std::filesystem::remove_all(work);
 }
 
-// Not a check: writes the scene for the README's measurements and skips otherwise.
+// Not a check: writes the scene for the load measurements and skips otherwise.
 TEST(BigScene, WriteForMeasurement) {
     const char* dir = std::getenv("CBR_BIG_SCENE_DIR");
     if (!dir || !*dir) GTEST_SKIP() << "set CBR_BIG_SCENE_DIR=DIR (and CBR_BIG_SCENE_TEXTURE_SIZE) to write the scene";

@@ -1,7 +1,7 @@
 // `cbrbench calibrate` end to end on lavapipe: A/A pairs and an injected slowdown through
 // compare's rule, rates with intervals in calibrate.csv, every verdict in
 // calibrate_pairs.csv; bad options refused before anything is written. The rates
-// themselves are timings (they live in the README's calibration tables, not in asserts).
+// themselves are timings (they live in docs/results/current.md's calibration tables, not in asserts).
 #include <gtest/gtest.h>
 
 #include <algorithm>

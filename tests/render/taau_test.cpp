@@ -56,7 +56,7 @@ TEST(Taau, ValidatesCleanlyForwardAndDeferred) {
 
 // The claim: at the same scale, taau beats drr's Catmull-Rom upscale on PSNR and on
 // FLIP on the flythrough (against the 1-sample full-res reference), over the whole path
-// (README: taau 20.73 against 20.26 dB, FLIP 0.101 against 0.104; with a Gaussian estimate, a
+// (docs/history: taau 20.73 against 20.26 dB, FLIP 0.101 against 0.104; with a Gaussian estimate, a
 // looser clip box and no motion-dependent blend it lost, 18.95 dB).
 TEST(Taau, BeatsCatmullRomDrrOnTheFlythrough) {
     const ValidatedRun r = runValidated("taau-vs-drr", {"--scene", "atrium", "--path", "flythrough", "--frames", "0",

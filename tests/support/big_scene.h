@@ -1,4 +1,4 @@
-// A large glTF written with tinygltf's writer: load-cost tests and the README's load figures (issue 16).
+// A large glTF written with tinygltf's writer: load-cost tests and the load figures in docs/history.
 #pragma once
 
 #include <cstdint>
