@@ -25,6 +25,7 @@ struct QualityScorer::Worst {
     // Scored on the device: its SSIM and FLIP maps, made into heat maps only if the frame stays
     // the worst (the writer computes them from the images otherwise).
     Floats ssim_map, flip_map;
+    WorstLoader load;  // images kept elsewhere: fetched by finish()
 };
 
 // Frames of one variant arrive out of order; the crawl metric needs them in order.
@@ -189,6 +190,19 @@ void QualityScorer::offerWorst(const std::string& variant, int frame, const Qual
         }
         c.worst_eci = {frame, *q.eci, reference, image, classes, heat, ssim_map, flip_map};
     }
+}
+
+void QualityScorer::offerWorstLater(const std::string& variant, const std::string& kind, int frame, double value,
+                                    WorstLoader load) {
+    Chain& c = chain(variant);
+    std::lock_guard lock(c.mutex);
+    const bool ssim = kind == "ssim";
+    Worst& w = ssim ? c.worst_ssim : c.worst_eci;
+    if (w.frame >= 0 && (ssim ? !(value < w.value) : !(value > w.value))) return;
+    w = Worst{};
+    w.frame = frame;
+    w.value = value;
+    w.load = std::move(load);
 }
 
 void fillQuality(Quality& q, const scoring::DeviceScores& d) {
@@ -428,6 +442,24 @@ private:
     std::set<std::string> scheduled_;  // stems handed to the workers (main thread only)
 };
 
+// Brings a worst frame's images from where they were kept; the ECI kind's crawl map becomes
+// its heat map as crawlStep makes it.
+bool QualityScorer::loadWorst(Worst& worst, const char* kind) {
+    WorstImages images;
+    if (!worst.load(images)) return false;
+    worst.reference = images.reference;
+    worst.image = images.image;
+    worst.classes = images.classes;
+    worst.ssim_map = images.ssim_map;
+    worst.flip_map = images.flip_map;
+    if (std::string(kind) == "eci" && images.crawl_map &&
+        images.crawl_map->size() == size_t(width_) * size_t(height_)) {
+        const metrics::Image map{width_, height_, 1, std::vector<double>(images.crawl_map->begin(), images.crawl_map->end())};
+        worst.crawl_map = std::make_shared<const std::vector<uint8_t>>(heatMap(map, 8.0));
+    }
+    return true;
+}
+
 std::vector<WorstFrame> QualityScorer::finish(const std::filesystem::path& dir) {
     workers_.wait();
     std::vector<WorstFrame> out;
@@ -441,12 +473,15 @@ std::vector<WorstFrame> QualityScorer::finish(const std::filesystem::path& dir) 
         Chain& c = *chains_.at(variant);
         for (auto [kind, worst] : {std::pair<const char*, Worst*>{"ssim", &c.worst_ssim}, {"eci", &c.worst_eci}}) {
             if (worst->frame < 0) continue;
+            if (worst->load && !loadWorst(*worst, kind)) continue;
             WorstFrame& wf = out.emplace_back();
             wf.variant = variant;
             wf.kind = kind;
             wf.frame = worst->frame;
             wf.value = worst->value;
             writer.add(wf, *worst);
+            // Its images live on in the writer's jobs only as long as they need them.
+            if (worst->load) *worst = Worst{worst->frame, worst->value};
         }
     }
     writer.wait();

@@ -57,6 +57,15 @@ public:
     // either kind and replace finish()'s recomputing them from the images.
     void offerWorst(const std::string& variant, int frame, const Quality& quality, Bytes reference, Bytes image,
                     Bytes classes, Floats crawl_map = nullptr, Floats ssim_map = nullptr, Floats flip_map = nullptr);
+    // The images of a worst frame kept elsewhere (on the device), fetched when it is written.
+    struct WorstImages {
+        Bytes reference, image, classes;
+        Floats crawl_map, ssim_map, flip_map;
+    };
+    using WorstLoader = std::function<bool(WorstImages&)>;
+    // A variant's worst frame by `kind` (ssim or eci) whose images `load` brings only when
+    // finish() writes it, one at a time: a run never holds every variant's at once.
+    void offerWorstLater(const std::string& variant, const std::string& kind, int frame, double value, WorstLoader load);
     // Waits for every job; writes the worst frames (by SSIM and by ECI) of each variant
     // as PNGs under dir/worst/, with their error, SSIM, FLIP, crawl and class maps, each
     // distinct image once, encoded on the workers, and the report's smaller copies under
@@ -75,6 +84,7 @@ private:
     void crawlStep(const std::string& variant, FrameRow& row, const QualityFrame& frame, const Bytes& ref);
     void submitScore(Chain& c, const std::string& variant, FrameRow& row, QualityFrame frame, Bytes ref);
     void release(size_t frame);  // with mutex_ held
+    bool loadWorst(Worst& worst, const char* kind);
     Chain& chain(const std::string& variant);
 
     int width_, height_;

@@ -143,6 +143,22 @@ AlignmentCheck checkAlignment(const std::vector<uint8_t>& variant, const std::ve
 // other full configurations differ only in shading cost and are scored against it).
 bool isReference(const RunState& s, size_t vi) { return vi == 0 && s.options.reference != "ssaa"; }
 
+// A worst frame the device kept (Renderer::deviceWorst), as the scorer's images; false when
+// the device kept another frame (the two would have to disagree on which is worse).
+bool fetchDeviceWorst(render::Renderer& renderer, int store, int frame, QualityScorer::WorstImages& out) {
+    render::FrameResult fr;
+    if (!renderer.deviceWorst(store, fr) || fr.index != frame) return false;
+    auto bytes = [](std::vector<uint8_t>& v) {
+        return v.empty() ? nullptr : std::make_shared<const std::vector<uint8_t>>(std::move(v));
+    };
+    auto floats = [](std::vector<float>& v) {
+        return v.empty() ? nullptr : std::make_shared<const std::vector<float>>(std::move(v));
+    };
+    out = {bytes(fr.reference_rgba), bytes(fr.rgba), bytes(fr.diagnostic), floats(fr.crawl_map), floats(fr.ssim_map),
+           floats(fr.flip_map)};
+    return true;
+}
+
 // A quality frame: read back for the CPU scorer; scored on the device otherwise, and read
 // back only where the host needs the image (the alignment check's frames, --save-frames).
 render::FrameRequest qualityRequest(const RunState& s, size_t i) {
@@ -319,12 +335,17 @@ private:
             s_.scorer.score(vr_.name, true, row, QualityFrame{fr.index, image, nullptr, nullptr, false});
         } else if (fr.device_scores) {
             fillQuality(row.quality, *fr.device_scores);
-            auto floats = [](std::vector<float>& v) {
-                return v.empty() ? nullptr : std::make_shared<const std::vector<float>>(std::move(v));
+            // The device keeps the worst frames' images (FrameScoring's stores); they are
+            // fetched one at a time when worst/ is written.
+            render::Renderer* renderer = s_.renderers[vi_].get();
+            auto later = [&](const char* kind, int store, double value) {
+                s_.scorer.offerWorstLater(vr_.name, kind, fr.index, value,
+                                          [renderer, store, frame = fr.index](QualityScorer::WorstImages& out) {
+                                              return fetchDeviceWorst(*renderer, store, frame, out);
+                                          });
             };
-            if (reference && image)
-                s_.scorer.offerWorst(vr_.name, fr.index, row.quality, reference, image, classes, floats(fr.crawl_map),
-                                     floats(fr.ssim_map), floats(fr.flip_map));
+            if (row.quality.ssim) later("ssim", 0, *row.quality.ssim);
+            if (row.quality.eci) later("eci", 1, *row.quality.eci);
         } else {
             row.quality.note += "not scored on the device; ";
         }

@@ -306,6 +306,8 @@ void Renderer::allocateHostReadback(Slot& slot) {
     if (settings_.analysis) slot.analysis = vk::createReadbackBuffer(ctx_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 }
 
+bool Renderer::deviceWorst(int kind, FrameResult& out) { return scoring_ && scoring_->fetchWorst(kind, out); }
+
 void Renderer::scoreOnDevice(scoring::DeviceScoring& shared, scoring::ScoringRole role) {
     scoring_ = std::make_unique<scoring::FrameScoring>(shared, role, slots_.size(), variant_->diagnosticImage() != nullptr);
 }

@@ -40,6 +40,9 @@ public:
     // Quality frames requested with `score` are scored on the device against the shared
     // scorer's reference frames (role Variant) or become them (role Reference).
     void scoreOnDevice(scoring::DeviceScoring& shared, scoring::ScoringRole role);
+    // Scored on the device: its worst frame by SSIM (kind 0) or edge crawl (kind 1), kept on the
+    // device until now (scoring::FrameScoring::fetchWorst). False when there is none.
+    bool deviceWorst(int kind, FrameResult& out);
     std::vector<std::pair<std::string, std::string>> describe() const;
 
 private:

@@ -78,6 +78,7 @@ FrameScoring::FrameScoring(DeviceScoring& shared, ScoringRole role, size_t slots
 
 FrameScoring::~FrameScoring() {
     chain_.reset();
+    for (Store& st : stores_) vk::destroyBuffer(shared_.context(), st.buffer);
     for (Slot& s : slots_)
         for (vk::Buffer* b : {&s.rgba, &s.classes, &s.analysis, &s.result, &s.crawl_map, &s.ssim_map, &s.flip_map})
             vk::destroyBuffer(shared_.context(), *b);
@@ -126,26 +127,80 @@ void FrameScoring::collect(size_t slot_index, render::FrameResult& result) {
     if (worse_eci) worst_eci_ = scores->eci;
     // The slot's buffers and the ring still hold this frame: the next frame into this slot is
     // recorded only after collect(), and the ring is two frames longer than the slots.
-    if (keep || worse_ssim || worse_eci) copyOut(slot, result, worse_eci, worse_ssim || worse_eci);
+    if (worse_ssim || worse_eci) store(slot, worse_ssim, worse_eci);
+    if (keep) copyOut(slot, result);
 }
 
-// A one-off copy to host-visible memory and a wait: only for frames that become the worst
-// so far, which grow rarer as the path goes on. Host layout: reference, variant, class map,
-// then the maps asked for (4-byte aligned), each 4 bytes a pixel.
-void FrameScoring::copyOut(const Slot& slot, render::FrameResult& result, bool crawl_map, bool error_maps) {
+VkDeviceSize FrameScoring::mapOffset() const {
+    const VkDeviceSize pixels = VkDeviceSize(shared_.settings().width) * shared_.settings().height;
+    return (9 * pixels + 3) / 4 * 4;
+}
+
+// A device-to-device copy and a wait (the slot is reused next), no host memory: a variant's
+// worst frames stay on the device until the run writes them (fetchWorst).
+void FrameScoring::store(const Slot& slot, bool ssim_kind, bool eci_kind) {
+    vk::Context& ctx = shared_.context();
+    const VkDeviceSize pixels = VkDeviceSize(shared_.settings().width) * shared_.settings().height;
+    const VkDeviceSize map_at = mapOffset();
+    const VkBuffer reference = shared_.referenceFrame(slot.frame).buffer;
+    ctx.immediate([&](VkCommandBuffer cmd) {
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT | VK_ACCESS_2_MEMORY_READ_BIT,
+                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        for (int kind = 0; kind < 2; ++kind) {
+            if (!(kind == 0 ? ssim_kind : eci_kind)) continue;
+            Store& st = stores_[kind];
+            if (!st.buffer.buffer)
+                st.buffer = vk::createBuffer(ctx, map_at + 12 * pixels, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+            st.frame = slot.frame;
+            const std::pair<VkBuffer, VkBufferCopy> copies[] = {
+                {reference, {0, 0, 4 * pixels}},
+                {slot.rgba.buffer, {0, 4 * pixels, 4 * pixels}},
+                {slot.classes.buffer, {0, 8 * pixels, pixels}},
+                {slot.crawl_map.buffer, {0, map_at, 4 * pixels}},
+                {slot.ssim_map.buffer, {0, map_at + 4 * pixels, 4 * pixels}},
+                {slot.flip_map.buffer, {0, map_at + 8 * pixels, 4 * pixels}}};
+            for (const auto& [source, region] : copies)
+                if (source) vkCmdCopyBuffer(cmd, source, st.buffer.buffer, 1, &region);
+        }
+    });
+}
+
+bool FrameScoring::fetchWorst(int kind, render::FrameResult& out) {
+    if (kind < 0 || kind > 1 || stores_[kind].frame < 0) return false;
+    const Store& st = stores_[kind];
+    vk::Context& ctx = shared_.context();
+    const VkDeviceSize pixels = VkDeviceSize(shared_.settings().width) * shared_.settings().height;
+    const VkDeviceSize map_at = mapOffset();
+    vk::Buffer& host = shared_.hostBuffer(st.buffer.size);
+    ctx.immediate([&](VkCommandBuffer cmd) {
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+        const VkBufferCopy all{0, 0, st.buffer.size};
+        vkCmdCopyBuffer(cmd, st.buffer.buffer, host.buffer, 1, &all);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    });
+    const auto* bytes = static_cast<const uint8_t*>(host.mapped);
+    auto floats = [&](VkDeviceSize at) { return reinterpret_cast<const float*>(bytes + at); };
+    out.index = st.frame;
+    out.reference_rgba.assign(bytes, bytes + 4 * pixels);
+    out.rgba.assign(bytes + 4 * pixels, bytes + 8 * pixels);
+    if (slots_.front().classes.buffer) out.diagnostic.assign(bytes + 8 * pixels, bytes + 9 * pixels);
+    if (kind == 1) out.crawl_map.assign(floats(map_at), floats(map_at) + pixels);
+    out.ssim_map.assign(floats(map_at + 4 * pixels), floats(map_at + 4 * pixels) + pixels);
+    out.flip_map.assign(floats(map_at + 8 * pixels), floats(map_at + 8 * pixels) + pixels);
+    return true;
+}
+
+// A one-off copy to host-visible memory and a wait, for the frames the host asked to see
+// (FrameRequest::keep_image: the alignment check's, --save-frames): the frame it was scored
+// against, and a variant's image and class map.
+void FrameScoring::copyOut(const Slot& slot, render::FrameResult& result) {
     vk::Context& ctx = shared_.context();
     const VkDeviceSize pixels = VkDeviceSize(shared_.settings().width) * shared_.settings().height;
     const bool variant = role_ == ScoringRole::Variant;
     const VkDeviceSize class_bytes = slot.classes.buffer ? pixels : 0;
-    std::vector<std::pair<VkBuffer, std::vector<float>*>> maps;
-    if (variant && crawl_map) maps.push_back({slot.crawl_map.buffer, &result.crawl_map});
-    if (variant && error_maps) {
-        maps.push_back({slot.ssim_map.buffer, &result.ssim_map});
-        maps.push_back({slot.flip_map.buffer, &result.flip_map});
-    }
-    const VkDeviceSize map_at = (8 * pixels + class_bytes + 3) / 4 * 4;
-    const VkDeviceSize need = maps.empty() ? 8 * pixels + class_bytes : map_at + 4 * pixels * maps.size();
-    vk::Buffer& host = shared_.hostBuffer(need);
+    vk::Buffer& host = shared_.hostBuffer(8 * pixels + class_bytes);
     const VkBuffer reference = shared_.referenceFrame(slot.frame).buffer;
     ctx.immediate([&](VkCommandBuffer cmd) {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
@@ -154,10 +209,6 @@ void FrameScoring::copyOut(const Slot& slot, render::FrameResult& result, bool c
         vkCmdCopyBuffer(cmd, reference, host.buffer, 1, &regions[0]);
         if (variant) vkCmdCopyBuffer(cmd, slot.rgba.buffer, host.buffer, 1, &regions[1]);
         if (variant && class_bytes) vkCmdCopyBuffer(cmd, slot.classes.buffer, host.buffer, 1, &regions[2]);
-        for (size_t i = 0; i < maps.size(); ++i) {
-            const VkBufferCopy region{0, map_at + 4 * pixels * i, 4 * pixels};
-            vkCmdCopyBuffer(cmd, maps[i].first, host.buffer, 1, &region);
-        }
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });
@@ -169,10 +220,6 @@ void FrameScoring::copyOut(const Slot& slot, render::FrameResult& result, bool c
     result.reference_rgba.assign(bytes, bytes + 4 * pixels);
     result.rgba.assign(bytes + 4 * pixels, bytes + 8 * pixels);
     if (class_bytes) result.diagnostic.assign(bytes + 8 * pixels, bytes + 8 * pixels + class_bytes);
-    for (size_t i = 0; i < maps.size(); ++i) {
-        const auto* values = reinterpret_cast<const float*>(bytes + map_at + 4 * pixels * i);
-        maps[i].second->assign(values, values + pixels);
-    }
 }
 
 }  // namespace cbr::scoring

@@ -57,10 +57,14 @@ public:
     // then the metrics (after every timestamp, so never inside a timed interval).
     void addPasses(graph::Graph& graph, size_t slot, const render::FrameRequest& request, vk::Image& display,
                    vk::Image* classes, vk::Image* analysis);
-    // After the slot's fence: a variant frame's figures, and its images (reference, variant,
-    // class map) when it is the worst so far by SSIM or by edge crawl, then with its SSIM and
-    // FLIP maps, and its crawl map when by edge crawl.
+    // After the slot's fence: a variant frame's figures (and its images when the request kept
+    // them). A frame that is the worst so far by SSIM or by edge crawl is copied, on the device,
+    // into that kind's store with its reference frame and maps: nothing crosses to the host.
     void collect(size_t slot, render::FrameResult& result);
+    // The stored worst frame of a kind (0: SSIM, 1: edge crawl) on the host: index, rgba,
+    // reference_rgba, diagnostic, ssim_map, flip_map and (edge crawl) crawl_map. False when
+    // no frame was stored.
+    bool fetchWorst(int kind, render::FrameResult& out);
 
 private:
     struct Slot {
@@ -70,9 +74,17 @@ private:
         bool keep_image = false;  // its images wanted on the host (FrameRequest::keep_image)
     };
     // Copies the frame's images to the host: the reference frame it was scored against (the
-    // reference's own frame, for the reference), and a variant's image, class map and, when
-    // `crawl_map`, its crawl map, when `error_maps`, its SSIM and FLIP maps.
-    void copyOut(const Slot& slot, render::FrameResult& result, bool crawl_map = false, bool error_maps = false);
+    // reference's own frame, for the reference), and a variant's image and class map.
+    void copyOut(const Slot& slot, render::FrameResult& result);
+    // Layout of a store: reference, variant, class map, then the crawl, SSIM and FLIP maps
+    // from a 4-byte aligned offset, 4 bytes a pixel each.
+    VkDeviceSize mapOffset() const;
+    void store(const Slot& slot, bool ssim_kind, bool eci_kind);
+    struct Store {
+        vk::Buffer buffer;
+        int frame = -1;
+    };
+    Store stores_[2];
 
     DeviceScoring& shared_;
     const ScoringRole role_;
