@@ -368,13 +368,19 @@ private:
         // full-size intermediate images of several frames at once would not fit in a 4K
         // run's memory. The encodes go to the workers, their queue kept short for the same reason.
         if (!scheduled_.count(base + "_error")) {
-            try {
-                auto [error, ssim, flip] = mapImages(*worst.reference, *worst.image, worst.ssim_map, worst.flip_map);
-                for (auto [what, rgba] : {std::pair{"error", &error}, {"ssim_map", &ssim}, {"flip_map", &flip}})
-                    encodeLater(base + "_" + what, std::move(*rgba));
-            } catch (const std::exception& e) {
-                std::fprintf(stderr, "cbrbench: maps of %s not written: %s\n", base.c_str(), e.what());
-            }
+            auto make = [this, base, reference = worst.reference, image = worst.image, ssim_map = worst.ssim_map,
+                         flip_map = worst.flip_map] {
+                try {
+                    auto [error, ssim, flip] = mapImages(*reference, *image, ssim_map, flip_map);
+                    for (auto [what, rgba] : {std::pair{"error", &error}, {"ssim_map", &ssim}, {"flip_map", &flip}})
+                        encodeLater(base + "_" + what, std::move(*rgba));
+                } catch (const std::exception& e) {
+                    std::fprintf(stderr, "cbrbench: maps of %s not written: %s\n", base.c_str(), e.what());
+                }
+            };
+            // Maps the device made need only their colours: a worker's job, beside the encodes.
+            if (worst.ssim_map && worst.flip_map) workers_.submit(make);
+            else make();
             workers_.waitUntilAtMost(kQueuedEncodes);
         }
         for (const char* what : kWhat) {
