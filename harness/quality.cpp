@@ -274,16 +274,27 @@ void QualityScorer::crawlStep(const std::string& variant, FrameRow& row, const Q
     }
 }
 
-std::vector<uint8_t> heatMap(const metrics::Image& value, double scale) {
-    std::vector<uint8_t> out(size_t(value.width) * value.height * 4, 255);
-    for (size_t i = 0; i < size_t(value.width) * value.height; ++i) {
-        double t = std::clamp(value.data[i * value.channels] * scale, 0.0, 1.0);
-        // black -> red -> yellow -> white
+namespace {
+
+// The heat map of n values value(i) (in double, as the maps' own values are turned into
+// colours) without an intermediate image: black -> red -> yellow -> white.
+template <typename Value>
+std::vector<uint8_t> heatMapOf(size_t n, double scale, const Value& value) {
+    std::vector<uint8_t> out(n * 4, 255);
+    for (size_t i = 0; i < n; ++i) {
+        const double t = std::clamp(value(i) * scale, 0.0, 1.0);
         out[i * 4] = uint8_t(std::lround(255 * std::clamp(t * 3, 0.0, 1.0)));
         out[i * 4 + 1] = uint8_t(std::lround(255 * std::clamp(t * 3 - 1, 0.0, 1.0)));
         out[i * 4 + 2] = uint8_t(std::lround(255 * std::clamp(t * 3 - 2, 0.0, 1.0)));
     }
     return out;
+}
+
+}  // namespace
+
+std::vector<uint8_t> heatMap(const metrics::Image& value, double scale) {
+    return heatMapOf(size_t(value.width) * value.height, scale,
+                     [&](size_t i) { return value.data[i * size_t(value.channels)]; });
 }
 
 namespace {
@@ -413,30 +424,29 @@ private:
     // computed here from the 8-bit images; the error map from the bytes either way (cheap).
     Maps mapImages(const std::vector<uint8_t>& reference, const std::vector<uint8_t>& variant, const Floats& ssim_map,
                    const Floats& flip_map) const {
-        metrics::Image error{w_, h_, 1, std::vector<double>(size_t(w_) * h_)};
-        for (size_t i = 0; i < error.data.size(); ++i)
-            error.data[i] = (std::abs(int(reference[4 * i]) - int(variant[4 * i])) +
-                             std::abs(int(reference[4 * i + 1]) - int(variant[4 * i + 1])) +
-                             std::abs(int(reference[4 * i + 2]) - int(variant[4 * i + 2]))) / (3.0 * 255.0);
+        const size_t n = size_t(w_) * size_t(h_);
         Maps m;
-        m.error = heatMap(error, 4.0);
-        error = {};
-        auto image = [this](const std::vector<float>& map) {
-            return metrics::Image{w_, h_, 1, std::vector<double>(map.begin(), map.end())};
-        };
-        {
-            WallAccount::WorkerScope timer(ssim_map ? nullptr : wall_, WorkerTask::Ssim);
-            auto ssim = ssim_map ? image(*ssim_map)
-                                 : metrics::ssimMap(metrics::fromRgba8(reference.data(), w_, h_, size_t(w_) * 4),
-                                                    metrics::fromRgba8(variant.data(), w_, h_, size_t(w_) * 4));
-            for (double& v : ssim.data) v = 1.0 - v;  // dissimilarity: bright where worse
-            m.ssim = heatMap(ssim, 2.0);
+        m.error = heatMapOf(n, 4.0, [&](size_t i) {
+            return (std::abs(int(reference[4 * i]) - int(variant[4 * i])) +
+                    std::abs(int(reference[4 * i + 1]) - int(variant[4 * i + 1])) +
+                    std::abs(int(reference[4 * i + 2]) - int(variant[4 * i + 2]))) / (3.0 * 255.0);
+        });
+        if (ssim_map) {
+            // Dissimilarity: bright where worse.
+            m.ssim = heatMapOf(n, 2.0, [&](size_t i) { return 1.0 - double((*ssim_map)[i]); });
+        } else {
+            WallAccount::WorkerScope timer(wall_, WorkerTask::Ssim);
+            auto ssim = metrics::ssimMap(metrics::fromRgba8(reference.data(), w_, h_, size_t(w_) * 4),
+                                         metrics::fromRgba8(variant.data(), w_, h_, size_t(w_) * 4));
+            m.ssim = heatMapOf(n, 2.0, [&](size_t i) { return 1.0 - ssim.data[i]; });
         }
-        WallAccount::WorkerScope timer(flip_map ? nullptr : wall_, WorkerTask::Flip);
         // FLIP's error is already in perceptual units on [0,1]: unscaled.
-        m.flip = heatMap(flip_map ? image(*flip_map)
-                                  : metrics::flipRgba8(reference.data(), variant.data(), w_, h_, flip_ppd_, true).map,
-                         1.0);
+        if (flip_map) {
+            m.flip = heatMapOf(n, 1.0, [&](size_t i) { return double((*flip_map)[i]); });
+        } else {
+            WallAccount::WorkerScope timer(wall_, WorkerTask::Flip);
+            m.flip = heatMap(metrics::flipRgba8(reference.data(), variant.data(), w_, h_, flip_ppd_, true).map, 1.0);
+        }
         return m;
     }
 
@@ -460,8 +470,9 @@ bool QualityScorer::loadWorst(Worst& worst, const char* kind) {
     worst.flip_map = images.flip_map;
     if (std::string(kind) == "eci" && images.crawl_map &&
         images.crawl_map->size() == size_t(width_) * size_t(height_)) {
-        const metrics::Image map{width_, height_, 1, std::vector<double>(images.crawl_map->begin(), images.crawl_map->end())};
-        worst.crawl_map = std::make_shared<const std::vector<uint8_t>>(heatMap(map, 8.0));
+        const auto& map = *images.crawl_map;
+        worst.crawl_map = std::make_shared<const std::vector<uint8_t>>(
+            heatMapOf(map.size(), 8.0, [&](size_t i) { return double(map[i]); }));
     }
     return true;
 }
