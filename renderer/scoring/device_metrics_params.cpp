@@ -4,6 +4,8 @@
 // et al. 2020 and NVIDIA's tool (github.com/NVlabs/flip, v1.6).
 #include "renderer/scoring/device_metrics_params.h"
 
+#include "metrics/flip_colour.h"
+
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -25,15 +27,13 @@ struct Csf {
 constexpr Csf kCsfAchromatic{1.0, 0.0047, 0.0, 1e-5};
 constexpr Csf kCsfRedGreen{1.0, 0.0053, 0.0, 1e-5};
 constexpr Csf kCsfBlueYellow{34.1, 0.04, 13.5, 0.025};
-constexpr float kWhite[3] = {0.950428545f, 1.0f, 1.088900371f};
-constexpr float kInvWhite[3] = {1.052156925f, 1.0f, 0.918357670f};
-constexpr float kRgbToXyz[3][3] = {
-    {10135552.0f / 24577794.0f, 8788810.0f / 24577794.0f, 4435075.0f / 24577794.0f},
-    {2613072.0f / 12288897.0f, 8788810.0f / 12288897.0f, 887015.0f / 12288897.0f},
-    {1425312.0f / 73733382.0f, 8788810.0f / 73733382.0f, 70074185.0f / 73733382.0f}};
-constexpr float kXyzToRgb[3][3] = {{3.241003275f, -1.537398934f, -0.498615861f},
-                                   {-0.969224334f, 1.875930071f, 0.041554224f},
-                                   {0.055639423f, -0.204011202f, 1.057148933f}};
+// The colour conversions and the cube root are metrics/flip_colour.h's own, so that both
+// scorers' cmax comes from the same constants.
+using metrics::flip_detail::cubeRoot;
+using metrics::flip_detail::kInvWhite;
+using metrics::flip_detail::kRgbToXyz;
+using metrics::flip_detail::kWhite;
+using metrics::flip_detail::kXyzToRgb;
 constexpr float kLabDelta = 6.0f / 29.0f;
 constexpr float kLabDeltaCube = kLabDelta * kLabDelta * kLabDelta;
 constexpr float kLabSlope = 1.0f / (3.0f * kLabDelta * kLabDelta);
@@ -146,17 +146,6 @@ void flipFeatureKernels(double ppd, Params& p) {
     p.head.flip_g = appendFlip(p.taps, g);
     p.head.flip_d = appendFlip(p.taps, d);
     p.head.flip_dd = appendFlip(p.taps, dd);
-}
-
-// flip.cpp's cube root (a guess from the float's bits, two Halley steps), for the same cmax.
-float cubeRoot(float t) {
-    const int32_t bits = std::bit_cast<int32_t>(t);
-    float y = std::bit_cast<float>(int32_t(float(bits) * (1.0f / 3.0f)) + 0x2A555555);
-    for (int i = 0; i < 2; ++i) {
-        const float y3 = y * y * y;
-        y = y * (y3 + 2.0f * t) / (2.0f * y3 + t);
-    }
-    return y;
 }
 
 float labF(float t) { return t > kLabDeltaCube ? cubeRoot(t) : kLabSlope * t + kLabOffset; }
