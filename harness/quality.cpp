@@ -25,7 +25,8 @@ struct QualityScorer::Worst {
     // Scored on the device: its SSIM and FLIP maps, made into heat maps only if the frame stays
     // the worst (the writer computes them from the images otherwise).
     Floats ssim_map, flip_map;
-    WorstLoader load;  // images kept elsewhere: fetched by finish()
+    WorstLoader load;     // images kept elsewhere: fetched by finish()
+    Floats crawl_values;  // the ECI kind's crawl map as loaded (the device's values), coloured when written
 };
 
 // Frames of one variant arrive out of order; the crawl metric needs them in order.
@@ -326,129 +327,121 @@ public:
         std::filesystem::create_directories(dir / "worst" / "page");
     }
 
+    // At most this many encodes at once for w x h images: each holds about twice the frame's
+    // RGBA8 bytes while it runs (a coloured map, the filtered rows, the stream), and a 4K run
+    // must stay within its memory (about 66 MB an encode there: 11 at once).
+    static unsigned encoders(int width, int height) {
+        const double job_bytes = 2.0 * 4.0 * double(width) * double(height);
+        const auto by_memory = unsigned(std::max(2.0, 768e6 / job_bytes));
+        return std::clamp(std::min(std::thread::hardware_concurrency(), by_memory), 1u, 16u);
+    }
+
     void add(WorstFrame& wf, const Worst& worst) {
         char stem[160];
         std::snprintf(stem, sizeof stem, "%s_%04d", wf.variant.c_str(), wf.frame);
         const std::string base = stem;
         std::snprintf(stem, sizeof stem, "reference_%04d", wf.frame);
-        image(wf, "reference", stem, worst.reference, kFrame);
-        image(wf, "variant", base, worst.image, kFrame);
+        image(wf, "reference", stem, kept(worst.reference), kFrame);
+        image(wf, "variant", base, kept(worst.image), kFrame);
         maps(wf, base, worst);
-        if (worst.crawl_map) image(wf, "crawl_map", base + "_crawl_map", worst.crawl_map, kMap);
+        if (worst.crawl_map) {
+            image(wf, "crawl_map", base + "_crawl_map", kept(worst.crawl_map), kMap);
+        } else if (worst.crawl_values) {
+            image(wf, "crawl_map", base + "_crawl_map", [map = worst.crawl_values] {
+                return colour(heatMapOf(map->size(), 8.0, [&](size_t i) { return double((*map)[i]); }));
+            }, kMap);
+        }
         if (worst.classes && !worst.classes->empty())
-            image(wf, "class_map", base + "_class_map", worst.classes, kMap, classMapRgba);
+            image(wf, "class_map", base + "_class_map", [classes = worst.classes] { return colour(classMapRgba(*classes)); },
+                  kMap);
     }
 
     // Every file scheduled, once the workers are done; errors were printed as they came.
     void wait() { workers_.wait(); }
 
 private:
-    static constexpr size_t kQueuedEncodes = 8;
     static constexpr int kFrame = 1280, kMap = 480;  // the page copies' widest (shown at about 660 and 250 px)
     // JPEG quality: above 90 stb_image_write keeps full-resolution chroma, so the frames'
     // coloured edges stay sharp (91: the smallest such); the maps' thumbnails, linked to their
     // PNGs, can take 4:2:0. The default bench's page: 8.1 MB at 92/85, 7.3 at 91/80.
     static constexpr int kFrameQuality = 91, kMapQuality = 80;
 
+    // An image's RGBA8 pixels, made on the worker that encodes them: a map is coloured there
+    // and dropped with its encode, so no queue of coloured maps waits in memory.
+    using Pixels = std::function<Bytes()>;
+    static Pixels kept(Bytes pixels) {
+        return [pixels = std::move(pixels)] { return pixels; };
+    }
+    static Bytes colour(std::vector<uint8_t> rgba) { return std::make_shared<const std::vector<uint8_t>>(std::move(rgba)); }
+
     // Files of one image: recorded in the entry, encoded only the first time the stem appears.
-    // `convert`, when given, makes the RGBA8 image of `pixels` on the worker (class maps).
-    using Convert = std::vector<uint8_t> (*)(const std::vector<uint8_t>&);
-    void image(WorstFrame& wf, const std::string& what, const std::string& stem, Bytes pixels, int page_width,
-               Convert convert = nullptr) {
-        const bool photo = page_width == kFrame;
+    void image(WorstFrame& wf, const std::string& what, const std::string& stem, Pixels pixels, int page_width) {
         wf.files.push_back({what, "worst/" + stem + ".png"});
         wf.page.push_back({what, "worst/page/" + stem + ".jpg"});
         if (!scheduled_.insert(stem).second) return;
-        workers_.submit([this, stem, pixels, page_width, photo, convert] {
+        const int quality = page_width == kFrame ? kFrameQuality : kMapQuality;
+        workers_.submit([this, stem, pixels = std::move(pixels), page_width, quality] {
             WallAccount::WorkerScope timer(wall_, WorkerTask::ImageEncode);
             try {
-                metrics::Rgba8Image full{w_, h_, convert ? convert(*pixels) : *pixels};
+                const Bytes rgba = pixels();
+                if (!rgba) return;  // its making failed, and said so
+                const metrics::Rgba8View full{w_, h_, *rgba};
                 metrics::writeFileAtomically(dir_ / "worst" / (stem + ".png"), metrics::encodePng(full));
                 metrics::writeFileAtomically(dir_ / "worst" / "page" / (stem + ".jpg"),
-                                             metrics::encodeJpeg(metrics::downscale(full, page_width), photo ? kFrameQuality : kMapQuality));
+                                             metrics::encodeJpeg(metrics::downscale(full, page_width), quality));
             } catch (const std::exception& e) {
                 std::fprintf(stderr, "cbrbench: worst-frame image %s not written: %s\n", stem.c_str(), e.what());
             }
         });
     }
 
-    // The error, 1 - SSIM and FLIP maps of one (variant, frame), encoded on a worker.
+    // The error, 1 - SSIM and FLIP maps of one (variant, frame). The device's maps are coloured
+    // on the workers; maps the CPU must compute are made here, one frame's at a time (each metric
+    // is parallel inside, and the full-size intermediates of several frames at once would not
+    // fit in a 4K run's memory).
     void maps(WorstFrame& wf, const std::string& base, const Worst& worst) {
-        const char* kWhat[3] = {"error", "ssim_map", "flip_map"};
-        // On this thread, one frame's maps at a time (each metric is parallel inside): the
-        // full-size intermediate images of several frames at once would not fit in a 4K
-        // run's memory. The encodes go to the workers, their queue kept short for the same reason.
-        if (!scheduled_.count(base + "_error")) {
-            auto make = [this, base, reference = worst.reference, image = worst.image, ssim_map = worst.ssim_map,
-                         flip_map = worst.flip_map] {
-                try {
-                    auto [error, ssim, flip] = mapImages(*reference, *image, ssim_map, flip_map);
-                    for (auto [what, rgba] : {std::pair{"error", &error}, {"ssim_map", &ssim}, {"flip_map", &flip}})
-                        encodeLater(base + "_" + what, std::move(*rgba));
-                } catch (const std::exception& e) {
-                    std::fprintf(stderr, "cbrbench: maps of %s not written: %s\n", base.c_str(), e.what());
-                }
-            };
-            // Maps the device made need only their colours: a worker's job, beside the encodes.
-            if (worst.ssim_map && worst.flip_map) workers_.submit(make);
-            else make();
-            workers_.waitUntilAtMost(kQueuedEncodes);
+        if (scheduled_.count(base + "_error")) {
+            for (const char* what : {"error", "ssim_map", "flip_map"}) image(wf, what, base + "_" + what, nullptr, kMap);
+            return;
         }
-        for (const char* what : kWhat) {
-            const std::string stem = base + "_" + what;
-            wf.files.push_back({what, "worst/" + stem + ".png"});
-            wf.page.push_back({what, "worst/page/" + stem + ".jpg"});
-            scheduled_.insert(stem);
+        image(wf, "error", base + "_error", [reference = worst.reference, variant = worst.image, n = pixels()] {
+            const auto& a = *reference;
+            const auto& b = *variant;
+            return colour(heatMapOf(n, 4.0, [&](size_t i) {
+                return (std::abs(int(a[4 * i]) - int(b[4 * i])) + std::abs(int(a[4 * i + 1]) - int(b[4 * i + 1])) +
+                        std::abs(int(a[4 * i + 2]) - int(b[4 * i + 2]))) / (3.0 * 255.0);
+            }));
+        }, kMap);
+        if (worst.ssim_map && worst.flip_map) {
+            // Dissimilarity: bright where worse. FLIP's error is already in perceptual units on [0,1]: unscaled.
+            image(wf, "ssim_map", base + "_ssim_map", [map = worst.ssim_map] {
+                return colour(heatMapOf(map->size(), 2.0, [&](size_t i) { return 1.0 - double((*map)[i]); }));
+            }, kMap);
+            image(wf, "flip_map", base + "_flip_map", [map = worst.flip_map] {
+                return colour(heatMapOf(map->size(), 1.0, [&](size_t i) { return double((*map)[i]); }));
+            }, kMap);
+            return;
         }
-    }
-
-    void encodeLater(const std::string& stem, std::vector<uint8_t> rgba) {
-        auto bytes = std::make_shared<const std::vector<uint8_t>>(std::move(rgba));
-        workers_.submit([this, stem, bytes] {
-            WallAccount::WorkerScope timer(wall_, WorkerTask::ImageEncode);
-            try {
-                metrics::Rgba8Image full{w_, h_, *bytes};
-                metrics::writeFileAtomically(dir_ / "worst" / (stem + ".png"), metrics::encodePng(full));
-                metrics::writeFileAtomically(dir_ / "worst" / "page" / (stem + ".jpg"),
-                                             metrics::encodeJpeg(metrics::downscale(full, kMap), kMapQuality));
-            } catch (const std::exception& e) {
-                std::fprintf(stderr, "cbrbench: worst-frame image %s not written: %s\n", stem.c_str(), e.what());
+        Bytes ssim, flip;
+        try {
+            const auto& reference = *worst.reference;
+            const auto& variant = *worst.image;
+            {
+                WallAccount::WorkerScope timer(wall_, WorkerTask::Ssim);
+                auto map = metrics::ssimMap(metrics::fromRgba8(reference.data(), w_, h_, size_t(w_) * 4),
+                                            metrics::fromRgba8(variant.data(), w_, h_, size_t(w_) * 4));
+                ssim = colour(heatMapOf(pixels(), 2.0, [&](size_t i) { return 1.0 - map.data[i]; }));
             }
-        });
+            WallAccount::WorkerScope timer(wall_, WorkerTask::Flip);
+            flip = colour(heatMap(metrics::flipRgba8(reference.data(), variant.data(), w_, h_, flip_ppd_, true).map, 1.0));
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "cbrbench: maps of %s not written: %s\n", base.c_str(), e.what());
+        }
+        image(wf, "ssim_map", base + "_ssim_map", kept(ssim), kMap);
+        image(wf, "flip_map", base + "_flip_map", kept(flip), kMap);
     }
 
-    struct Maps {
-        std::vector<uint8_t> error, ssim, flip;
-    };
-    // The SSIM and FLIP maps from the device's values when given (the same definitions), else
-    // computed here from the 8-bit images; the error map from the bytes either way (cheap).
-    Maps mapImages(const std::vector<uint8_t>& reference, const std::vector<uint8_t>& variant, const Floats& ssim_map,
-                   const Floats& flip_map) const {
-        const size_t n = size_t(w_) * size_t(h_);
-        Maps m;
-        m.error = heatMapOf(n, 4.0, [&](size_t i) {
-            return (std::abs(int(reference[4 * i]) - int(variant[4 * i])) +
-                    std::abs(int(reference[4 * i + 1]) - int(variant[4 * i + 1])) +
-                    std::abs(int(reference[4 * i + 2]) - int(variant[4 * i + 2]))) / (3.0 * 255.0);
-        });
-        if (ssim_map) {
-            // Dissimilarity: bright where worse.
-            m.ssim = heatMapOf(n, 2.0, [&](size_t i) { return 1.0 - double((*ssim_map)[i]); });
-        } else {
-            WallAccount::WorkerScope timer(wall_, WorkerTask::Ssim);
-            auto ssim = metrics::ssimMap(metrics::fromRgba8(reference.data(), w_, h_, size_t(w_) * 4),
-                                         metrics::fromRgba8(variant.data(), w_, h_, size_t(w_) * 4));
-            m.ssim = heatMapOf(n, 2.0, [&](size_t i) { return 1.0 - ssim.data[i]; });
-        }
-        // FLIP's error is already in perceptual units on [0,1]: unscaled.
-        if (flip_map) {
-            m.flip = heatMapOf(n, 1.0, [&](size_t i) { return double((*flip_map)[i]); });
-        } else {
-            WallAccount::WorkerScope timer(wall_, WorkerTask::Flip);
-            m.flip = heatMap(metrics::flipRgba8(reference.data(), variant.data(), w_, h_, flip_ppd_, true).map, 1.0);
-        }
-        return m;
-    }
+    size_t pixels() const { return size_t(w_) * size_t(h_); }
 
     const std::filesystem::path dir_;
     const int w_, h_;
@@ -458,9 +451,8 @@ private:
     std::set<std::string> scheduled_;  // stems handed to the workers (main thread only)
 };
 
-// Brings a worst frame's images from where they were kept; the ECI kind's crawl map becomes
-// its heat map as crawlStep makes it.
-bool QualityScorer::loadWorst(Worst& worst, const char* kind) {
+// Brings a worst frame's images from where they were kept.
+bool QualityScorer::loadWorst(Worst& worst) {
     WorstImages images;
     if (!worst.load(images)) return false;
     worst.reference = images.reference;
@@ -468,12 +460,8 @@ bool QualityScorer::loadWorst(Worst& worst, const char* kind) {
     worst.classes = images.classes;
     worst.ssim_map = images.ssim_map;
     worst.flip_map = images.flip_map;
-    if (std::string(kind) == "eci" && images.crawl_map &&
-        images.crawl_map->size() == size_t(width_) * size_t(height_)) {
-        const auto& map = *images.crawl_map;
-        worst.crawl_map = std::make_shared<const std::vector<uint8_t>>(
-            heatMapOf(map.size(), 8.0, [&](size_t i) { return double(map[i]); }));
-    }
+    if (images.crawl_map && images.crawl_map->size() == size_t(width_) * size_t(height_))
+        worst.crawl_values = images.crawl_map;
     return true;
 }
 
@@ -483,14 +471,18 @@ std::vector<WorstFrame> QualityScorer::finish(const std::filesystem::path& dir) 
     bool any = false;
     for (auto& [variant, c] : chains_) any |= c->worst_ssim.frame >= 0 || c->worst_eci.frame >= 0;
     if (!any) return out;
-    // Nothing else runs now: the cores encode, eight at most (a 4K encode holds about 50 MB).
-    WorkerPool encoders(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
+    // Nothing else runs now: the cores encode, as many as memory allows.
+    const unsigned threads = Writer::encoders(width_, height_);
+    WorkerPool encoders(threads);
     Writer writer(dir, width_, height_, flip_ppd_, encoders, wall_);
     for (const auto& variant : variant_order_) {
         Chain& c = *chains_.at(variant);
         for (auto [kind, worst] : {std::pair<const char*, Worst*>{"ssim", &c.worst_ssim}, {"eci", &c.worst_eci}}) {
             if (worst->frame < 0) continue;
-            if (worst->load && !loadWorst(*worst, kind)) continue;
+            // One frame's images loaded at a time, once the queue has drained to what runs:
+            // the frames in memory are this one and those whose last encodes are running.
+            encoders.waitUntilAtMost(threads);
+            if (worst->load && !loadWorst(*worst)) continue;
             WorstFrame& wf = out.emplace_back();
             wf.variant = variant;
             wf.kind = kind;

@@ -84,7 +84,7 @@ private:
     void crawlStep(const std::string& variant, FrameRow& row, const QualityFrame& frame, const Bytes& ref);
     void submitScore(Chain& c, const std::string& variant, FrameRow& row, QualityFrame frame, Bytes ref);
     void release(size_t frame);  // with mutex_ held
-    bool loadWorst(Worst& worst, const char* kind);
+    bool loadWorst(Worst& worst);
     Chain& chain(const std::string& variant);
 
     int width_, height_;

@@ -28,7 +28,7 @@ namespace cbr::metrics {
 
 namespace {
 
-void checkImage(const char* what, const Rgba8Image& image) {
+void checkImage(const char* what, const Rgba8View& image) {
     if (image.width <= 0 || image.height <= 0 || image.pixels.size() != size_t(image.width) * image.height * 4)
         throw std::invalid_argument(std::string(what) + ": image is " + std::to_string(image.width) + "x" +
                                     std::to_string(image.height) + " with " + std::to_string(image.pixels.size()) +
@@ -72,7 +72,7 @@ void filterRow(const uint8_t* row, const uint8_t* prev, size_t width, int channe
 
 }  // namespace
 
-std::string encodePng(const Rgba8Image& image, int level) {
+std::string encodePng(Rgba8View image, int level) {
     checkImage("encodePng", image);
     bool opaque = true;
     for (size_t i = 3; i < image.pixels.size() && opaque; i += 4) opaque = image.pixels[i] == 255;
@@ -85,21 +85,27 @@ std::string encodePng(const Rgba8Image& image, int level) {
     std::unique_ptr<libdeflate_compressor, decltype(&libdeflate_free_compressor)> compressor(
         libdeflate_alloc_compressor(level), libdeflate_free_compressor);
     if (!compressor) throw std::runtime_error("encodePng: libdeflate has no compressor for level " + std::to_string(level));
-    std::vector<uint8_t> zdata(libdeflate_zlib_compress_bound(compressor.get(), filtered.size()));
-    const size_t zsize = libdeflate_zlib_compress(compressor.get(), filtered.data(), filtered.size(), zdata.data(), zdata.size());
+    // Uninitialised: only the pages the stream reaches are touched (a 4K frame's bound is 25 MB,
+    // its stream 2 MB), which matters with a dozen encodes at once.
+    const size_t bound = libdeflate_zlib_compress_bound(compressor.get(), filtered.size());
+    std::unique_ptr<uint8_t[]> zdata(new uint8_t[bound]);
+    const size_t zsize = libdeflate_zlib_compress(compressor.get(), filtered.data(), filtered.size(), zdata.get(), bound);
     if (zsize == 0) throw std::runtime_error("encodePng: libdeflate could not compress the image");
+    std::vector<uint8_t>().swap(filtered);
 
-    std::string out("\x89PNG\r\n\x1a\n", 8);
+    std::string out;
+    out.reserve(zsize + 64);
+    out.assign("\x89PNG\r\n\x1a\n", 8);
     uint8_t ihdr[13] = {uint8_t(w >> 24), uint8_t(w >> 16), uint8_t(w >> 8), uint8_t(w),
                         uint8_t(h >> 24), uint8_t(h >> 16), uint8_t(h >> 8), uint8_t(h),
                         8, uint8_t(opaque ? 2 : 6), 0, 0, 0};  // 8 bits, RGB or RGBA, deflate, adaptive, no interlace
     chunk(out, "IHDR", ihdr, sizeof ihdr);
-    chunk(out, "IDAT", zdata.data(), zsize);
+    chunk(out, "IDAT", zdata.get(), zsize);
     chunk(out, "IEND", nullptr, 0);
     return out;
 }
 
-std::string encodeJpeg(const Rgba8Image& image, int quality) {
+std::string encodeJpeg(Rgba8View image, int quality) {
     checkImage("encodeJpeg", image);
     std::string out;
     auto append = [](void* context, void* data, int size) {
@@ -110,11 +116,11 @@ std::string encodeJpeg(const Rgba8Image& image, int quality) {
     return out;
 }
 
-Rgba8Image downscale(const Rgba8Image& image, int max_width) {
+Rgba8Image downscale(Rgba8View image, int max_width) {
     checkImage("downscale", image);
     if (max_width <= 0) throw std::invalid_argument("downscale: max_width must be > 0");
     const int k = (image.width + max_width - 1) / max_width;
-    if (k <= 1) return image;
+    if (k <= 1) return {image.width, image.height, {image.pixels.begin(), image.pixels.end()}};
     Rgba8Image out;
     out.width = (image.width + k - 1) / k;
     out.height = (image.height + k - 1) / k;
