@@ -168,6 +168,12 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
         ->check(CLI::IsMember({"auto", "device", "cpu"}));
     cmd->add_option("--near", o.near, "near plane of every keyframe, scene units (after placement)");
     cmd->add_option("--far", o.far, "far plane of every keyframe, scene units (after placement)");
+    cmd->add_option("--host-memory-limit", o.host_memory_limit_mib,
+                    "MiB: refuse a run whose estimated peak is above this (default: what the host has available)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--device-memory-limit", o.device_memory_limit_mib,
+                    "MiB: refuse a run whose estimated device memory is above this (default: the device's budget)")
+        ->check(CLI::NonNegativeNumber);
 }
 
 

@@ -59,6 +59,10 @@ struct RunOptions {
     std::string shown_out;            // where the output ends up, if not --out (an outer sweep's temporary)
     bool quiet = false;               // calibrate's runs: no report.html, no printed summary
     std::vector<std::string> argv;    // the command line, for run.json
+    // A run whose estimate exceeds these stops before its first frame (0: what the host has
+    // available; the device's budget or heap size).
+    double host_memory_limit_mib = 0;
+    double device_memory_limit_mib = 0;
 };
 
 // Parsed "WxH"; throws std::invalid_argument for anything else or a 0 dimension.

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "harness/process.h"
+#include "metrics/image_encode.h"
 #include "harness/outputs_internal.h"
 #include "harness/resolve_bandwidth.h"
 #include "harness/stats.h"
@@ -208,7 +209,9 @@ json metricsJson(const RunContext& rc) {
                                        ? "ssaa: " + std::to_string(rc.options.ssaa) + "x" +
                                              std::to_string(rc.options.ssaa) + " samples per pixel, box filter in HDR"
                                        : std::string("full")},
-                {"image_io", metrics::imageIoBackend()},
+                // The library --save-frames writes through; loaded only then (OpenImageIO's
+                // plugins are 80 MB of a run's memory), the worst frames' encoders otherwise.
+                {"image_io", rc.options.save_frames ? metrics::imageIoBackend() : metrics::encodeBackend()},
                 {"scorer", r.scorer},
                 {"scorer_requested", rc.options.scorer},
                 {"scorer_note", r.scorer_note},
@@ -284,6 +287,36 @@ json wallJson(const WallAccount& wall) {
     return {{"seconds", wall.total()}, {"parts_s", parts}, {"worker_cpu_s", workers}, {"peak_rss_mib_after", rss}};
 }
 
+// What the run needed and had (harness/memory_check.h).
+json memoryJson(const MemoryFigures& m) {
+    auto maybe = [](const std::optional<double>& v) { return v ? json(*v) : json(); };
+    json after = json::array();
+    for (const auto& r : m.after)
+        after.push_back({{"after", r.after},
+                         {"peak_rss_mib", r.peak_rss_mib},
+                         {"device_allocated_mib", r.device_allocated_mib},
+                         {"device_usage_mib", maybe(r.device_usage_mib)}});
+    double peak_rss = 0;
+    std::optional<double> device_usage;
+    for (const auto& r : m.after) {
+        peak_rss = std::max(peak_rss, r.peak_rss_mib);
+        if (r.device_usage_mib) device_usage = std::max(device_usage.value_or(0), *r.device_usage_mib);
+    }
+    return {{"estimate_host_mib", m.host_estimate_mib},
+            {"estimate_device_mib", m.device_estimate_mib},
+            {"host_limit_mib", m.host_limit_mib},
+            {"host_limit_from", m.host_limit_from},
+            {"device_limit_mib", m.device_limit_mib},
+            {"device_limit_from", m.device_limit_from},
+            {"peak_rss_mib", peak_rss},
+            {"device_allocated_peak_mib", m.device_allocated_peak_mib},
+            {"host_visible_allocated_peak_mib", m.host_visible_allocated_peak_mib},
+            {"device_usage_peak_mib", maybe(device_usage)},
+            {"device_budget_mib", maybe(m.device_budget_mib)},
+            {"device_heap_mib", m.device_heap_mib},
+            {"after", after}};
+}
+
 // What the run directory holds.
 std::vector<std::string> fileList(const RunContext& rc) {
     std::vector<std::string> files = {"frames.csv", "summary.csv", "run.json"};
@@ -338,6 +371,7 @@ void writeRunJson(const std::filesystem::path& file, const RunContext& rc, const
     j["files"] = fileList(rc);
     j["worst"] = worstJson(r.worst);
     if (rc.wall) j["wall"] = wallJson(*rc.wall);
+    if (!r.memory.after.empty()) j["memory"] = memoryJson(r.memory);
     reports::writeTextAtomically(file, j.dump(2) + "\n");
 }
 
@@ -348,6 +382,7 @@ void updateRunJsonWall(const std::filesystem::path& dir, const RunContext& rc) {
     json j = json::parse(in);
     j["wall_seconds"] = rc.wall->total();
     j["wall"] = wallJson(*rc.wall);
+    if (!rc.results.memory.after.empty()) j["memory"] = memoryJson(rc.results.memory);
     reports::writeTextAtomically(file, j.dump(2) + "\n");
 }
 

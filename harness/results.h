@@ -79,6 +79,25 @@ struct VariantRun {
     std::vector<std::pair<std::string, std::string>> description;  // route and such, for run.json
 };
 
+// What the run needed and had (run.json `memory`): the estimate made before the first frame
+// against its limits, and the readings after each phase.
+struct MemoryFigures {
+    double host_estimate_mib = 0, device_estimate_mib = 0;
+    double host_limit_mib = 0, device_limit_mib = 0;
+    std::string host_limit_from, device_limit_from;  // the option, or what the machine reports
+    double device_allocated_peak_mib = 0;             // cbrbench's device-local allocations, at most
+    double host_visible_allocated_peak_mib = 0;       // its host-visible (mapped) allocations, at most
+    double device_heap_mib = 0;                       // the device-local heaps' size
+    std::optional<double> device_budget_mib;          // VK_EXT_memory_budget: what the process may use
+    struct Reading {
+        std::string after;
+        double peak_rss_mib = 0;
+        double device_allocated_mib = 0;
+        std::optional<double> device_usage_mib;  // VK_EXT_memory_budget's heapUsage, device-local heaps
+    };
+    std::vector<Reading> after;
+};
+
 struct RunResults {
     std::deque<FrameRow> rows;  // deque: rows keep their address while metrics fill them in
     std::vector<VariantRun> variants;
@@ -94,6 +113,7 @@ struct RunResults {
     SceneLoad scene_load;
     std::string scorer = "cpu";  // where the quality frames were scored: device | cpu
     std::string scorer_note;     // why, when --scorer auto chose, or the device could not
+    MemoryFigures memory;
 };
 
 }  // namespace cbr::harness

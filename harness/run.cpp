@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "harness/export.h"
+#include "harness/memory_check.h"
 #include "harness/outputs.h"
 #include "harness/run_internal.h"
 #include "renderer/vk/bandwidth.h"
@@ -35,7 +36,6 @@ gpu::GpuScene uploadScene(vk::Context& ctx, Prepared& p, WallAccount& wall) {
     WallAccount::Scope scope(wall, WallPart::Upload);
     gpu::GpuScene gpu_scene = gpu::uploadScene(ctx, p.scene);
     p.load.upload_s = scope.seconds();
-    if (!p.options.quiet) std::fprintf(stderr, "cbrbench: %s\n", sceneLoadLine(p.scene, p.load).c_str());
     return gpu_scene;
 }
 
@@ -75,6 +75,7 @@ void writeFiles(RunState& s, reports::OutputDir& out) {
         if (!options.quiet) reports::writeReport(out.path());
         if (options.sweep) reports::writeSweepReport(out.path());
     }
+    noteMemory(s, "report");
     s.wall.close();
     s.results.seconds = s.wall.total();
     updateRunJsonWall(out.path(), rc);
@@ -171,13 +172,16 @@ int runBenchmark(const RunOptions& options) {
     makeRenderers(s);
     makeSsaaReference(s);
     chooseScorer(s);
+    checkMemory(s);
+    // Once the run is known to fit: a refused run says one line, and nothing else.
+    if (!options.quiet) std::fprintf(stderr, "cbrbench: %s\n", sceneLoadLine(p.scene, p.load).c_str());
     calibrateSlowdown(s);
     renderQualityFrames(s);
-    s.wall.notePeakRss("quality_pass", peakRssMib());
+    noteMemory(s, "quality_pass");
     renderRepetitions(s);
-    s.wall.notePeakRss("timed_frames", peakRssMib());
+    noteMemory(s, "timed_frames");
     scoreFrames(s);
-    s.wall.notePeakRss("worst_images", peakRssMib());
+    noteMemory(s, "worst_images");
     releaseAndMeasure(s);
     writeFiles(s, out);
     if (!options.quiet) std::fprintf(stderr, "cbrbench: %s\n", s.wall.line().c_str());

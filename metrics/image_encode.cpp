@@ -139,6 +139,8 @@ Rgba8Image downscale(Rgba8View image, int max_width) {
     return out;
 }
 
+const char* encodeBackend() { return "libdeflate " LIBDEFLATE_VERSION_STRING " (PNG), stb_image_write (JPEG)"; }
+
 void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes) {
     const auto tmp = detail::temporaryName(file);
     {

@@ -36,6 +36,9 @@ std::string encodeJpeg(Rgba8View image, int quality = 92);
 // A copy of the image itself when it is already narrow enough.
 Rgba8Image downscale(Rgba8View image, int max_width);
 
+// What these encoders are, for run.json: libdeflate's version and stb_image_write.
+const char* encodeBackend();
+
 // Writes the bytes to a temporary name in the same folder and renames it (no half-written
 // file after a crash). Throws std::runtime_error naming the file on failure.
 void writeFileAtomically(const std::filesystem::path& file, const std::string& bytes);

@@ -263,11 +263,35 @@ std::string wallTable(const RunData& d) {
     return kvTable("Wall time (s)", rows);
 }
 
+// What the run was estimated to need before its first frame, against its limits, and what it
+// used (run.json memory; the report phase's own reading is written after this page).
+std::string memoryTable(const RunData& d) {
+    const auto* memory = jsonAt(d.run, "/memory");
+    if (!memory || !memory->is_object()) return {};
+    auto mib = [&](const char* key) {
+        const auto* v = jsonAt(*memory, key);
+        return v && v->is_number() ? fmt(v->get<double>(), 0) : std::string("-");
+    };
+    auto text = [&](const char* key) {
+        const auto* v = jsonAt(*memory, key);
+        return v && v->is_string() ? v->get<std::string>() : std::string();
+    };
+    Rows rows = {{"host: estimate / limit", mib("/estimate_host_mib") + " / " + mib("/host_limit_mib") + " (" +
+                                               text("/host_limit_from") + ")"},
+                 {"host: peak RSS", mib("/peak_rss_mib")},
+                 {"device: estimate / limit", mib("/estimate_device_mib") + " / " + mib("/device_limit_mib") + " (" +
+                                                  text("/device_limit_from") + ")"},
+                 {"device: cbrbench's allocations at most", mib("/device_allocated_peak_mib")},
+                 {"device: the driver's usage at most", mib("/device_usage_peak_mib")},
+                 {"mapped (host-visible) allocations at most", mib("/host_visible_allocated_peak_mib")}};
+    return kvTable("Memory (MiB)", rows);
+}
+
 }  // namespace
 
 std::string provenanceSection(const RunData& d) {
     return "<section id=\"provenance\"><h2>Provenance and settings</h2><div class=\"kv-grid\">" + runTables(d) +
-           contentTables(d) + wallTable(d) + "</div>" + validationMessages(d) +
+           contentTables(d) + wallTable(d) + memoryTable(d) + "</div>" + validationMessages(d) +
            checkerboardTables(d) + alignmentTable(d) + metricConventions(d) + "</section>";
 }
 

@@ -7,7 +7,7 @@
 namespace cbr::passes {
 namespace {
 
-constexpr uint32_t kGroup = 16;  // local size of taau_resolve.comp
+constexpr uint32_t kTaauGroup = 16;  // local size of taau_resolve.comp
 
 struct TaauPush {
     int32_t render_size[2];
@@ -120,7 +120,7 @@ void addTaauResolvePass(graph::Graph& graph, TaauResolve& r, VkDescriptorSet fra
         VkDescriptorSet sets[2] = {frame_set, set};
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel->layout, 0, 2, sets, 0, nullptr);
         vkCmdPushConstants(cmd, kernel->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-        vkCmdDispatch(cmd, (extent.width + kGroup - 1) / kGroup, (extent.height + kGroup - 1) / kGroup, 1);
+        vkCmdDispatch(cmd, (extent.width + kTaauGroup - 1) / kTaauGroup, (extent.height + kTaauGroup - 1) / kTaauGroup, 1);
     };
     graph.addPass(std::move(pass));
 }

@@ -250,23 +250,32 @@ void requireSubgroupOperations(VkPhysicalDevice physical, const std::string& dev
                           "shaders; cbrbench needs them (class counts, material reads)");
 }
 
-// VK_EXT_sample_locations: the `msaa-locations` checkerboard route, where it allows 2 samples.
-// Adds the extension to `extensions` when it does.
-bool enableSampleLocations2x(VkPhysicalDevice physical, std::vector<const char*>& extensions) {
+bool hasExtension(VkPhysicalDevice physical, const char* name) {
     uint32_t n = 0;
     vkEnumerateDeviceExtensionProperties(physical, nullptr, &n, nullptr);
     std::vector<VkExtensionProperties> available(n);
     vkEnumerateDeviceExtensionProperties(physical, nullptr, &n, available.data());
-    for (const auto& e : available)
-        if (std::strcmp(e.extensionName, VK_EXT_SAMPLE_LOCATIONS_EXTENSION_NAME) == 0) {
-            VkPhysicalDeviceSampleLocationsPropertiesEXT sl{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SAMPLE_LOCATIONS_PROPERTIES_EXT};
-            VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &sl};
-            vkGetPhysicalDeviceProperties2(physical, &p2);
-            if (!(sl.sampleLocationSampleCounts & VK_SAMPLE_COUNT_2_BIT)) return false;
-            extensions.push_back(VK_EXT_SAMPLE_LOCATIONS_EXTENSION_NAME);
-            return true;
-        }
-    return false;
+    return std::any_of(available.begin(), available.end(),
+                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+// Enables a device extension when the device has it.
+bool enableIfPresent(VkPhysicalDevice physical, const char* name, std::vector<const char*>& extensions) {
+    if (!hasExtension(physical, name)) return false;
+    extensions.push_back(name);
+    return true;
+}
+
+// VK_EXT_sample_locations: the `msaa-locations` checkerboard route, where it allows 2 samples.
+// Adds the extension to `extensions` when it does.
+bool enableSampleLocations2x(VkPhysicalDevice physical, std::vector<const char*>& extensions) {
+    if (!hasExtension(physical, VK_EXT_SAMPLE_LOCATIONS_EXTENSION_NAME)) return false;
+    VkPhysicalDeviceSampleLocationsPropertiesEXT sl{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SAMPLE_LOCATIONS_PROPERTIES_EXT};
+    VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &sl};
+    vkGetPhysicalDeviceProperties2(physical, &p2);
+    if (!(sl.sampleLocationSampleCounts & VK_SAMPLE_COUNT_2_BIT)) return false;
+    extensions.push_back(VK_EXT_SAMPLE_LOCATIONS_EXTENSION_NAME);
+    return true;
 }
 
 }  // namespace
@@ -340,6 +349,7 @@ Context::Context(const ContextOptions& options) {
 
     std::vector<const char*> extensions;
     caps.sample_locations_2x = enableSampleLocations2x(physical, extensions);
+    caps.memory_budget = enableIfPresent(physical, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME, extensions);
 
     float priority = 1.0f;
     VkDeviceQueueCreateInfo qinfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

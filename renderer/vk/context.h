@@ -9,6 +9,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include "renderer/vk/memory_use.h"
+
 namespace cbr::vk {
 
 struct DeviceDescription {
@@ -44,6 +46,7 @@ struct DeviceCaps {
     // Storage writes without a format qualifier, to multisampled images too: what the compute
     // clear of colour targets needs (passes/target_clear.h).
     bool compute_clear = false;
+    bool memory_budget = false;  // VK_EXT_memory_budget enabled: the driver's per-heap usage and budget
 };
 
 struct ValidationCounts {
@@ -83,6 +86,7 @@ public:
     // colour attachments are then also created as storage images where the format allows.
     bool compute_clears = false;
     std::string target_clear_rule;  // why, for run.json
+    MemoryUse memory_use;           // every allocation made through vk/resources
 
     // Runs `record` in a one-time command buffer and waits for it (uploads only).
     template <class F>

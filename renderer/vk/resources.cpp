@@ -24,9 +24,16 @@ VkDeviceMemory allocate(Context& ctx, const VkMemoryRequirements& req, VkMemoryP
     info.memoryTypeIndex = findMemoryType(ctx, req.memoryTypeBits, want);
     VkDeviceMemory memory;
     VK_CHECK(vkAllocateMemory(ctx.device, &info, nullptr, &memory));
+    const VkMemoryPropertyFlags flags = ctx.memory.memoryTypes[info.memoryTypeIndex].propertyFlags;
+    // lavapipe's memory is device-local and host-visible at once: counted as the device's.
+    ctx.memory_use.allocated(memory, req.size, (flags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) != 0);
     return memory;
 }
 
+void release(Context& ctx, VkDeviceMemory memory) {
+    ctx.memory_use.freed(memory);
+    vkFreeMemory(ctx.device, memory, nullptr);
+}
 
 }  // namespace
 
@@ -121,7 +128,7 @@ Buffer createReadbackBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags 
 
 void destroyBuffer(Context& ctx, Buffer& b) {
     if (b.buffer) vkDestroyBuffer(ctx.device, b.buffer, nullptr);
-    if (b.memory) vkFreeMemory(ctx.device, b.memory, nullptr);
+    if (b.memory) release(ctx, b.memory);
     b = {};
 }
 
@@ -238,7 +245,7 @@ void destroyImage(Context& ctx, Image& img) {
     if (img.view) vkDestroyImageView(ctx.device, img.view, nullptr);
     for (VkImageView v : img.layer_views) vkDestroyImageView(ctx.device, v, nullptr);
     if (img.image) vkDestroyImage(ctx.device, img.image, nullptr);
-    if (img.memory) vkFreeMemory(ctx.device, img.memory, nullptr);
+    if (img.memory) release(ctx, img.memory);
     img = {};
 }
 

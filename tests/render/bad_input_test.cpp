@@ -111,6 +111,9 @@ std::vector<Case> cases() {
         {"unknown_device", {"--device", "Voodoo2"}, {"Voodoo2", "llvmpipe"}},
         {"device_index", {"--device", "17"}, {"--device 17"}},
         {"zero_resolution", {"--res", "0x540"}, {"--res 0x540", "WIDTHxHEIGHT"}},
+        // The run's memory estimate against a test-set limit: refused before the first frame.
+        {"host_memory_limit", {"--host-memory-limit", "20"}, {"--res 64x48", "host memory", "--host-memory-limit"}},
+        {"device_memory_limit", {"--device-memory-limit", "0.5"}, {"--res 64x48", "device memory", "--device-memory-limit"}},
         {"garbage_resolution", {"--res", "wide"}, {"--res wide"}},
         {"resolution_above_limit", {"--res", "40000x100"}, {"--res 40000x100", "device limit"}},
         {"bad_shading_cost", {"--shading-cost", "0"}, {"--shading-cost"}},

@@ -99,6 +99,19 @@ TEST(Quality, WorstFramesAreWrittenOnceWithPageCopies) {
         if (entry.is_regular_file()) on_disk.insert(std::filesystem::relative(entry.path(), out).string());
     EXPECT_EQ(listed, named);
     EXPECT_EQ(on_disk, named);
+
+    // The memory figures: the estimate made before the first frame, within its limit and not
+    // far below what the run then used; a reading after each phase; the device's allocations.
+    const auto& m = run["memory"];
+    ASSERT_TRUE(m.is_object()) << run.dump(1);
+    const double peak = m["peak_rss_mib"].get<double>(), estimate = m["estimate_host_mib"].get<double>();
+    EXPECT_GT(peak, 0);
+    EXPECT_LE(estimate, m["host_limit_mib"].get<double>());
+    EXPECT_GE(estimate, 0.75 * peak) << "the estimate misses a quarter of the peak";
+    EXPECT_GT(m["device_allocated_peak_mib"].get<double>(), 0);
+    std::vector<std::string> phases;
+    for (const auto& reading : m["after"]) phases.push_back(reading["after"].get<std::string>());
+    EXPECT_EQ(phases, (std::vector<std::string>{"quality_pass", "timed_frames", "worst_images", "report"}));
 }
 
 TEST(Quality, StaticPathGivesFiniteCrawlAndReferenceIsExact) {
