@@ -49,10 +49,14 @@ Growth growth(const RunState& s) {
     const double readback = px * (4 + 1 + (analysis ? 16 : 0));
     // The frame rows: a timed row per repetition and a quality row, per configuration and frame.
     const double rows = frames * configs * double(s.options.repeat + 1) * 1024;
-    // The worst images' phase: encodes at once (about twice a frame's RGBA8 each) and the two
-    // worst frames they read (RGBA8 reference and image, class map, three float maps).
-    const double encoders = std::clamp(std::min(double(std::thread::hardware_concurrency()), 768e6 / (8 * px)), 1.0, 16.0);
-    const double writing = encoders * 8 * px + 2 * px * 21;
+    // The alignment check's images, kept to the end: every configuration's middle frame and
+    // the reference's three around it.
+    const double alignment = (configs + 3) * px * 4;
+    // The worst images' phase: encodes at once (about twice a frame's RGBA8 each) and the worst
+    // frames they read, up to three at once (RGBA8 reference and image, class map, float maps).
+    const double worst_frames = std::min(3.0, scored * 2);
+    const double encoders = std::min(double(worstImageEncoders(s.w, s.h)), worst_frames * 7);
+    const double writing = encoders * kWorstEncodeBytesPerPixel * px + worst_frames * px * 21;
     double scoring;
     if (device) {
         g.device = scored * 2 * px * 21;  // each configuration's two worst-frame stores
@@ -67,7 +71,7 @@ Growth growth(const RunState& s) {
     // The CPU scorer's scratch on each worker (FLIP's and SSIM's planes: about 48 bytes a pixel).
     if (!device) scoring += double(std::thread::hardware_concurrency()) * px * 48;
     // The rest (thread stacks, the allocator's slack): a tenth more.
-    g.host = 1.1 * (rows + std::max(scoring, writing));
+    g.host = 1.1 * (rows + alignment + std::max(scoring, writing));
     return g;
 }
 

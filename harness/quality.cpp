@@ -327,15 +327,6 @@ public:
         std::filesystem::create_directories(dir / "worst" / "page");
     }
 
-    // At most this many encodes at once for w x h images: each holds about twice the frame's
-    // RGBA8 bytes while it runs (a coloured map, the filtered rows, the stream), and a 4K run
-    // must stay within its memory (about 66 MB an encode there: 11 at once).
-    static unsigned encoders(int width, int height) {
-        const double job_bytes = 2.0 * 4.0 * double(width) * double(height);
-        const auto by_memory = unsigned(std::max(2.0, 768e6 / job_bytes));
-        return std::clamp(std::min(std::thread::hardware_concurrency(), by_memory), 1u, 16u);
-    }
-
     void add(WorstFrame& wf, const Worst& worst) {
         char stem[160];
         std::snprintf(stem, sizeof stem, "%s_%04d", wf.variant.c_str(), wf.frame);
@@ -472,7 +463,7 @@ std::vector<WorstFrame> QualityScorer::finish(const std::filesystem::path& dir) 
     for (auto& [variant, c] : chains_) any |= c->worst_ssim.frame >= 0 || c->worst_eci.frame >= 0;
     if (!any) return out;
     // Nothing else runs now: the cores encode, as many as memory allows.
-    const unsigned threads = Writer::encoders(width_, height_);
+    const unsigned threads = worstImageEncoders(width_, height_);
     WorkerPool encoders(threads);
     Writer writer(dir, width_, height_, flip_ppd_, encoders, wall_);
     for (const auto& variant : variant_order_) {
@@ -495,6 +486,12 @@ std::vector<WorstFrame> QualityScorer::finish(const std::filesystem::path& dir) 
     }
     writer.wait();
     return out;
+}
+
+unsigned worstImageEncoders(int width, int height) {
+    const double job_bytes = kWorstEncodeBytesPerPixel * double(width) * double(height);
+    const auto by_memory = unsigned(std::max(2.0, 768e6 / job_bytes));
+    return std::clamp(std::min(std::thread::hardware_concurrency(), by_memory), 1u, 16u);
 }
 
 std::vector<std::string> worstFiles(const std::vector<WorstFrame>& worst) {

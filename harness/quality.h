@@ -98,6 +98,12 @@ private:
     std::vector<std::string> variant_order_;  // first-scored order: the order finish() reports
 };
 
+// At most this many worst-frame images are encoded at once for w x h images: each encode holds
+// about twice the frame's RGBA8 bytes while it runs (a coloured map, the filtered rows, the
+// stream), and a 4K run must stay within its memory (about 66 MB an encode there: 11 at once).
+inline constexpr double kWorstEncodeBytesPerPixel = 8;
+unsigned worstImageEncoders(int width, int height);
+
 // Every distinct file of the worst frames, in first-use order (run.json `files`).
 std::vector<std::string> worstFiles(const std::vector<WorstFrame>& worst);
 
