@@ -44,6 +44,7 @@ struct Tunables {
     double taau_scale = 0.7071;  // taau: per-axis render scale, Halton(2,3) jitter phases, history blend weight
     int taau_phases = 8;
     double taau_blend = 0.1;
+    double taau_lod_offset = 0;  // added to taau's texture LOD bias, log2(render width / output width)
     double cso_tolerance = 0.05;
     CsoMode cso_mode = CsoMode::Relative;
     double cbr_lod_bias = -1.0;  // matches full-res derivatives (chosen by a sweep: docs/history); the paper: -0.5

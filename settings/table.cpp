@@ -52,6 +52,11 @@ std::vector<Row> makeTable() {
     add({"taau-blend", "taau_blend", "taau history blend weight of a sample on the pixel centre", Type::Real, {}, 0, 1,
          true, false, {}, {"taau"}, "blend", false, 15, Hash::UnlessDefault, true, false,
          field<&Tunables::taau_blend>()});
+    add({"taau-lod-offset", "taau_lod_offset",
+         "added to taau's texture LOD bias of log2(render width / output width): below 0 sharper textures, more "
+         "shimmer for the history to absorb",
+         Type::Real, {}, -4, 4, false, false, {}, {"taau"}, nullptr, false, 16, Hash::UnlessDefault, true, false,
+         field<&Tunables::taau_lod_offset>()});
     add({"cso-tolerance", "cso_tolerance", "cbr-cso depth tolerance (relative, or scene units)", Type::Real, {}, 0,
          kNoMax, true, true, {}, {"cbr-cso"}, "tol", false, 4, Hash::Always, true, false,
          field<&Tunables::cso_tolerance>()});

@@ -133,7 +133,7 @@ public:
             glm::vec2 offset = -2.0f * jitter / glm::vec2(render.width, render.height);
             setup.params.view_offsets = glm::vec4(offset, offset);
             // Textures at the output's derivatives: the accumulated image has its detail.
-            setup.params.lod_bias = float(std::log2(double(render.width) / settings_.width));
+            setup.params.lod_bias = float(std::log2(double(render.width) / settings_.width) + settings_.taau_lod_offset);
             history_ ^= 1;
         }
         std::shared_ptr<const passes::SceneFrame> frame = setup.scene_frame;
