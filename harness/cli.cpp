@@ -24,12 +24,12 @@
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
 #include "renderer/scene/scene.h"
-#include "renderer/variants/checkerboard.h"
 #include "renderer/variants/variants.h"
 #include "renderer/scoring/device_cost.h"
 #include "renderer/vk/context.h"
 #include "reports/report.h"
 #include "reports/sweep.h"
+#include "settings/options.h"
 
 namespace cbr::harness {
 namespace {
@@ -41,8 +41,8 @@ std::string variantNames() {
     return out;
 }
 
-constexpr const char* kFlipPpdHelp =
-    "FLIP's pixels per degree of visual angle (default 67.02: 0.7 m from a 0.7 m wide, 3840-pixel monitor)";
+// --flip-ppd of score and metric-cost: the table's row, as run's.
+const std::string kFlipPpdHelp = settings::optionHelp(*settings::find("flip-ppd"));
 
 int listDevices() {
     auto devices = cbr::vk::listDevices();
@@ -110,62 +110,14 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_flag("--save-frames", o.save_frames, "save display images as PNG (the scored quality pass)");
     cmd->add_option("--export", o.exports, "also write the results as: gbench (gbench.json, Google Benchmark JSON)");
     cmd->add_option("--out", o.out, "output directory (default out/<scene>-<path>-<date-time>)");
-    cmd->add_option("--drr-scale", o.drr_scale, "drr per-axis render scale in (0, 1]")->capture_default_str();
-    cmd->add_option("--drr-filter", o.drr_filter, "drr upscale filter: bilinear or catmull-rom")->capture_default_str();
-    cmd->add_option("--taau-scale", o.taau_scale, "taau per-axis render scale in (0, 1]")->capture_default_str();
-    cmd->add_option("--taau-phases", o.taau_phases, "taau Halton(2,3) jitter phases: 8 or 16")->capture_default_str();
-    cmd->add_option("--taau-blend", o.taau_blend, "taau history blend weight of a sample on the pixel centre, (0, 1]")
-        ->capture_default_str();
-    cmd->add_option("--drr-target-ms", o.drr_target_ms, "dynamic drr: target GPU frame time in ms (0: fixed scale)")
-        ->capture_default_str();
-    cmd->add_option("--shading-cost", o.shading_cost, "fragment shading about K times more expensive, same image")
-        ->capture_default_str();
-    cmd->add_option("--exposure", o.exposure, "exposure multiplier before tone mapping")->capture_default_str();
-    cmd->add_option("--cbr-route", o.cbr_route, std::string("checkerboard route: ") + variants::routeNames())
-        ->capture_default_str();
-    cmd->add_option("--cbr-history", o.cbr_history,
-                    "checkerboard history: quarter (frame N-1's quarter-res samples, the paper's) or full (the "
-                    "previous resolved frame, clipped to the neighbourhood)")
-        ->capture_default_str();
-    cmd->add_option("--history-filter", o.history_filter,
-                    "how --cbr-history full reads the history: catmull-rom or bilinear (blurs frame after frame)")
-        ->capture_default_str();
-    cmd->add_option("--history-format", o.history_format,
-                    "how --cbr-history full stores the history: b10g11r11 (4 bytes a pixel; rgba16f where the "
-                    "device cannot store it) or rgba16f (8 bytes, exact on a still camera)")
-        ->capture_default_str();
-    cmd->add_option("--cbr-lod-bias", o.cbr_lod_bias, "texture LOD bias of checkerboard scene passes (-1 matches full-res derivatives; the paper's: -0.5)")
-        ->capture_default_str();
-    cmd->add_option("--cso-tolerance", o.cso_tolerance, "cbr-cso depth tolerance (relative, or scene units)")
-        ->capture_default_str();
-    cmd->add_option("--debug-shading", o.debug_shading,
-                    "none, or pixel-id: colours encode the full-res pixel each sample lands on (tests)")
-        ->capture_default_str();
     cmd->add_option("--debug-slowdown", o.debug_slowdown,
                     "PASS=PCT: make one pass PCT percent slower with calibrated extra GPU work (tests the detector; needs "
                     "--warmup >= 2)");
     cmd->add_option("--pipeline", o.pipeline, "forward or deferred (G-buffer, lighting resolve)")->capture_default_str();
-    cmd->add_option("--reference", o.reference, "what variants are scored against: full or ssaa")
-        ->capture_default_str();
-    cmd->add_option("--ssaa", o.ssaa, "samples per axis of the ssaa reference (box filter)")->capture_default_str();
-    cmd->add_option("--cso-mode", o.cso_mode, "cbr-cso tolerance mode: relative or absolute")->capture_default_str();
-    cmd->add_option("--resolve-impl", o.resolve_impl,
-                    "fused (resolve/upscale write the display image), separate (then a tonemap pass), or reference "
-                    "(the untiled passes the tiled resolve replaced, for image and time comparisons)")
-        ->capture_default_str();
-    cmd->add_option("--target-clear", o.target_clear,
-                    "how scene passes clear colour targets: auto (compute on NVIDIA, load op elsewhere), load-op, or "
-                    "compute (a compute pass stores the clear value)")
-        ->capture_default_str();
+    settings::addOptions(cmd, o.tune);
     cmd->add_option("--scene-offset", o.scene_offset, "X,Y,Z: move the scene and the camera path by this (e.g. 1e6,1e6,1e6)");
     cmd->add_option("--scene-scale", o.scene_scale, "scale the scene and the camera path about the origin (0.001: mm)")
         ->capture_default_str();
-    cmd->add_option("--flip-ppd", o.flip_ppd, kFlipPpdHelp);
-    cmd->add_option("--scorer", o.scorer,
-                    "where quality frames are scored: device (Vulkan compute, where the images are), cpu, or auto "
-                    "(device on GPUs, cpu on lavapipe, where it is faster)")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"auto", "device", "cpu"}));
     cmd->add_option("--near", o.near, "near plane of every keyframe, scene units (after placement)");
     cmd->add_option("--far", o.far, "far plane of every keyframe, scene units (after placement)");
     cmd->add_option("--host-memory-limit", o.host_memory_limit_mib,
@@ -449,7 +401,7 @@ Command stressCommand(CLI::App& app) {
     cli->add_option("--cases", a->cases, "comma-separated case names (default: all; `--list` names them)");
     cli->add_option("--pipelines", a->pipelines, "forward and/or deferred")->capture_default_str();
     cli->add_option("--cbr-route", so.cbr_route,
-                    std::string("checkerboard route of every run: ") + variants::routeNames() + " (default: auto)");
+                    std::string("checkerboard route of every run: ") + settings::accepted(*settings::find("cbr-route")) + " (default: auto)");
     cli->add_flag("--validate", so.validate, "Khronos validation layer on in every run; any message fails the case");
     cli->add_option("--static-frames", so.static_frames, "length of the static-camera case")->capture_default_str();
     cli->add_option("--subpixel-frames", so.subpixel_frames, "length of the sub-pixel motion case")

@@ -20,6 +20,7 @@
 #include "reports/csv.h"
 #include "reports/html.h"
 #include "reports/report_data.h"
+#include "settings/table.h"
 
 namespace cbr::harness {
 
@@ -30,9 +31,12 @@ using reports::RunData;
 
 // The settings in run.json that change timings or images: part of a cell's key.
 // (debug_slowdown is left out on purpose: it is how a detector test makes a known regression.)
-const std::vector<std::string> kKeySettings = {
-    "shading_cost", "drr_scale",  "drr_filter", "cso_tolerance", "cso_mode",    "cbr_route",  "cbr_lod_bias",
-    "reference",    "resolve_impl", "cbr_history", "history_filter", "history_format", "taau_scale", "taau_phases", "taau_blend"};
+// The settings table's rows that say so, in their order.
+const std::vector<std::string> kKeySettings = [] {
+    std::vector<std::string> key;
+    for (const settings::Row* row : settings::compareKey()) key.emplace_back(row->column);
+    return key;
+}();
 
 struct Side {
     RunData data;

@@ -20,6 +20,7 @@
 #include "reports/csv_read.h"
 #include "reports/output_dir.h"
 #include "renderer/variants/variants.h"
+#include "settings/table.h"
 
 namespace cbr::harness {
 namespace {
@@ -167,26 +168,15 @@ std::string planHash(const RunOptions& o) {
     json j = {{"variants", o.variants},        {"frames", o.frames},
               {"repeat", o.repeat},            {"warmup", o.warmup},
               {"device", o.device},            {"validate", o.validate},
-              {"drr_filter", o.drr_filter},    {"drr_scale", o.drr_scale},
-              {"drr_target_ms", o.drr_target_ms}, {"shading_cost", o.shading_cost},
-              {"exposure", o.exposure},        {"cbr_route", o.cbr_route},
-              {"cbr_lod_bias", o.cbr_lod_bias}, {"cso_tolerance", o.cso_tolerance},
-              {"cso_mode", o.cso_mode}, {"resolve_impl", o.resolve_impl},        {"debug_shading", o.debug_shading},
-              {"debug_slowdown", o.debug_slowdown}, {"reference", o.reference},
-              {"ssaa", o.ssaa},                {"scene_offset", o.scene_offset},
+              {"debug_slowdown", o.debug_slowdown}, {"scene_offset", o.scene_offset},
               {"scene_scale", o.scene_scale},  {"near", o.near ? json(*o.near) : json()},
               {"far", o.far ? json(*o.far) : json()}};
-    // Only when set: plans made before --flip-ppd existed keep their hash.
-    if (o.flip_ppd != metrics::kFlipDefaultPpd) j["flip_ppd"] = o.flip_ppd;
-    if (o.target_clear != "auto") j["target_clear"] = o.target_clear;
-    // Likewise the settings added with the full history and taau (they change images and times).
+    // The table's rows as each says: settings added after plans were first hashed enter only
+    // away from their default, so those plans keep their hash.
+    for (const auto& row : settings::table())
+        if (row.hash == settings::Hash::Always || (row.hash == settings::Hash::UnlessDefault && !settings::isDefault(row, o.tune)))
+            j[row.column] = settings::toJson(row, o.tune);
     const RunOptions defaults;
-    if (o.cbr_history != defaults.cbr_history) j["cbr_history"] = o.cbr_history;
-    if (o.history_filter != defaults.history_filter) j["history_filter"] = o.history_filter;
-    if (o.history_format != defaults.history_format) j["history_format"] = o.history_format;
-    if (o.taau_scale != defaults.taau_scale) j["taau_scale"] = o.taau_scale;
-    if (o.taau_phases != defaults.taau_phases) j["taau_phases"] = o.taau_phases;
-    if (o.taau_blend != defaults.taau_blend) j["taau_blend"] = o.taau_blend;
     if (o.animation != defaults.animation) j["animation"] = o.animation;
     if (o.fps != defaults.fps) j["fps"] = o.fps;
     // The jobs, not the lists' spelling: "a,b" and "b,a" are one plan.

@@ -35,7 +35,7 @@ struct Growth {
 Growth growth(const RunState& s) {
     const double px = double(s.w) * double(s.h);
     const double configs = double(s.p.configs.size());
-    const double scored = std::max(0.0, configs - (s.options.reference == "ssaa" ? 0.0 : 1.0));
+    const double scored = std::max(0.0, configs - (s.options.tune.reference == settings::Reference::Ssaa ? 0.0 : 1.0));
     const double frames = double(s.p.poses.size());
     const bool device = s.results.scorer == "device";
     int in_flight = 1;

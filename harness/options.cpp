@@ -2,6 +2,7 @@
 #include "harness/options.h"
 
 #include "camera_paths/text.h"
+#include "settings/table.h"
 
 #include <charconv>
 #include <cmath>
@@ -14,10 +15,8 @@
 namespace cbr::harness {
 
 void checkFlipPpd(double ppd) {
-    if (!(ppd > 0) || !std::isfinite(ppd))
-        throw std::invalid_argument("--flip-ppd " + std::to_string(ppd) +
-                                    ": expected pixels per degree > 0 (default 67.02: 0.7 m from a 0.7 m wide, "
-                                    "3840-pixel monitor)");
+    settings::Tunables t;
+    settings::setNumber(*settings::find("flip-ppd"), t, ppd);
 }
 
 // Digits only: sscanf's %lu took leading blanks, signs and wrapped "-18446744073709551615"

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "metrics/flip.h"
 #include "renderer/settings.h"
+#include "settings/settings.h"
 
 namespace cbr::harness {
 
@@ -25,31 +25,10 @@ struct RunOptions {
     bool validate = false;
     bool save_frames = false;
     std::string out;                  // "" -> out/<scene>-<path>-<date-time>
-    std::string drr_filter = "catmull-rom";
-    double drr_scale = 0.7071;
-    double drr_target_ms = 0;
-    double taau_scale = 0.7071;       // taau per-axis render scale
-    int taau_phases = 8;              // taau Halton(2,3) jitter phases: 8 or 16
-    double taau_blend = 0.1;          // taau history blend weight of a sample on the pixel centre
-    int shading_cost = 1;
-    double exposure = 1.0;
-    std::string cbr_route = "auto";
-    std::string cbr_history = "quarter";  // quarter | full: the checkerboard resolve's history
-    std::string history_filter = "catmull-rom";  // full history's read: catmull-rom | bilinear
-    std::string history_format = "b10g11r11";    // full history's storage: b10g11r11 | rgba16f
-    double cbr_lod_bias = -1.0;      // chosen by a sweep over the built-in paths (docs/history); -0.5 is the paper's
-    double cso_tolerance = 0.05;
-    std::string cso_mode = "relative";
-    std::string resolve_impl = "fused";  // fused | separate | reference (renderer/settings.h)
-    std::string target_clear = "auto";   // auto | load-op | compute (renderer/settings.h)
-    std::string debug_shading = "none";  // none | pixel-id
-    std::string pipeline = "forward";    // forward | deferred
     std::string debug_slowdown;          // PASS=PCT: a known slowdown for testing regression detection
-    std::string reference = "full";      // full | ssaa: what variants are scored against
     std::string exports;                 // --export: comma list of formats (harness/export.h)
-    int ssaa = 4;                        // k x k samples per pixel of the ssaa reference
-    double flip_ppd = metrics::kFlipDefaultPpd;  // FLIP's observer: pixels per degree of visual angle
-    std::string scorer = "auto";         // auto | device | cpu: where quality frames are scored
+    std::string pipeline = "forward";    // forward | deferred, or a comma list of them (a job matrix)
+    settings::Tunables tune;             // every row of the settings table, typed (settings/table.h)
     // Placement (harness/placement.h): world' = offset + scale * world, scene and path together.
     std::string scene_offset;            // "X,Y,Z" ("": none)
     double scene_scale = 1.0;

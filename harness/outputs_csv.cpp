@@ -7,6 +7,7 @@
 #include "harness/sweep.h"
 #include "renderer/variants/variants.h"
 #include "reports/sweep.h"
+#include "settings/table.h"
 
 namespace cbr::harness {
 
@@ -169,24 +170,12 @@ namespace {
 
 // The settings of the variants they change: the swept value, else the run's own.
 void sweepSettingCells(std::map<std::string, Cell>& row, const VariantRun& vr, const RunContext& rc) {
-    const render::Settings& s = rc.settings;
-    if (vr.variant == "drr") {
-        row["drr_scale"] = s.drr_scale;
-        row["drr_filter"] = rc.options.drr_filter;
-    }
-    if (vr.variant == "taau") {
-        row["taau_scale"] = s.taau_scale;
-        row["taau_blend"] = s.taau_blend;
-    }
-    if (vr.variant == "cbr-cso") {
-        row["cso_tolerance"] = s.cso_tolerance;
-        row["cso_mode"] = rc.options.cso_mode;
-    }
-    if (variants::isCheckerboardVariant(vr.variant)) {
-        row["cbr_lod_bias"] = rc.options.cbr_lod_bias;
-        row["cbr_route"] = rc.options.cbr_route;
-        row["cbr_history"] = vr.variant == "cbr-clip" ? std::string("full") : rc.options.cbr_history;
-    }
+    // The swept rows of the variants they name (shading cost, for all, has a column of its own).
+    for (const auto& r : settings::table())
+        if (r.sweep && !r.variants.empty() && settings::appliesTo(r, vr.variant))
+            row[r.column] = r.type == settings::Type::Word ? Cell(settings::text(r, rc.settings)) : Cell(r.field.get(rc.settings));
+    // cbr-clip always reads the full history (renderer/variants/checkerboard.cpp).
+    if (vr.variant == "cbr-clip") row["cbr_history"] = std::string("full");
     for (const auto& st : vr.settings) {
         std::string column = st.name;
         std::replace(column.begin(), column.end(), '-', '_');
@@ -207,7 +196,7 @@ void writeSweepCsv(const std::filesystem::path& dir, const RunContext& rc) {
         std::map<std::string, Cell> row{{"config", vr.name},
                                         {"variant", vr.variant},
                                         {"path", sweepPathName(rc.options.path)},
-                                        {"reference", rc.options.reference},
+                                        {"reference", settings::text(*settings::find("reference"), rc.options.tune)},
                                         {"pipeline", rc.settings.deferred ? "deferred" : "forward"},
                                         {"shading_cost", rc.settings.shading_cost},
                                         {"status", sm.status},

@@ -16,6 +16,7 @@
 #include "metrics/image_io.h"
 #include "renderer/vk/context.h"
 #include "reports/csv.h"
+#include "settings/table.h"
 
 namespace cbr::harness {
 namespace {
@@ -114,7 +115,7 @@ json deviceJson(const RunContext& rc) {
 json settingsJson(const RunContext& rc) {
     const RunResults& r = rc.results;
     const auto& s = rc.settings;
-    return {{"width", s.width},
+    json out = {{"width", s.width},
             {"height", s.height},
             {"pipeline", s.deferred ? "deferred" : "forward"},
             {"frames", r.frames},
@@ -122,24 +123,6 @@ json settingsJson(const RunContext& rc) {
             {"warmup_frames", rc.options.warmup},
             {"warmup_rule", "fixed count of the path's first frames per variant per repetition"},
             {"variant_order", r.order},
-            {"shading_cost", s.shading_cost},
-            {"exposure", s.exposure},
-            {"cbr_route", s.cbr_route},
-            {"cbr_lod_bias", s.cbr_lod_bias},
-            {"cbr_history", s.cbr_full_history ? "full" : "quarter"},
-            {"history_filter", s.cbr_history_catmull_rom ? "catmull-rom" : "bilinear"},
-            {"history_format", render::historyFormatName(s.cbr_history_format)},
-            {"cso_tolerance", s.cso_tolerance},
-            {"cso_mode", s.cso_absolute ? "absolute" : "relative"},
-            {"resolve_impl", render::resolveImplName(s.resolve_impl)},
-            {"target_clear", render::targetClearName(s.target_clear)},
-            {"debug_shading", s.debug_pixel_id ? "pixel-id" : "none"},
-            {"drr_scale", s.drr_scale},
-            {"drr_filter", s.drr_filter == render::DrrFilter::Bilinear ? "bilinear" : "catmull-rom"},
-            {"drr_target_ms", s.drr_control.target_ms},
-            {"taau_scale", s.taau_scale},
-            {"taau_phases", s.taau_phases},
-            {"taau_blend", s.taau_blend},
             {"drr_control",
              {{"min_scale", s.drr_control.min_scale},
               {"max_scale", s.drr_control.max_scale},
@@ -148,6 +131,10 @@ json settingsJson(const RunContext& rc) {
             {"frames_in_flight", s.frames_in_flight},
             {"depth", "reversed-Z, D32_SFLOAT"},
             {"save_frames", rc.options.save_frames}};
+    for (const auto& row : settings::table())
+        if (row.run_json)
+            out[row.column] = row.json_float ? json(float(row.field.get(s))) : settings::toJson(row, s);
+    return out;
 }
 
 // The scene: source, content hash, counts, load cost, animations and cameras.
@@ -204,16 +191,16 @@ json metricsJson(const RunContext& rc) {
                 {"flip", "LDR-FLIP (Andersson et al. 2020) as NVIDIA's tool v1.6 computes it: mean of the error "
                          "map and weighted quartiles (pixels weighted by their error); summary flip_mean is the mean "
                          "of the per-frame means"},
-                {"flip_ppd", rc.options.flip_ppd},
-                {"reference_kind", rc.options.reference == "ssaa"
-                                       ? "ssaa: " + std::to_string(rc.options.ssaa) + "x" +
-                                             std::to_string(rc.options.ssaa) + " samples per pixel, box filter in HDR"
+                {"flip_ppd", rc.options.tune.flip_ppd},
+                {"reference_kind", rc.options.tune.reference == settings::Reference::Ssaa
+                                       ? "ssaa: " + std::to_string(rc.options.tune.ssaa) + "x" +
+                                             std::to_string(rc.options.tune.ssaa) + " samples per pixel, box filter in HDR"
                                        : std::string("full")},
                 // The library --save-frames writes through; loaded only then (OpenImageIO's
                 // plugins are 80 MB of a run's memory), the worst frames' encoders otherwise.
                 {"image_io", rc.options.save_frames ? metrics::imageIoBackend() : metrics::encodeBackend()},
                 {"scorer", r.scorer},
-                {"scorer_requested", rc.options.scorer},
+                {"scorer_requested", settings::text(*settings::find("scorer"), rc.options.tune)},
                 {"scorer_note", r.scorer_note},
                 {"scored_repeat", 0}};
     if (!r.reference_ms.empty()) out["reference_gpu_ms_median"] = median(r.reference_ms);

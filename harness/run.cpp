@@ -1,5 +1,6 @@
 // `cbrbench run`: prepare, open the device, upload, render, score, write; and the outer sweeps.
 #include "harness/run.h"
+#include "settings/table.h"
 
 #include <chrono>
 #include <cstdio>
@@ -24,9 +25,10 @@ void checkDeviceLimits(const RunOptions& options, const render::Settings& settin
         throw std::invalid_argument("--res " + options.resolution + ": above the device limit; expected each side <= " +
                                     std::to_string(max_dim) + " on " + ctx.description.name);
 
-    if (options.reference == "ssaa" && (settings.width * uint32_t(options.ssaa) > max_dim ||
-                                        settings.height * uint32_t(options.ssaa) > max_dim))
-        throw std::invalid_argument("--ssaa " + std::to_string(options.ssaa) + ": the " + options.resolution +
+    const int ssaa = options.tune.ssaa;
+    if (options.tune.reference == settings::Reference::Ssaa &&
+        (settings.width * uint32_t(ssaa) > max_dim || settings.height * uint32_t(ssaa) > max_dim))
+        throw std::invalid_argument("--ssaa " + std::to_string(ssaa) + ": the " + options.resolution +
                                     " reference would exceed the device limit of " + std::to_string(max_dim) +
                                     "; expected a smaller factor or resolution");
 }
@@ -103,7 +105,7 @@ int runOuterSweeps(const RunOptions& options, const std::vector<OuterSweep>& out
     auto sub = [&](const OuterSweep& o, const std::filesystem::path& out) {
         RunOptions s = options;
         s.path = o.path;
-        s.reference = o.reference;
+        settings::setText(*settings::find("reference"), s.tune, o.reference);
         s.params = o.params;
         s.out = out.string();
         return s;
@@ -141,7 +143,7 @@ int runOuterSweeps(const RunOptions& options, const std::vector<OuterSweep>& out
 int runBenchmark(const RunOptions& options) {
     // A sweep over paths or reference kinds (harness/sweep.h): one run per combination.
     if (options.sweep) {
-        auto outer = outerSweeps(options.path, options.reference, options.params);
+        auto outer = outerSweeps(options.path, settings::text(*settings::find("reference"), options.tune), options.params);
         if (outer.size() > 1 || outer[0].params.size() != options.params.size()) return runOuterSweeps(options, outer);
     }
     WallAccount wall;

@@ -46,14 +46,14 @@ RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene
       h(int(prepared.settings.height)),
       results(startResults(prepared)),
       workers(std::max(1u, std::thread::hardware_concurrency() / 2)),
-      scorer(w, h, prepared.options.flip_ppd, workers, &account),
+      scorer(w, h, prepared.options.tune.flip_ppd, workers, &account),
       mid(prepared.poses.size() / 2),
       mid_images(prepared.configs.size()),
       reference_frames(prepared.poses.size()),
       quality_rows(prepared.configs.size() * prepared.poses.size()),
       progress("frames",
                int(prepared.configs.size() * prepared.poses.size()) * (prepared.options.repeat + 1) +
-                   (prepared.options.reference == "ssaa" ? int(prepared.poses.size()) : 0),
+                   (prepared.options.tune.reference == settings::Reference::Ssaa ? int(prepared.poses.size()) : 0),
                !prepared.options.quiet),
       renderers(prepared.configs.size()) {}
 
@@ -141,7 +141,7 @@ AlignmentCheck checkAlignment(const std::vector<uint8_t>& variant, const std::ve
 
 // The first configuration is full: the reference, unless `--reference ssaa` (a sweep's
 // other full configurations differ only in shading cost and are scored against it).
-bool isReference(const RunState& s, size_t vi) { return vi == 0 && s.options.reference != "ssaa"; }
+bool isReference(const RunState& s, size_t vi) { return vi == 0 && s.options.tune.reference != settings::Reference::Ssaa; }
 
 // A worst frame the device kept (Renderer::deviceWorst), as the scorer's images; false when
 // the device kept another frame (the two would have to disagree on which is worse).
@@ -367,9 +367,9 @@ private:
 // `--reference ssaa`: a supersampled renderer is the reference, and `full` is scored too.
 // Its frames are rendered side by side with the configurations' in the quality pass.
 void makeSsaaReference(RunState& s) {
-    if (s.options.reference != "ssaa") return;
+    if (s.options.tune.reference != settings::Reference::Ssaa) return;
     render::Settings ref_settings = s.p.settings;
-    ref_settings.supersample = s.options.ssaa;
+    ref_settings.supersample = s.options.tune.ssaa;
     ref_settings.analysis = false;
     {
         WallAccount::Scope scope(s.wall, WallPart::Pipelines);
@@ -382,7 +382,7 @@ void makeSsaaReference(RunState& s) {
 namespace {
 
 double keepSsaaFrame(RunState& s, render::FrameResult&& fr) {
-    s.progress.step("reference (ssaa " + std::to_string(s.options.ssaa) + "x" + std::to_string(s.options.ssaa) + ")");
+    s.progress.step("reference (ssaa " + std::to_string(s.options.tune.ssaa) + "x" + std::to_string(s.options.tune.ssaa) + ")");
     s.results.reference_ms.push_back(fr.gpu_ms);
     auto image = std::make_shared<const std::vector<uint8_t>>(std::move(fr.rgba));
     keepReference(s, size_t(fr.index), image);
@@ -415,10 +415,11 @@ void makeRenderers(RunState& s) {
 // the faster (docs/results/current.md); a device that cannot run the metrics falls back to
 // the CPU under auto, and stops the run under `device`.
 void chooseScorer(RunState& s) {
-    const std::string& want = s.options.scorer;
-    if (want == "cpu" || (want == "auto" && s.ctx.description.is_lavapipe)) {
+    using settings::Scorer;
+    const Scorer want = s.options.tune.scorer;
+    if (want == Scorer::Cpu || (want == Scorer::Auto && s.ctx.description.is_lavapipe)) {
         s.results.scorer = "cpu";
-        if (want == "auto") s.results.scorer_note = "auto: lavapipe, where the CPU scorer is faster";
+        if (want == Scorer::Auto) s.results.scorer_note = "auto: lavapipe, where the CPU scorer is faster";
         return;
     }
     int in_flight = 1;
@@ -428,10 +429,10 @@ void chooseScorer(RunState& s) {
         scoring::DeviceMetricsSettings settings;
         settings.width = uint32_t(s.w);
         settings.height = uint32_t(s.h);
-        settings.flip_ppd = s.options.flip_ppd;
+        settings.flip_ppd = s.options.tune.flip_ppd;
         s.device_scoring = std::make_unique<scoring::DeviceScoring>(s.ctx, settings, in_flight);
     } catch (const vk::Unsupported& e) {
-        if (want == "device") throw std::invalid_argument(std::string("--scorer device: ") + e.what() + "; expected --scorer cpu or auto on this device");
+        if (want == Scorer::Device) throw std::invalid_argument(std::string("--scorer device: ") + e.what() + "; expected --scorer cpu or auto on this device");
         s.results.scorer = "cpu";
         s.results.scorer_note = std::string("auto: the device cannot score (") + e.what() + ")";
         return;
@@ -442,7 +443,7 @@ void chooseScorer(RunState& s) {
                                                                                   : scoring::ScoringRole::Variant);
     if (s.ssaa_reference) s.ssaa_reference->scoreOnDevice(*s.device_scoring, scoring::ScoringRole::Reference);
     s.results.scorer = "device";
-    if (want == "auto") s.results.scorer_note = "auto: a GPU, where the images are";
+    if (want == Scorer::Auto) s.results.scorer_note = "auto: a GPU, where the images are";
 }
 
 // A debug slowdown calibrates on its first warm-up frames: give each renderer enough

@@ -4,6 +4,7 @@
 #include "camera_paths/text.h"
 #include "renderer/variants/variants.h"
 #include "reports/sweep.h"
+#include "settings/table.h"
 
 #include <algorithm>
 #include <cctype>
@@ -39,13 +40,6 @@ std::vector<std::string> split(const std::string& s, char sep) {
     }
 }
 
-bool inRange(const std::string& name, double v) {
-    if (name == "cso-tolerance") return v > 0;
-    if (name == "drr-scale" || name == "taau-scale" || name == "taau-blend") return v > 0 && v <= 1;
-    if (name == "cbr-lod-bias") return std::abs(v) <= 16;  // as --cbr-lod-bias
-    return v >= 1 && v == std::floor(v) && v <= 1024;      // shading-cost
-}
-
 // Which variants a parameter changes; shading-cost changes them all, outer ones none.
 bool appliesTo(const SweepParamInfo& info, const std::string& variant) {
     if (info.outer) return false;
@@ -62,20 +56,26 @@ std::string joinWords(const std::vector<std::string>& words, const char* sep) {
 }  // namespace
 
 const std::vector<SweepParamInfo>& sweepParamTable() {
-    static const std::vector<SweepParamInfo> table = {
-        {"cso-tolerance", "tol", {"cbr-cso"}, {}, "> 0"},
-        {"cso-mode", "mode", {"cbr-cso"}, {"relative", "absolute"}, ""},
-        {"drr-scale", "scale", {"drr"}, {}, "(0, 1]"},
-        {"drr-filter", "filter", {"drr"}, {"bilinear", "catmull-rom"}, ""},
-        {"taau-scale", "tscale", {"taau"}, {}, "(0, 1]"},
-        {"taau-blend", "blend", {"taau"}, {}, "(0, 1]"},
-        {"cbr-lod-bias", "lod", {"cbr-aso", "cbr-cso", "cbr-clip"}, {}, "[-16, 16]"},
-        {"cbr-route", "route", {"cbr-aso", "cbr-cso", "cbr-clip"}, {"auto", "msaa-jitter", "msaa-locations", "multiview", "layers"}, ""},
-        {"cbr-history", "history", {"cbr-aso", "cbr-cso"}, {"quarter", "full"}, ""},
-        {"shading-cost", "cost", {}, {}, "integer >= 1"},
-        {"reference", "ref", {}, {"full", "ssaa"}, "", /*outer=*/true},
-    };
+    static const std::vector<SweepParamInfo> table = [] {
+        std::vector<SweepParamInfo> out;
+        for (const auto& row : settings::table()) {
+            if (!row.sweep) continue;
+            SweepParamInfo p{row.name, row.sweep, {row.variants.begin(), row.variants.end()},
+                             {row.words.begin(), row.words.end()}, "", row.outer};
+            if (row.type != settings::Type::Word) p.range = settings::accepted(row);
+            out.push_back(std::move(p));
+        }
+        return out;
+    }();
     return table;
+}
+
+void applySweepSettings(settings::Tunables& t, const std::vector<SweepSetting>& settings) {
+    for (const auto& s : settings) {
+        const settings::Row& row = *settings::find(s.name);
+        if (s.word.empty()) settings::setNumber(row, t, s.value);
+        else settings::setText(row, t, s.word);
+    }
 }
 
 const SweepParamInfo* findSweepParam(const std::string& name) {
@@ -167,7 +167,8 @@ SweepParam parseSweepParam(const std::string& spec) {
         if (values.size() > size_t(kMaxValues)) throw bad("more than 64 values");
     }
     for (double v : values)
-        if (!inRange(p.name, v)) throw bad("value " + formatParamValue(v) + " out of range " + info->range);
+        if (!settings::acceptsNumber(*settings::find(p.name), v))
+            throw bad("value " + formatParamValue(v) + " out of range: expected " + info->range);
     for (double v : values) {
         // Values equal as labels write them are one configuration.
         bool seen = std::any_of(p.values.begin(), p.values.end(),

@@ -5,15 +5,18 @@
 #include <string>
 #include <vector>
 
+#include "settings/settings.h"
+
 namespace cbr::harness {
 
-// A sweepable setting: the one table the parser, the expansion, labels and help read.
+// A sweepable setting: a row of the settings table (settings/table.h) that sweeps, as the
+// parser, the expansion, labels and help read it.
 struct SweepParamInfo {
     const char* name;                  // --param NAME, e.g. cbr-lod-bias
     const char* short_name;            // in configuration labels, e.g. lod
     std::vector<std::string> variants;  // the variants it changes; empty: every variant
     std::vector<std::string> words;     // accepted values of a word-valued setting; empty: numeric
-    const char* range;                 // numeric: what is accepted, e.g. "(0, 1]"
+    std::string range;                 // numeric: what is accepted, e.g. "a number in (0, 1]"
     bool outer = false;                // one run per value (the reference is rendered once per run)
 };
 const std::vector<SweepParamInfo>& sweepParamTable();
@@ -48,6 +51,9 @@ struct SweepSetting {
     std::string word;   // word-valued settings (empty for numeric ones)
     std::string text() const { return word.empty() ? formatParamValue(value) : word; }
 };
+
+// A configuration's settings applied to the run's: each a row of the settings table.
+void applySweepSettings(settings::Tunables& t, const std::vector<SweepSetting>& settings);
 
 // One configuration: a variant with settings. `label` is unique within the sweep and
 // safe in file names ([a-z0-9.=_-]); `baseline` is the label of the `full` configuration

@@ -29,28 +29,6 @@ double medianOf(std::vector<double> v) {
 
 }  // namespace
 
-const char* targetClearName(TargetClear clear) {
-    switch (clear) {
-        case TargetClear::LoadOp: return "load-op";
-        case TargetClear::Compute: return "compute";
-        case TargetClear::Auto: break;
-    }
-    return "auto";
-}
-
-const char* historyFormatName(HistoryFormat format) {
-    return format == HistoryFormat::Rgba16f ? "rgba16f" : "b10g11r11";
-}
-
-const char* resolveImplName(ResolveImpl impl) {
-    switch (impl) {
-        case ResolveImpl::Fused: return "fused";
-        case ResolveImpl::Separate: return "separate";
-        case ResolveImpl::Reference: return "reference";
-    }
-    return "fused";
-}
-
 glm::dmat4 projection(double fov_y_rad, double aspect, double near, double far) {
     // Reversed Z, finite far: depth = near at 1, far at 0; float depth keeps precision
     // at a distance (issue: near 1e-4, far 1e7).
@@ -483,7 +461,7 @@ void Renderer::writeUniforms(Slot& slot, const FrameRequest& request, const vari
     u.view_proj = glm::mat4(view_proj);
     u.prev_view_proj = glm::mat4(prev_view_proj);
     u.view = glm::mat4(view);
-    u.params = glm::vec4(params.lod_bias, settings_.exposure, 0.03f, settings_.debug_pixel_id ? 1.0f : 0.0f);
+    u.params = glm::vec4(params.lod_bias, settings_.exposure, 0.03f, settings_.debugPixelId() ? 1.0f : 0.0f);
     u.counts = glm::uvec4(uint32_t(lights_.size()), uint32_t(std::max(1, settings_.shading_cost)), 0, 0);
     u.background = glm::vec4(scene_.cpu->background, 1.0f);
     u.view_offsets = params.view_offsets;
@@ -525,7 +503,7 @@ std::vector<std::pair<std::string, std::string>> Renderer::describe() const {
 void Renderer::updateScale(const FrameResult& result) {
     if (!variant_->dynamicScale()) return;
     const DrrControl& c = settings_.drr_control;
-    double ratio = result.gpu_ms / c.target_ms;
+    double ratio = result.gpu_ms / settings_.drr_target_ms;
     if (!std::isfinite(ratio) || std::abs(ratio - 1.0) <= c.dead_band) return;
     // Frame cost scales with pixel count (scale^2); step towards the target, bounded.
     double wanted = scale_ / std::sqrt(ratio);

@@ -8,80 +8,45 @@
 
 #include <glm/glm.hpp>
 
+#include "settings/settings.h"
+
 namespace cbr::scoring {
 struct DeviceScores;
 }
 
 namespace cbr::render {
 
-enum class DrrFilter { Bilinear, CatmullRom };
+// The tunables' enums live with the settings table (settings/settings.h).
+using settings::DrrFilter;
+using settings::HistoryFormat;
+using settings::ResolveImpl;
+using settings::TargetClear;
 
-// How the full-resolution passes after the scene run (`--resolve-impl`): the checkerboard
-// reconstruction and the drr upscale, with or without the tone map folded in.
-enum class ResolveImpl {
-    Fused,      // the tiled resolve or upscale writes the display image: `cbr_resolve_tonemap`, `upscale_tonemap`
-    Separate,   // the tiled passes write linear colour, then `tonemap` (to measure the fusion)
-    Reference,  // the pre-issue-14 passes (cbr_resolve_reference.glsl, upscale_reference.comp, `tonemap`,
-                // the class map every frame, motion written for every sample): the images the tiled
-                // passes must reproduce, and the "before" of their measurements
-};
-const char* resolveImplName(ResolveImpl impl);  // fused | separate | reference
-
-// How scene passes clear their colour targets (`--target-clear`): the attachment's load op,
-// or a compute pass that stores the clear value (passes/target_clear.h says why and when).
-enum class TargetClear { Auto, LoadOp, Compute };
-const char* targetClearName(TargetClear clear);  // auto | load-op | compute
-
-// How the full history (--cbr-history full) stores the previous resolved frame
-// (`--history-format`): B10G11R11, 4 bytes a pixel (6- and 5-bit mantissas), where the
-// device can store that format, else RGBA16F; or RGBA16F, 8 bytes. At 4K the full history's
-// extra cost is mostly these bytes (docs/method/full-history.md).
-enum class HistoryFormat { B10g11r11, Rgba16f };
-const char* historyFormatName(HistoryFormat format);  // b10g11r11 | rgba16f
-
-// Dynamic resolution controller (`--drr-target-ms`): steps the per-axis scale towards
-// the target frame time, holding inside a dead band, within bounds.
+// Dynamic resolution controller (`--drr-target-ms`, Tunables::drr_target_ms): steps the
+// per-axis scale towards the target frame time, holding inside a dead band, within bounds.
 struct DrrControl {
-    double target_ms = 0;       // 0: fixed scale
     double min_scale = 0.5;
     double max_scale = 1.0;
     double dead_band = 0.05;    // |measured / target - 1| below this: hold
     double step = 0.05;         // per-axis scale change per adjustment
 };
 
-struct Settings {
+// The table's tunables (settings/table.cpp: one row each) and what the harness derives for
+// the renderer besides them.
+struct Settings : settings::Tunables {
     uint32_t width = 960;
     uint32_t height = 540;
-    int shading_cost = 1;       // >= 1; the fragment work is about K times, the image the same
-    float exposure = 1.0f;
-    double drr_scale = 0.7071;  // per axis: half the pixels
-    DrrFilter drr_filter = DrrFilter::CatmullRom;
     DrrControl drr_control;
-    // taau: per-axis render scale, Halton(2,3) jitter phases (8 or 16), history blend weight.
-    double taau_scale = 0.7071;
-    int taau_phases = 8;
-    double taau_blend = 0.1;
     int frames_in_flight = 2;
     bool deferred = false;           // --pipeline deferred: G-buffer, lighting resolve, forward transparency
-    // Checkerboard rendering.
-    std::string cbr_route = "auto";  // auto | msaa-jitter | msaa-locations | multiview
-    // History of the checkerboard resolve: false, frame N-1's quarter-res samples (the
-    // paper's); true, the previous resolved full-res frame, clipped (--cbr-history full).
-    bool cbr_full_history = false;
-    bool cbr_history_catmull_rom = true;  // the full history's read filter (--history-filter), else bilinear
-    HistoryFormat cbr_history_format = HistoryFormat::B10g11r11;  // the full history's storage (--history-format)
-    float cbr_lod_bias = -1.0f;      // matches full-res derivatives (chosen by a sweep: docs/history); the paper: -0.5
-    double cso_tolerance = 0.05;
-    bool cso_absolute = false;       // false: relative to the mean neighbour depth
-    ResolveImpl resolve_impl = ResolveImpl::Fused;
-    TargetClear target_clear = TargetClear::Auto;
-    bool debug_pixel_id = false;     // colours encode the full-res pixel each sample lands on
     bool analysis = false;           // quality frames also read back motion and depths (edge crawl)
     int supersample = 1;             // the supersampled reference: k x k samples per output pixel
     // --debug-slowdown PASS=PCT: PASS made PCT percent more expensive by calibrated extra
     // GPU work inside its timestamps (needs warm-up frames to calibrate).
     std::string debug_slowdown_pass;
     double debug_slowdown_pct = 0;
+    bool debugPixelId() const { return debug_shading == settings::DebugShading::PixelId; }
+    bool fullHistory() const { return cbr_history == settings::CbrHistory::Full; }
 };
 
 struct Camera {

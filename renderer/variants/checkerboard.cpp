@@ -53,7 +53,7 @@ public:
         : ctx_(ctx), scene_(scene), settings_(s), cso_(rule == Rule::Cso), clip_(rule == Rule::Clip),
           deferred_(s.deferred) {
         // `clip` needs a history at every pixel: always the full-resolution one.
-        if (clip_) settings_.cbr_full_history = true;
+        if (clip_) settings_.cbr_history = settings::CbrHistory::Full;
         route_ = chooseRoute(ctx, s.cbr_route);
         msaa_ = route_.route != CBR_ROUTE_MULTIVIEW;
         has_motion_ = scene.cpu->info.animated_instances > 0;
@@ -116,19 +116,19 @@ public:
         rdesc.route = route_.route;
         rdesc.check_occlusion = cso_;
         rdesc.clip_only = clip_;
-        rdesc.cso_absolute = s.cso_absolute;
+        rdesc.cso_absolute = s.cso_mode == settings::CsoMode::Absolute;
         rdesc.cso_tolerance = float(s.cso_tolerance);
         rdesc.has_motion = has_motion_;
         rdesc.deferred = deferred_;
         rdesc.msaa = msaa_;
         rdesc.impl = s.resolve_impl;
         rdesc.exposure = s.exposure;
-        rdesc.pass_through = s.debug_pixel_id;
+        rdesc.pass_through = s.debugPixelId();
         rdesc.group = resolveGroup(ctx);
-        rdesc.full_history = settings_.cbr_full_history;
+        rdesc.full_history = settings_.fullHistory();
         rdesc.full_extent = full;
-        rdesc.history_catmull_rom = s.cbr_history_catmull_rom;
-        rdesc.history_format = s.cbr_history_format;
+        rdesc.history_catmull_rom = s.history_filter == settings::HistoryFilter::CatmullRom;
+        rdesc.history_format = s.history_format;
         resolve_ = passes::createCbrResolve(ctx, rdesc, scene.frame_layout, sets_, {&hdr_, &display_, &class_});
         if (!fused_) tonemap_ = passes::createTonemap(ctx, hdr_, display_);
         if (desc.sample_locations)
@@ -204,7 +204,7 @@ public:
                 graph.leaveOut("transparent", "scene has no BLEND materials");
         }
         passes::addCbrResolvePass(graph, resolve_, frame.frame_set, sets_, current);
-        if (!fused_) passes::addTonemapPass(graph, tonemap_, hdr_, display_, settings_.exposure, settings_.debug_pixel_id);
+        if (!fused_) passes::addTonemapPass(graph, tonemap_, hdr_, display_, settings_.exposure, settings_.debugPixelId());
         // The class map is read back with quality frames only, and written after the timed passes.
         if (req.readback) passes::addCbrClassMapPass(graph, resolve_, frame.frame_set, sets_, current);
     }
@@ -213,7 +213,7 @@ public:
     vk::Image* diagnosticImage() override { return &class_; }
 
     std::vector<std::string> statNames() const override {
-        if (!settings_.cbr_full_history)
+        if (!settings_.fullHistory())
             return {"px_shaded", "px_reused", "px_missing_parity", "px_occluded", "px_offscreen", "px_reset"};
         return {"px_shaded", "px_reused", "px_missing_parity", "px_occluded", "px_offscreen", "px_reset", "px_clipped"};
     }
@@ -234,10 +234,10 @@ public:
                            : "motion vectors written by moving instances only (drawn last); elsewhere camera "
                              "motion from depth reprojection in the resolve"},
             {"fill", "tone-mapped average of frame N's cardinal neighbours, weights 1/(1+luma)"},
-            {"history", settings_.cbr_full_history
+            {"history", settings_.fullHistory()
                             ? std::string("full: the previous resolved frame (linear, output size, ") +
                                   historyStorage(resolve_.history_format) + "), " +
-                                  (settings_.cbr_history_catmull_rom ? "Catmull-Rom (5 bilinear taps)" : "bilinear") +
+                                  (settings_.history_filter == settings::HistoryFilter::CatmullRom ? "Catmull-Rom (5 bilinear taps)" : "bilinear") +
                                   " at the reprojected position, clipped towards the centre of the YCoCg box of this frame's "
                               "shaded cardinal neighbours; CSO compares frame N-1's quarter-res depth there"
                             : "quarter: frame N-1's quarter-res samples (the paper's)"},
@@ -269,7 +269,7 @@ public:
                                                                          settings_.height)))});
         if (cso_) {
             d.push_back({"cso_tolerance", std::to_string(settings_.cso_tolerance)});
-            d.push_back({"cso_mode", settings_.cso_absolute ? "absolute" : "relative"});
+            d.push_back({"cso_mode", settings_.cso_mode == settings::CsoMode::Absolute ? "absolute" : "relative"});
         }
         return d;
     }
@@ -300,15 +300,14 @@ private:
 
 }  // namespace
 
-const char* routeNames() { return "auto, msaa-jitter, msaa-locations, multiview, layers"; }
-
-RouteChoice chooseRoute(const vk::Context& ctx, const std::string& requested) {
+RouteChoice chooseRoute(const vk::Context& ctx, settings::CbrRoute requested) {
+    using settings::CbrRoute;
     const auto& caps = ctx.caps;
     bool msaa2 = (caps.color_sample_counts & VK_SAMPLE_COUNT_2_BIT) && (caps.depth_sample_counts & VK_SAMPLE_COUNT_2_BIT);
     bool msaa_ok = msaa2 && caps.sample_rate_shading;
     std::string why_not_msaa = !msaa2 ? "the device offers no 2x MSAA for colour and depth"
                                       : "the device has no sample-rate shading";
-    if (requested == "auto") {
+    if (requested == CbrRoute::Auto) {
         if (msaa_ok)
             return {CBR_ROUTE_MSAA_JITTER, "msaa-jitter", "auto: 2x MSAA with sample-rate shading is available"};
         // lavapipe (Mesa 22.3) drops near-plane-clipped triangles from view 1 of a
@@ -322,23 +321,21 @@ RouteChoice chooseRoute(const vk::Context& ctx, const std::string& requested) {
         if (!caps.multiview) throw vk::Unsupported("checkerboard: no 2x MSAA and no multiview on this device");
         return {CBR_ROUTE_MULTIVIEW, "multiview", "auto: " + why_not_msaa + "; two views into a 2-layer target"};
     }
-    if (requested == "layers")
+    if (requested == CbrRoute::Layers)
         return {CBR_ROUTE_MULTIVIEW, "layers", "requested: two passes, one per layer", true};
-    if (requested == "msaa-jitter") {
+    if (requested == CbrRoute::MsaaJitter) {
         if (!msaa_ok) throw vk::Unsupported("--cbr-route msaa-jitter: " + why_not_msaa);
         return {CBR_ROUTE_MSAA_JITTER, "msaa-jitter", "requested"};
     }
-    if (requested == "msaa-locations") {
+    if (requested == CbrRoute::MsaaLocations) {
         if (!msaa_ok) throw vk::Unsupported("--cbr-route msaa-locations: " + why_not_msaa);
         if (!caps.sample_locations_2x)
             throw vk::Unsupported("--cbr-route msaa-locations: VK_EXT_sample_locations with 2 samples is not available");
         return {CBR_ROUTE_MSAA_LOCATIONS, "msaa-locations", "requested"};
     }
-    if (requested == "multiview") {
-        if (!caps.multiview) throw vk::Unsupported("--cbr-route multiview: the device has no multiview");
-        return {CBR_ROUTE_MULTIVIEW, "multiview", "requested"};
-    }
-    throw std::invalid_argument("--cbr-route " + requested + ": unknown route; expected one of " + routeNames());
+    // CbrRoute::Multiview: the only one left.
+    if (!caps.multiview) throw vk::Unsupported("--cbr-route multiview: the device has no multiview");
+    return {CBR_ROUTE_MULTIVIEW, "multiview", "requested"};
 }
 
 glm::vec4 viewOffsets(int route, int parity, uint32_t width, uint32_t height) {

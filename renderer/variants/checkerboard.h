@@ -24,9 +24,8 @@ struct RouteChoice {
     bool sequential_layers = false;  // `layers`: the two array layers in two passes
 };
 // Resolves `--cbr-route` against the device; throws vk::Unsupported for a route the
-// device cannot run, std::invalid_argument for an unknown name.
-RouteChoice chooseRoute(const vk::Context& ctx, const std::string& requested);
-const char* routeNames();  // "auto, msaa-jitter, msaa-locations, multiview, layers"
+// device cannot run.
+RouteChoice chooseRoute(const vk::Context& ctx, settings::CbrRoute requested);
 
 // Clip-space offsets (view 0 in xy, view 1 in zw) that put a route's samples on full-res
 // pixel centres for a frame of the given parity, at output size width x height.

@@ -75,7 +75,7 @@ public:
             tdesc.fused = fused_upscale_;
             tdesc.blend = float(s.taau_blend);
             tdesc.exposure = s.exposure;
-            tdesc.pass_through = s.debug_pixel_id;
+            tdesc.pass_through = s.debugPixelId();
             tdesc.full_extent = full;
             taau_resolve_ = passes::createTaauResolve(ctx, tdesc, scene.frame_layout, color_, depth_,
                                                       has_motion_ ? &motion_ : nullptr,
@@ -88,7 +88,7 @@ public:
                 upscaled_ = vk::createImage(ctx, {"upscaled", kHdrFormat, full,
                                                   VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
             upscale_ = passes::createUpscale(ctx, color_, fused_upscale_ ? display_ : upscaled_, filter,
-                                             s.resolve_impl, s.exposure, s.debug_pixel_id);
+                                             s.resolve_impl, s.exposure, s.debugPixelId());
             tonemap_source = &upscaled_;
         }
         if (!fused_upscale_) tonemap_ = passes::createTonemap(ctx, *tonemap_source, display_);
@@ -115,7 +115,7 @@ public:
     }
 
     bool scaled() const override { return scaled_; }
-    bool dynamicScale() const override { return scaled_ && !taau_ && settings_.drr_control.target_ms > 0; }
+    bool dynamicScale() const override { return scaled_ && !taau_ && settings_.drr_target_ms > 0; }
     double fixedScale() const override { return taau_ ? settings_.taau_scale : settings_.drr_scale; }
 
     void declare(graph::Graph& graph, FrameSetup& setup) override {
@@ -133,7 +133,7 @@ public:
             glm::vec2 offset = -2.0f * jitter / glm::vec2(render.width, render.height);
             setup.params.view_offsets = glm::vec4(offset, offset);
             // Textures at the output's derivatives: the accumulated image has its detail.
-            setup.params.lod_bias = float(std::log2(double(render.width) / settings_.width));
+            setup.params.lod_bias = float(std::log2(double(render.width) / settings_.width) + settings_.taau_lod_offset);
             history_ ^= 1;
         }
         std::shared_ptr<const passes::SceneFrame> frame = setup.scene_frame;
@@ -160,7 +160,7 @@ public:
         if (supersample_ > 1) passes::addDownsamplePass(graph, downsample_, color_, supersample_, upscaled_);
         if (!fused_upscale_)
             passes::addTonemapPass(graph, tonemap_, scaled_ || supersample_ > 1 ? upscaled_ : color_, display_,
-                                   settings_.exposure, settings_.debug_pixel_id);
+                                   settings_.exposure, settings_.debugPixelId());
     }
 
     vk::Image& display() override { return display_; }
