@@ -7,9 +7,9 @@
 #include <CLI/CLI.hpp>
 
 #include "harness/cli.h"
-#include "harness/interrupt.h"
-#include "harness/process.h"
-#include "harness/progress.h"
+#include "harness/core/interrupt.h"
+#include "harness/core/process.h"
+#include "harness/core/progress.h"
 #include "renderer/vk/check.h"
 
 int main(int argc, char** argv) {
