@@ -342,7 +342,7 @@ Command scoreSeqCommand(CLI::App& app, const std::vector<std::string>& argv) {
     cli->add_option("--fail", seq->fail, "METRIC=VALUE (repeatable): exit 2 when the worst frame crosses it");
     // idiff's convention, where 2 is a failed comparison: a bad option is 5.
     return {cli,
-            [seq, argv] {
+            [seq, argv]() -> int {
                 seq->argv = argv;
                 try {
                     return runScoreSeq(*seq);

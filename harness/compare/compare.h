@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/core/exit_codes.h"
 #include "reports/report_data.h"
 
 namespace cbr::harness {
@@ -21,14 +22,9 @@ struct CompareOptions {
     std::string junit;             // --junit FILE: the verdicts as JUnit XML (empty: none)
 };
 
-inline constexpr int kCompareSame = 0;
-inline constexpr int kCompareRegression = 1;
-inline constexpr int kCompareInconclusive = 2;
-inline constexpr int kCompareBadInput = 3;
-
 // Reads both directories, writes CURRENT_DIR/compare.csv and compare.html (and the
 // --junit file: one testcase per cell, SLOWER and WORSE verdicts as failures, UNKNOWN and
-// unmatched cells skipped) only after every input parsed, prints a short table. Returns one of the kCompare* codes; bad
+// unmatched cells skipped) only after every input parsed, prints a short table. Returns one of the kCompare* codes (exit_codes.h); bad
 // input prints one line on stderr and writes nothing.
 int runCompare(const CompareOptions& o);
 

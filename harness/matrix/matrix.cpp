@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/core/exit_codes.h"
 #include "harness/core/interrupt.h"
 #include "harness/core/progress.h"
 #include "harness/core/run.h"
@@ -262,7 +263,7 @@ int printPlan(const RunOptions& o, int shards) {
         std::printf("%-*s %-7s %-14s %-14s %-9s %s\n", int(w), jobs[k].id.c_str(), shard.c_str(), jo.scene.c_str(),
                     jo.path.c_str(), jo.pipeline.c_str(), jo.resolution.c_str());
     }
-    return 0;
+    return kExitDone;
 }
 
 int runMatrix(const RunOptions& o, const Shard& shard) {
@@ -328,7 +329,7 @@ int runMatrix(const RunOptions& o, const Shard& shard) {
     out.commit();
     std::printf("matrix: shard %d/%d (%s): %zu of %zu jobs ran, %d failed; %s\n", shard.index, shard.count,
                 shard.source.c_str(), mine.size(), jobs.size(), failed, out.finalPath().c_str());
-    return failed ? 1 : 0;
+    return failed ? kExitFailed : kExitDone;
 }
 
 int mergeRuns(const std::vector<std::string>& dirs, const std::string& out_dir) {
@@ -397,9 +398,9 @@ int mergeRuns(const std::vector<std::string>& dirs, const std::string& out_dir) 
         std::string list;
         for (const auto& x : missing) list += (list.empty() ? "" : ", ") + x;
         std::fprintf(stderr, "cbrbench: merge: %zu planned job(s) missing: %s\n", missing.size(), list.c_str());
-        return 1;
+        return kExitFailed;
     }
-    return 0;
+    return kExitDone;
 }
 
 }  // namespace cbr::harness

@@ -464,7 +464,7 @@ int runScoreSeq(const ScoreSeqOptions& o) {
     }
     if (!warn.empty() || !fail.empty()) std::printf("%s\n", any_fail ? "FAILURE" : any_warn ? "WARNING" : "PASS");
     std::printf("output: %s\nreport: %s\n", out.finalPath().c_str(), (out.finalPath() / "report.html").c_str());
-    return any_fail ? kSeqFail : any_warn ? kSeqWarn : 0;
+    return any_fail ? kSeqFail : any_warn ? kSeqWarn : kSeqPass;
 }
 
 }  // namespace cbr::harness

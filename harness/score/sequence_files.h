@@ -7,18 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "harness/core/exit_codes.h"
+
 namespace cbr::harness {
 
-// Exit codes of score-seq, idiff's convention (OpenImageIO's image comparison tool):
-// 0 pass, 1 a --warn threshold crossed, 2 a --fail threshold crossed, 3 images of different
-// sizes, 4 a file missing or unreadable (a frame without its partner included); 5 is
-// cbrbench's own, for a bad option.
-inline constexpr int kSeqWarn = 1, kSeqFail = 2, kSeqSize = 3, kSeqFile = 4, kSeqBadOption = 5;
-
-// Bad input of score-seq, with the exit code it maps to.
+// Bad input of score-seq, with the exit code it maps to (kSeq*: idiff's convention, exit_codes.h).
 struct SequenceError : std::invalid_argument {
-    SequenceError(int code_, const std::string& what) : std::invalid_argument(what), code(code_) {}
-    int code;
+    SequenceError(ExitCode code_, const std::string& what) : std::invalid_argument(what), code(code_) {}
+    ExitCode code;
 };
 
 struct SequenceFrame {

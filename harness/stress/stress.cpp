@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/core/exit_codes.h"
 #include "harness/core/interrupt.h"
 #include "harness/core/options.h"
 #include "harness/core/progress.h"
@@ -213,7 +214,7 @@ int runStress(const StressOptions& o) {
     writeStressPage(o, out, total, failed, rows_html);
     out.commit();
     std::printf("stress: %d of %d cases held; %s\n", total - failed, total, (out.finalPath() / "stress.html").c_str());
-    return failed ? 1 : 0;
+    return failed ? kExitFailed : kExitDone;
 }
 
 }  // namespace cbr::harness
