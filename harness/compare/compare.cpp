@@ -16,9 +16,9 @@
 
 #include "harness/core/stats.h"
 #include "harness/core/verdict.h"
-#include "reports/junit.h"
+#include "reports/compare_html.h"
 #include "reports/csv.h"
-#include "reports/html.h"
+#include "reports/junit.h"
 #include "reports/report_data.h"
 
 namespace cbr::harness {
@@ -145,13 +145,6 @@ std::optional<double> pct(std::optional<double> fraction) {
 
 const Side& sideOf(const Cell& c) { return c.cur ? *c.cur : *c.base; }
 
-std::string verdictClass(const std::string& v) {
-    if (v == "SLOWER" || v == "WORSE") return "bad";
-    if (v == "FASTER" || v == "BETTER") return "good";
-    if (v == "UNKNOWN") return "unk";
-    return "";
-}
-
 // "[+1.2%, +4.5%] 90%" (the estimate is in the CSV), or a dash without a bounded interval.
 std::string intervalText(const TimeVerdict& t) {
     if (!t.interval || !t.interval->bounded()) return "-";
@@ -163,58 +156,19 @@ std::string intervalText(const TimeVerdict& t) {
 
 std::string noteOf(const Cell& c) { return c.note.empty() ? c.time.note : c.note; }
 
-std::string compareHtml(const CompareOptions& o, const Side& base, const Side& cur, const std::vector<Cell>& cells,
-                        double threshold, double eci_threshold, const std::string& outcome) {
-    using reports::esc;
-    using reports::fmt;
-    std::ostringstream h;
-    h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>cbrbench compare</title>\n"
-      << "<style>body{font:14px system-ui,sans-serif;margin:2em;max-width:90em}table{border-collapse:collapse}"
-         "td,th{border:1px solid #ccc;padding:3px 6px;text-align:right}td.l,th.l{text-align:left}"
-         ".bad{background:#f8d0d0}.good{background:#d0f0d0}.unk{background:#f4ecc8}code{font-size:90%}</style>"
-         "</head><body>\n";
-    h << "<h1>cbrbench compare: " << esc(outcome) << "</h1>\n";
-    h << "<p>Baseline <code>" << esc(base.data.dir.string()) << "</code> against current <code>"
-      << esc(cur.data.dir.string()) << "</code>, device " << esc(deviceText(cur.data)) << ".</p>\n";
-    h << "<p>Threshold " << fmt(threshold * 100, 2) << "%, alpha " << fmt(o.alpha, 3) << " (false discovery rate), PSNR "
-      << fmt(o.psnr_db, 3) << " dB, SSIM " << fmt(o.ssim, 4) << ", ECI " << fmt(eci_threshold * 100, 2)
-      << "% relative.</p>\n";
-    h << "<h2>Rule</h2><p>" << esc(kTimeRule) << " Detectable: the smallest change these repetitions would call "
-         "SLOWER, the threshold plus the interval's half-width."
-      << " Quality: PSNR (psnr_db_mean) and SSIM (ssim_mean) BETTER or WORSE when they change by more than their "
-         "absolute thresholds, ECI (lower is better) when it changes by more than its relative threshold; else SAME. "
-         "Runs on different devices or drivers are refused. Exit code 1 for any SLOWER or WORSE cell.</p>\n";
-    h << "<h2>Cells</h2><table><tr><th class=l>variant</th><th class=l>cell</th><th>reps</th><th>baseline ms</th>"
-         "<th>current ms</th><th>change</th><th>interval (HL estimate)</th><th>detectable</th><th>noise</th><th>p</th>"
-         "<th>q</th><th>time</th><th>PSNR &Delta; dB</th>"
-         "<th>PSNR</th><th>SSIM &Delta;</th><th>SSIM</th><th>ECI change</th><th>ECI</th><th class=l>note</th></tr>\n";
+// The page's data (reports/compare_html.h): the thresholds as judged and one row per cell.
+reports::ComparePage comparePage(const CompareOptions& o, const Side& base, const Side& cur,
+                                 const std::vector<Cell>& cells, double threshold, double eci_threshold,
+                                 const std::string& outcome) {
+    reports::ComparePage page{outcome, base.data.dir.string(), cur.data.dir.string(), deviceText(cur.data),
+                              threshold, o.alpha, o.psnr_db, o.ssim, eci_threshold, kTimeRule, {}};
     for (const auto& c : cells) {
-        const Side& s = sideOf(c);
-        auto td = [&](const std::string& text) { h << "<td>" << text << "</td>"; };
-        auto verdict = [&](const std::string& v) { h << "<td class=\"" << verdictClass(v) << "\">" << esc(v) << "</td>"; };
-        h << "<tr><td class=l>" << esc(c.variant) << "</td><td class=l><code>" << esc(s.context) << "</code></td>";
-        td(std::to_string(c.base_reps.size()) + " / " + std::to_string(c.cur_reps.size()));
-        td(fmt(c.base_ms, 4));
-        td(fmt(c.cur_ms, 4));
-        auto percent = [&](std::optional<double> v) { td(v ? fmt(*v * 100, 2) + "%" : reports::kDash); };
         const TimeVerdict& t = c.time;
-        percent(t.change);
-        td(intervalText(t));
-        percent(t.detectable);
-        percent(t.noise);
-        td(fmt(t.p, 4));
-        td(fmt(t.q, 4));
-        verdict(t.verdict);
-        td(fmt(c.psnr.delta, 3));
-        verdict(c.psnr.verdict);
-        td(fmt(c.ssim.delta, 4));
-        verdict(c.ssim.verdict);
-        td(c.eci.delta ? fmt(*c.eci.delta * 100, 2) + "%" : reports::kDash);
-        verdict(c.eci.verdict);
-        h << "<td class=l>" << esc(noteOf(c)) << "</td></tr>\n";
+        page.rows.push_back({c.variant, sideOf(c).context, c.base_reps.size(), c.cur_reps.size(), c.base_ms, c.cur_ms,
+                             t.change, t.detectable, t.noise, t.p, t.q, intervalText(t), t.verdict, c.psnr.delta,
+                             c.ssim.delta, c.eci.delta, c.psnr.verdict, c.ssim.verdict, c.eci.verdict, noteOf(c)});
     }
-    h << "</table>\n</body></html>\n";
-    return h.str();
+    return page;
 }
 
 // "+5.2% [+3.1%, +7.4%] 90%, q 0.012": a time verdict's evidence in one line.
@@ -332,7 +286,7 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
     fs::path out = o.current_dir;
     reports::writeTextAtomically(out / "compare.csv", csv.str());
     reports::writeTextAtomically(out / "compare.html",
-                                 compareHtml(o, base, cur, cells, threshold, eci_threshold, outcome));
+                                 reports::compareHtml(comparePage(o, base, cur, cells, threshold, eci_threshold, outcome)));
     if (!o.junit.empty())
         reports::writeTextAtomically(o.junit, compareJunit(cells, threshold, jsonString(cur.data.run, "/date")));
 

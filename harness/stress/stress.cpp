@@ -21,9 +21,8 @@
 #include "harness/core/progress.h"
 #include "renderer/variants/variants.h"
 #include "reports/csv.h"
-#include "reports/html.h"
 #include "reports/output_dir.h"
-#include "reports/report_sections.h"
+#include "reports/stress_html.h"
 
 namespace cbr::harness {
 
@@ -107,19 +106,14 @@ public:
         return v;
     }
 
-    std::string rowHtml(const Case& c, const Verdict& v, const Children& ch) const {
-        const bool ok = v.finite && v.held;
-        std::string run_links;
+    // The case's runs for the page: each links its report where it wrote one.
+    std::vector<reports::StressRunLink> runLinks(const Children& ch) const {
+        std::vector<reports::StressRunLink> links;
         for (const auto& [key, child] : ch) {
             std::string rel = pipeline_ + "/" + fs::relative(child->dir, out_.path() / pipeline_).string();
-            run_links += fs::exists(child->dir / "report.html")
-                             ? "<a href=\"" + reports::esc(rel) + "/report.html\">" + reports::esc(key) + "</a> "
-                             : reports::esc(key) + " ";
+            links.push_back({key, fs::exists(child->dir / "report.html") ? rel + "/report.html" : std::string()});
         }
-        return "<tr><td class=\"variant\">" + reports::esc(c.name) + "</td><td>" + pipeline_ + "</td><td>" +
-               reports::esc(c.expectation) + "</td><td class=\"" + (ok ? "ok" : "bad") + "\">" +
-               (ok ? "held" : (v.finite ? "did not hold" : "NOT FINITE / FAILED")) + "</td><td>" + reports::esc(v.detail) +
-               "</td><td>" + reports::esc(v.quality) + "</td><td>" + run_links + "</td></tr>";
+        return links;
     }
 
 private:
@@ -149,22 +143,6 @@ private:
     std::map<std::string, Child> children_;  // by sub-run id
 };
 
-void writeStressPage(const StressOptions& o, const reports::OutputDir& out, int total, int failed,
-                     const std::string& rows_html) {
-    std::string html = reports::pageStart("cbrbench stress");
-    html += "<h1>cbrbench stress</h1><div class=\"sub\">" + std::to_string(total - failed) + " of " +
-            std::to_string(total) + " cases held \u00b7 " + reports::esc(o.resolution) + " \u00b7 " +
-            (o.validate ? "validation layer on" : "validation layer off") + "</div>";
-    html += std::string("<p class=\"answer\"><b>") + (failed ? "Not every case held." : "Every case held.") +
-            "</b> Each case runs every variant (" + reports::esc(variants::variantNames()) + ") through `cbrbench run` in a child "
-            "process, so a crash or device loss is that case's failure; finite means every number in its files is "
-            "finite (PSNR's inf for identical images aside) and every variant ran.</p>";
-    html += "<div class=\"scroll\"><table><tr><th>case</th><th>pipeline</th><th>expectation</th><th>result</th>"
-            "<th>measured</th><th>quality vs full</th><th>runs</th></tr>" + rows_html + "</table></div>";
-    html += reports::pageEnd();
-    reports::writeTextAtomically(out.path() / "stress.html", html);
-}
-
 }  // namespace
 
 int runStress(const StressOptions& o) {
@@ -187,7 +165,7 @@ int runStress(const StressOptions& o) {
         if (selected(c))
             for (const auto& run : c.runs) run_ids.insert(run.first == "base" ? "base" : c.name + "-" + run.first);
     ProgressBar bar("runs", int(run_ids.size() * o.pipelines.size()));
-    std::string rows_html;
+    reports::StressPage page{o.resolution, o.validate, variants::variantNames(), {}};
     for (const auto& pipeline : o.pipelines) {
         StressPipeline runs(o, out, pipeline, bar);
         for (const auto& c : cases) {
@@ -207,11 +185,12 @@ int runStress(const StressOptions& o) {
                           {"detail", v.detail},
                           {"runs", links}});
             std::printf("%-28s %-9s %-4s %s\n", c.name.c_str(), pipeline.c_str(), ok ? "held" : "FAIL", v.detail.c_str());
-            rows_html += runs.rowHtml(c, v, ch);
+            page.rows.push_back(
+                {c.name, pipeline, c.expectation, v.finite, v.held, v.detail, v.quality, runs.runLinks(ch)});
         }
     }
     table.write(out.path() / "stress.csv");
-    writeStressPage(o, out, total, failed, rows_html);
+    reports::writeTextAtomically(out.path() / "stress.html", reports::stressHtml(page));
     out.commit();
     std::printf("stress: %d of %d cases held; %s\n", total - failed, total, (out.finalPath() / "stress.html").c_str());
     return failed ? kExitFailed : kExitDone;
