@@ -10,7 +10,7 @@
 #include "camera_paths/path.h"
 #include "harness/calibrate/calibrate.h"
 #include "harness/compare/compare.h"
-#include "harness/core/exports.h"
+#include "harness/export/export.h"
 #include "harness/help_markdown.h"
 #include "harness/matrix/matrix.h"
 #include "harness/core/options.h"
@@ -18,6 +18,7 @@
 #include "harness/score/score_seq.h"
 #include "harness/score/sequence_files.h"
 #include "harness/stress/stress.h"
+#include "harness/sweep/sweep.h"
 #include "harness/core/sweep_configs.h"
 #include "metrics/cost.h"
 #include "metrics/flip.h"
@@ -410,7 +411,7 @@ Command sweepCommand(CLI::App& app, const std::vector<std::string>& argv) {
                     throw std::invalid_argument("sweep: comma lists in --scene, --pipeline or --res; expected one of "
                                                 "each (a sweep is one job: its configurations are compared with each "
                                                 "other; --path may list several)");
-                return runBenchmark(o);
+                return runSweep(o);
             }};
 }
 

@@ -1,7 +1,6 @@
-// Exports of a run directory (harness/export.h).
+// Exports of a run directory (exports.h): the formats, and run --export's files.
 #include "harness/core/exports.h"
 
-#include <cstdio>
 #include <stdexcept>
 
 #include "harness/core/options.h"
@@ -13,24 +12,20 @@ namespace cbr::harness {
 
 namespace fs = std::filesystem;
 
-namespace {
+const char* const kExportFormats = "gbench (Google Benchmark JSON)";
 
-constexpr const char* kFormats = "gbench (Google Benchmark JSON)";
-
-std::string fileName(const std::string& format) { return format + ".json"; }
+std::string exportFileName(const std::string& format) { return format + ".json"; }
 
 std::string exportText(const reports::RunData& d, const std::string& format) {
     if (format == "gbench") return reports::gbenchJson(d).dump(2) + "\n";
     throw std::invalid_argument("export: unknown format " + format);
 }
 
-}  // namespace
-
 std::vector<std::string> parseExportFormats(const std::string& list, const std::string& option) {
     std::vector<std::string> out;
     for (const auto& f : splitList(list)) {
         if (f != "gbench")
-            throw std::invalid_argument(option + " '" + f + "': accepted: " + kFormats);
+            throw std::invalid_argument(option + " '" + f + "': accepted: " + kExportFormats);
         out.push_back(f);
     }
     return out;
@@ -39,27 +34,7 @@ std::vector<std::string> parseExportFormats(const std::string& list, const std::
 void writeExports(const fs::path& dir, const std::vector<std::string>& formats) {
     if (formats.empty()) return;
     reports::RunData d = reports::loadRun(dir);
-    for (const auto& f : formats) reports::writeTextAtomically(dir / fileName(f), exportText(d, f));
-}
-
-int runExport(const std::string& run_dir, const std::string& format, const std::string& out_file) {
-    auto formats = parseExportFormats(format, "export --format");
-    if (formats.size() != 1) throw std::invalid_argument("export --format: give one format; accepted: " + std::string(kFormats));
-    if (!fs::is_directory(run_dir))
-        throw std::invalid_argument("export " + run_dir + ": not a directory; expected a run's output directory");
-    fs::path out = out_file.empty() ? fs::path(run_dir) / fileName(formats[0]) : fs::path(out_file);
-    fs::path parent = fs::absolute(out).parent_path();
-    if (!fs::is_directory(parent) || fs::is_directory(out))
-        throw std::invalid_argument("export --out " + out.string() + ": accepted: a file path in an existing directory");
-    reports::RunData d;
-    try {
-        d = reports::loadRun(run_dir);
-    } catch (const nlohmann::json::exception& e) {
-        throw std::invalid_argument("export " + (fs::path(run_dir) / "run.json").string() + ": " + e.what());
-    }
-    reports::writeTextAtomically(out, exportText(d, formats[0]));
-    std::printf("export: %s\n", out.c_str());
-    return 0;
+    for (const auto& f : formats) reports::writeTextAtomically(dir / exportFileName(f), exportText(d, f));
 }
 
 }  // namespace cbr::harness
