@@ -13,7 +13,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/compare/compare.h"
 #include "harness/core/progress.h"
 #include "harness/core/run.h"
 #include "harness/core/stats.h"

@@ -323,29 +323,6 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
 
 }  // namespace
 
-std::vector<double> repetitionMedians(const reports::RunData& d, const std::string& variant, int max_repeats) {
-    std::vector<double> out;
-    for (auto& [rep, v] : reports::gpuMsByRepetition(d, variant, max_repeats)) out.push_back(median(v));
-    return out;
-}
-
-double parseFraction(const std::string& text, const std::string& command, const std::string& option) {
-    std::string t = text;
-    bool pct = !t.empty() && t.back() == '%';
-    if (pct) t.pop_back();
-    size_t used = 0;
-    double v = 0;
-    try {
-        v = std::stod(t, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (t.empty() || used != t.size() || !std::isfinite(v) || v < 0)
-        throw std::invalid_argument(command + ": " + option + " '" + text +
-                                    "': accepted: a non-negative percentage such as 3% or a fraction such as 0.03");
-    return pct ? v / 100.0 : v;
-}
-
 int runCompare(const CompareOptions& o) {
     double threshold = 0, eci_threshold = 0;
     std::vector<Cell> cells;

@@ -1,12 +1,9 @@
 // `cbrbench compare`: regression verdicts between two run directories (method/timing.md).
 #pragma once
 
-#include <climits>
 #include <string>
-#include <vector>
 
 #include "harness/core/exit_codes.h"
-#include "reports/report_data.h"
 
 namespace cbr::harness {
 
@@ -27,14 +24,5 @@ struct CompareOptions {
 // unmatched cells skipped) only after every input parsed, prints a short table. Returns one of the kCompare* codes (exit_codes.h); bad
 // input prints one line on stderr and writes nothing.
 int runCompare(const CompareOptions& o);
-
-// "3%" or "0.03" -> 0.03; anything else throws std::invalid_argument naming COMMAND, the
-// option and what is accepted.
-double parseFraction(const std::string& text, const std::string& command, const std::string& option);
-
-// A cell's samples: the median gpu_ms of each repetition (frames.csv rows with status ok)
-// of `variant`, repetitions 0 .. max_repeats - 1 (a run's first repetitions are what a
-// shorter run would have measured: calibrate judges several counts from one run).
-std::vector<double> repetitionMedians(const reports::RunData& d, const std::string& variant, int max_repeats = INT_MAX);
 
 }  // namespace cbr::harness

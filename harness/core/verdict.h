@@ -1,12 +1,15 @@
 // Time verdicts from the uncertainty of a change (method/timing.md, "Regression verdicts"):
-// the rule `compare` applies per cell and `calibrate` measures.
+// the rule `compare` applies per cell and `calibrate` measures, and the samples and
+// thresholds both read the same way.
 #pragma once
 
+#include <climits>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "harness/core/stats.h"
+#include "reports/report_data.h"
 
 namespace cbr::harness {
 
@@ -42,5 +45,14 @@ struct TimeVerdict {
 // coverage rate), so a concluded cell's interval lies wholly beyond (SLOWER, FASTER) or
 // inside (SAME) the threshold, and an UNKNOWN cell's straddles a boundary.
 std::vector<TimeVerdict> judgeTimes(const std::vector<TimeSamples>& cells, const VerdictRule& rule);
+
+// "3%" or "0.03" -> 0.03; anything else throws std::invalid_argument naming COMMAND, the
+// option and what is accepted.
+double parseFraction(const std::string& text, const std::string& command, const std::string& option);
+
+// A cell's samples: the median gpu_ms of each repetition (frames.csv rows with status ok)
+// of `variant`, repetitions 0 .. max_repeats - 1 (a run's first repetitions are what a
+// shorter run would have measured: calibrate judges several counts from one run).
+std::vector<double> repetitionMedians(const reports::RunData& d, const std::string& variant, int max_repeats = INT_MAX);
 
 }  // namespace cbr::harness

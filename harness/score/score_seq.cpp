@@ -14,7 +14,7 @@
 
 #include "harness/core/options.h"
 #include "harness/core/outputs.h"
-#include "harness/core/outputs_internal.h"
+#include "harness/core/output_cells.h"
 #include "harness/core/progress.h"
 #include "harness/core/quality.h"
 #include "harness/score/sequence_files.h"
