@@ -228,20 +228,8 @@ std::string compareJunit(const std::vector<Cell>& cells, double threshold, const
     return reports::junitXml("cbrbench compare", suites, timestamp);
 }
 
-// Writes compare.csv and compare.html into the current run's directory and prints a
-// short table; returns the exit code.
-int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, const std::vector<Cell>& cells,
-                 double threshold, double eci_threshold) {
-    bool regression = false, unknown = false, matched = false;
-    for (const auto& c : cells) {
-        regression |= c.time.verdict == "SLOWER" || c.psnr.verdict == "WORSE" || c.ssim.verdict == "WORSE" ||
-                      c.eci.verdict == "WORSE";
-        unknown |= c.time.verdict == "UNKNOWN";
-        matched |= c.base && c.cur;
-    }
-    int code = regression ? kCompareRegression : unknown && o.strict ? kCompareInconclusive : kCompareSame;
-    std::string outcome = regression ? "regression" : unknown ? "no regression found, some cells UNKNOWN" : "no regression";
-
+// compare.csv: one row per cell (kCsvColumns).
+std::string compareCsv(const std::vector<Cell>& cells) {
     reports::CsvTable csv(kCsvColumns);
     for (const auto& c : cells) {
         const Side& s = sideOf(c);
@@ -283,15 +271,11 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
                     {"eci_verdict", c.eci.verdict},
                     {"note", noteOf(c)}});
     }
-    fs::path out = o.current_dir;
-    reports::writeTextAtomically(out / "compare.csv", csv.str());
-    reports::writeTextAtomically(out / "compare.html",
-                                 reports::compareHtml(comparePage(o, base, cur, cells, threshold, eci_threshold, outcome)));
-    if (!o.junit.empty())
-        reports::writeTextAtomically(o.junit, compareJunit(cells, threshold, jsonString(cur.data.run, "/date")));
+    return csv.str();
+}
 
-    if (!matched)
-        std::fprintf(stderr, "cbrbench: compare: no cell matches (scene, path, pipeline, resolution or settings differ)\n");
+// The short table on stdout: a line per cell.
+void printCompareTable(const std::vector<Cell>& cells) {
     std::printf("%-10s %6s %10s %10s %8s %-22s %7s %7s %-8s %-7s %-7s %-7s\n", "variant", "reps", "base_ms", "cur_ms",
                 "change", "interval", "noise", "q", "time", "psnr", "ssim", "eci");
     for (const auto& c : cells) {
@@ -316,46 +300,55 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
                     t.verdict.c_str(), c.psnr.verdict.c_str(), c.ssim.verdict.c_str(), c.eci.verdict.c_str(),
                     note.empty() ? "" : "  ", note.c_str());
     }
+}
+
+// Writes compare.csv and compare.html into the current run's directory and prints a
+// short table; returns the exit code.
+int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, const std::vector<Cell>& cells,
+                 double threshold, double eci_threshold) {
+    bool regression = false, unknown = false, matched = false;
+    for (const auto& c : cells) {
+        regression |= c.time.verdict == "SLOWER" || c.psnr.verdict == "WORSE" || c.ssim.verdict == "WORSE" ||
+                      c.eci.verdict == "WORSE";
+        unknown |= c.time.verdict == "UNKNOWN";
+        matched |= c.base && c.cur;
+    }
+    int code = regression ? kCompareRegression : unknown && o.strict ? kCompareInconclusive : kCompareSame;
+    std::string outcome = regression ? "regression" : unknown ? "no regression found, some cells UNKNOWN" : "no regression";
+
+    fs::path out = o.current_dir;
+    reports::writeTextAtomically(out / "compare.csv", compareCsv(cells));
+    reports::writeTextAtomically(out / "compare.html",
+                                 reports::compareHtml(comparePage(o, base, cur, cells, threshold, eci_threshold, outcome)));
+    if (!o.junit.empty())
+        reports::writeTextAtomically(o.junit, compareJunit(cells, threshold, jsonString(cur.data.run, "/date")));
+
+    if (!matched)
+        std::fprintf(stderr, "cbrbench: compare: no cell matches (scene, path, pipeline, resolution or settings differ)\n");
+    printCompareTable(cells);
     std::printf("compare: %s (exit %d); %s, %s\n", outcome.c_str(), code, (out / "compare.csv").c_str(),
                 (out / "compare.html").c_str());
     return code;
 }
 
-}  // namespace
+// The thresholds' and --junit's checks (the fractions are parsed where they are used).
+void checkCompareOptions(const CompareOptions& o) {
+    if (!(o.alpha > 0 && o.alpha < 1))
+        throw std::invalid_argument("compare: --alpha " + std::to_string(o.alpha) + ": accepted: 0 < alpha < 1");
+    if (!(o.psnr_db >= 0) || !(o.ssim >= 0))
+        throw std::invalid_argument("compare: --psnr-threshold and --ssim-threshold must be >= 0");
+    if (!o.junit.empty()) {
+        fs::path dir = fs::absolute(o.junit).parent_path();
+        if (!fs::is_directory(dir) || fs::is_directory(o.junit))
+            throw std::invalid_argument("compare: --junit " + o.junit +
+                                        ": accepted: a file path in an existing directory");
+    }
+}
 
-int runCompare(const CompareOptions& o) {
-    double threshold = 0, eci_threshold = 0;
+// Cells: baseline variants in order, then those only the current run has; the quality
+// verdicts judged (the time verdicts are judged together afterwards).
+std::vector<Cell> compareCells(const CompareOptions& o, const Side& base, const Side& cur, double eci_threshold) {
     std::vector<Cell> cells;
-    Side base, cur;
-    try {
-        threshold = parseFraction(o.threshold, "compare", "--threshold");
-        eci_threshold = parseFraction(o.eci, "compare", "--eci-threshold");
-        if (!(o.alpha > 0 && o.alpha < 1))
-            throw std::invalid_argument("compare: --alpha " + std::to_string(o.alpha) + ": accepted: 0 < alpha < 1");
-        if (!(o.psnr_db >= 0) || !(o.ssim >= 0))
-            throw std::invalid_argument("compare: --psnr-threshold and --ssim-threshold must be >= 0");
-        if (!o.junit.empty()) {
-            fs::path dir = fs::absolute(o.junit).parent_path();
-            if (!fs::is_directory(dir) || fs::is_directory(o.junit))
-                throw std::invalid_argument("compare: --junit " + o.junit +
-                                            ": accepted: a file path in an existing directory");
-        }
-        base = loadSide(o.baseline_dir, "baseline");
-        cur = loadSide(o.current_dir, "current");
-        keySides(base, cur);
-    } catch (const std::invalid_argument& e) {
-        std::fprintf(stderr, "cbrbench: %s\n", e.what());
-        return kCompareBadInput;
-    }
-    // Different devices or drivers are never a regression: refuse, naming both.
-    if (deviceText(base.data) != deviceText(cur.data)) {
-        std::fprintf(stderr,
-                     "cbrbench: compare: refusing to compare different devices or drivers: baseline %s, current %s\n",
-                     deviceText(base.data).c_str(), deviceText(cur.data).c_str());
-        return kCompareBadInput;
-    }
-
-    // Cells: baseline variants in order, then those only the current run has.
     std::vector<std::string> names = base.data.variants;
     for (const auto& v : cur.data.variants)
         if (std::find(names.begin(), names.end(), v) == names.end()) names.push_back(v);
@@ -397,6 +390,34 @@ int runCompare(const CompareOptions& o) {
             cells.push_back(cell);
         }
     }
+    return cells;
+}
+
+}  // namespace
+
+int runCompare(const CompareOptions& o) {
+    double threshold = 0, eci_threshold = 0;
+    Side base, cur;
+    try {
+        threshold = parseFraction(o.threshold, "compare", "--threshold");
+        eci_threshold = parseFraction(o.eci, "compare", "--eci-threshold");
+        checkCompareOptions(o);
+        base = loadSide(o.baseline_dir, "baseline");
+        cur = loadSide(o.current_dir, "current");
+        keySides(base, cur);
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "cbrbench: %s\n", e.what());
+        return kCompareBadInput;
+    }
+    // Different devices or drivers are never a regression: refuse, naming both.
+    if (deviceText(base.data) != deviceText(cur.data)) {
+        std::fprintf(stderr,
+                     "cbrbench: compare: refusing to compare different devices or drivers: baseline %s, current %s\n",
+                     deviceText(base.data).c_str(), deviceText(cur.data).c_str());
+        return kCompareBadInput;
+    }
+
+    std::vector<Cell> cells = compareCells(o, base, cur, eci_threshold);
 
     // Time verdicts of the matched cells, judged together (Benjamini-Hochberg across them).
     std::vector<TimeSamples> samples;
