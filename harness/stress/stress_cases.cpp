@@ -230,8 +230,8 @@ void addMotionCases(std::vector<Case>& cases, const Inputs& in) {
                      }});
 }
 
-// History that must be dropped (a turn, a cut) or kept forever (a still camera).
-void addHistoryCases(std::vector<Case>& cases, const Inputs& in, const StressOptions& o) {
+// History that must be dropped: a turn, a cut.
+void addHistoryCases(std::vector<Case>& cases, const Inputs& in) {
     auto frame11 = [](const Child& r, const std::string& var, const char* col) { return frameValue(r, var, 11, col); };
     cases.push_back(
         {"180-degree-turn",
@@ -280,6 +280,10 @@ void addHistoryCases(std::vector<Case>& cases, const Inputs& in, const StressOpt
              v.quality = qualityLine(r);
              return v;
          }});
+}
+
+// A still camera: the history is kept forever, and must neither drift nor differ from full.
+void addStaticCameraCase(std::vector<Case>& cases, const StressOptions& o) {
     cases.push_back(
         {"static-camera", "static camera for " + std::to_string(o.static_frames) +
                               " frames, untextured scene: checkerboard identical to full (>= 60 dB) on every frame after the "
@@ -317,6 +321,33 @@ void addHistoryCases(std::vector<Case>& cases, const Inputs& in, const StressOpt
          }});
 }
 
+// A constant image (all black, all white): every variant identical to full, and every
+// frame pair flagged as having no reference edges rather than divided by zero.
+std::function<Verdict(Children&)> constantImageCheck(const char* key) {
+    return [key](Children& c) {
+        Verdict v = base(c);
+        if (!v.finite) return v;
+        const Child& r = *c.at(key);
+        v.held = true;
+        int flagged = 0, frames = 0;
+        for (const auto& var : kVariants) {
+            auto p = summaryValue(r, var, "psnr_db_mean"), s = summaryValue(r, var, "ssim_mean"),
+                 e = summaryValue(r, var, "eci");
+            if (!p || !std::isinf(*p) || !s || *s != 1.0 || !e || *e != 0.0) v.held = false;
+            v.detail += var + " PSNR " + db(p) + ", SSIM " + num(s) + ", ECI " + num(e) + "; ";
+        }
+        for (size_t i = 0; i < r.frames.rows.size(); ++i)
+            if (r.frames.num(i, "frame").value_or(0) > 0 && r.frames.text(i, "variant") != "full") {
+                ++frames;
+                flagged += r.frames.text(i, "note").find("no reference edges") != std::string::npos;
+            }
+        v.detail += std::to_string(flagged) + " of " + std::to_string(frames) + " frame pairs flagged 'no edges'";
+        if (flagged != frames) v.held = false;
+        v.quality = "every variant identical to full";
+        return v;
+    };
+}
+
 // Thin geometry and the extremes of the image: black, white, emitters, exposure.
 void addImageCases(std::vector<Case>& cases, const Inputs& in) {
     cases.push_back({"thin-geometry-and-foliage",
@@ -338,35 +369,11 @@ void addImageCases(std::vector<Case>& cases, const Inputs& in) {
                          v.quality = qualityLine(r);
                          return v;
                      }});
-    auto constant = [](const char* key) {
-        return [key](Children& c) {
-            Verdict v = base(c);
-            if (!v.finite) return v;
-            const Child& r = *c.at(key);
-            v.held = true;
-            int flagged = 0, frames = 0;
-            for (const auto& var : kVariants) {
-                auto p = summaryValue(r, var, "psnr_db_mean"), s = summaryValue(r, var, "ssim_mean"),
-                     e = summaryValue(r, var, "eci");
-                if (!p || !std::isinf(*p) || !s || *s != 1.0 || !e || *e != 0.0) v.held = false;
-                v.detail += var + " PSNR " + db(p) + ", SSIM " + num(s) + ", ECI " + num(e) + "; ";
-            }
-            for (size_t i = 0; i < r.frames.rows.size(); ++i)
-                if (r.frames.num(i, "frame").value_or(0) > 0 && r.frames.text(i, "variant") != "full") {
-                    ++frames;
-                    flagged += r.frames.text(i, "note").find("no reference edges") != std::string::npos;
-                }
-            v.detail += std::to_string(flagged) + " of " + std::to_string(frames) + " frame pairs flagged 'no edges'";
-            if (flagged != frames) v.held = false;
-            v.quality = "every variant identical to full";
-            return v;
-        };
-    };
     const std::vector<std::string> blocks = {"--scene", "blocks", "--path", "orbit", "--frames", "6"};
     cases.push_back({"black-frames", "exposure 1e-12 (all black): PSNR inf, SSIM 1, ECI 0 flagged 'no edges'; no 0/0",
-                     {{"black", plus(blocks, {"--exposure", "1e-12"})}}, constant("black")});
+                     {{"black", plus(blocks, {"--exposure", "1e-12"})}}, constantImageCheck("black")});
     cases.push_back({"white-frames", "exposure 1e12 (all white): PSNR inf, SSIM 1, ECI 0 flagged 'no edges'; no 0/0",
-                     {{"white", plus(blocks, {"--exposure", "1e12"})}}, constant("white")});
+                     {{"white", plus(blocks, {"--exposure", "1e12"})}}, constantImageCheck("white")});
     cases.push_back({"emissive-extremes",
                      "a glTF emitter of strength 1e4 (KHR_materials_emissive_strength) and one of 1e-6 through the "
                      "tone map: finite output, every variant ran, the bright one saturates to white",
@@ -450,7 +457,8 @@ std::vector<Case> buildCases(const fs::path& paths_dir, const StressOptions& o, 
     std::vector<Case> cases;
     addPrecisionCases(cases, in);
     addMotionCases(cases, in);
-    addHistoryCases(cases, in, o);
+    addHistoryCases(cases, in);
+    addStaticCameraCase(cases, o);
     addImageCases(cases, in);
     addGltfCases(cases, in);
     return cases;
