@@ -217,7 +217,8 @@ Command calibrateCommand(CLI::App& app, const std::vector<std::string>& argv) {
     cli->add_option("--from", cal->from, "an earlier calibration's directory: judge its runs again (other "
                                          "--threshold, --alpha or --repeats) without rendering");
     return {cli, [cal, variant_list, argv] {
-                cal->run.variants = splitList(variant_list->empty() ? std::string("full") : *variant_list);
+                cal->run.variants = splitList(variant_list->empty() ? std::string(variants::referenceVariant().name)
+                                                                       : *variant_list);
                 cal->run.argv = argv;
                 cal->out = cal->run.out;
                 return runCalibrate(*cal);

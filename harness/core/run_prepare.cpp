@@ -134,8 +134,8 @@ render::Settings settingsFromOptions(const RunOptions& o) {
 // variant, or a sweep's configurations with their settings applied.
 void makeConfigs(const RunOptions& o, Prepared& p) {
     // The reference always runs first: every other variant is scored against it.
-    const variants::Variant& full = variants::findVariant("full");
-    p.order.push_back(&full);
+    const variants::Variant& reference = variants::referenceVariant();
+    p.order.push_back(&reference);
     std::vector<std::string> wanted = o.variants;
     if (wanted.empty())
         for (const auto& v : variants::allVariants()) wanted.emplace_back(v.name);
@@ -148,7 +148,7 @@ void makeConfigs(const RunOptions& o, Prepared& p) {
     if (o.sweep) {
         configs = expandSweep(p.params, o.variants);
     } else {
-        for (const auto* v : p.order) configs.push_back({std::string(v->name), {}, std::string(v->name), "full"});
+        for (const auto* v : p.order) configs.push_back({std::string(v->name), {}, std::string(v->name), std::string(reference.name)});
     }
     for (auto& sc : configs) {
         Prepared::Config c{&variants::findVariant(sc.variant), p.settings, sc};

@@ -239,14 +239,15 @@ int printPlan(const RunOptions& o, int shards) {
     if (shards < 1) throw std::invalid_argument("--shards " + std::to_string(shards) + ": expected >= 1");
     auto jobs = planJobs(o);
     for (const auto& j : jobs) checkRunOptions(j.options);
-    // Without --variants every variant of the table runs (full first: it is the reference).
-    std::string variants = "full";
+    // Without --variants every variant of the table runs (the reference first).
+    const std::string reference(variants::referenceVariant().name);
+    std::string variants = reference;
     if (o.variants.empty()) {
         for (const auto& v : variants::allVariants())
-            if (v.name != "full") variants += "," + std::string(v.name);
+            if (v.name != reference) variants += "," + std::string(v.name);
     } else {
         for (const auto& v : o.variants)
-            if (v != "full") variants += "," + v;
+            if (v != reference) variants += "," + v;
     }
     std::printf("plan %s: %zu job%s (scene x path x pipeline x resolution), each running the variants %s together, "
                 "%d shard%s\n",

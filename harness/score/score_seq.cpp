@@ -23,6 +23,7 @@
 #include "reports/csv.h"
 #include "reports/output_dir.h"
 #include "reports/report.h"
+#include "reports/report_data.h"
 
 namespace cbr::harness {
 
@@ -76,7 +77,7 @@ std::string defaultName(const std::string& spec, bool pattern) {
         const fs::path dir = fs::absolute(pattern ? t.parent_path() : t).lexically_normal();
         name = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
     }
-    if (name.empty() || name == "full" || name.find_first_of("/\\,\"") != std::string::npos) name = "test";
+    if (name.empty() || name == reports::kReference || name.find_first_of("/\\,\"") != std::string::npos) name = "test";
     return name;
 }
 
@@ -92,7 +93,7 @@ SeqInputs planInputs(const ScoreSeqOptions& o) {
         throw SequenceError(kSeqBadOption, "--motion-scale without --motion: it scales the motion files' vectors");
     }
     in.name = o.name.empty() ? defaultName(o.test, in.test.pattern) : o.name;
-    if (in.name.find_first_of("/\\,\"") != std::string::npos || in.name == "full")
+    if (in.name.find_first_of("/\\,\"") != std::string::npos || in.name == reports::kReference)
         throw SequenceError(kSeqBadOption, "--name " + in.name + ": accepted: a label without / \\ , \" (and not full)");
     return in;
 }

@@ -37,7 +37,7 @@ bool fullHistory(const std::string& name) { return variants::findVariant(name).f
 std::string qualityLine(const Child& c) {
     std::string s;
     for (const auto& v : kVariants)
-        if (v != "full") s += (s.empty() ? "" : ", ") + v + " " + db(summaryValue(c, v, "psnr_db_mean")) + " dB";
+        if (v != variants::referenceVariant().name) s += (s.empty() ? "" : ", ") + v + " " + db(summaryValue(c, v, "psnr_db_mean")) + " dB";
     return s;
 }
 
@@ -337,7 +337,7 @@ std::function<Verdict(Children&)> constantImageCheck(const char* key) {
             v.detail += var + " PSNR " + db(p) + ", SSIM " + num(s) + ", ECI " + num(e) + "; ";
         }
         for (size_t i = 0; i < r.frames.rows.size(); ++i)
-            if (r.frames.num(i, "frame").value_or(0) > 0 && r.frames.text(i, "variant") != "full") {
+            if (r.frames.num(i, "frame").value_or(0) > 0 && r.frames.text(i, "variant") != variants::referenceVariant().name) {
                 ++frames;
                 flagged += r.frames.text(i, "note").find("no reference edges") != std::string::npos;
             }
