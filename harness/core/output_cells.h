@@ -9,11 +9,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/outputs.h"
 #include "harness/core/results.h"
 #include "reports/csv.h"
 
 namespace cbr::harness {
+
+struct VariantSummary;  // harness/core/outputs.h
 
 inline reports::Cell optional(const std::optional<double>& v) { return v ? reports::Cell(*v) : reports::Cell(); }
 

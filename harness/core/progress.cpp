@@ -1,4 +1,4 @@
-// Progress bars (harness/progress.h).
+// Progress bars (progress.h).
 #include "harness/core/progress.h"
 
 #include <algorithm>

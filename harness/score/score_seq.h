@@ -8,7 +8,7 @@
 namespace cbr::harness {
 
 struct ScoreSeqOptions {
-    std::string reference, test;  // folders or %04d patterns (harness/sequence_files.h)
+    std::string reference, test;  // folders or %04d patterns (harness/score/sequence_files.h)
     std::string motion;           // optional: float images (EXR) of the reference's motion, matched like TEST
     std::string motion_scale = "1,1";  // SX,SY: multiplies the files' first two channels into pixels
     std::string name;             // the test sequence's label (default: TEST's folder name)

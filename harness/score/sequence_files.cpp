@@ -1,4 +1,4 @@
-// Listing and matching image sequences for score-seq (harness/sequence_files.h).
+// Listing and matching image sequences for score-seq (sequence_files.h).
 #include "harness/score/sequence_files.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// `cbrbench stress`'s cases and their expectations (harness/stress_cases.h).
+// `cbrbench stress`'s cases and their expectations (stress_cases.h).
 #include "harness/stress/stress_cases.h"
 
 #include <algorithm>

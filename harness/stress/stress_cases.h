@@ -1,5 +1,5 @@
 // `cbrbench stress`'s cases: named extreme inputs, the runs each needs, and the expectation
-// checked on what they wrote. harness/stress.cpp runs them.
+// checked on what they wrote. harness/stress/stress.cpp runs them.
 #pragma once
 
 #include <cstdint>
