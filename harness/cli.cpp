@@ -1,31 +1,29 @@
 // cbrbench's subcommands (cli.h): options and actions, one factory per command.
 #include "harness/cli.h"
 
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
 
 #include "camera_paths/path.h"
-#include "harness/calibrate.h"
-#include "harness/compare.h"
-#include "harness/export.h"
+#include "harness/calibrate/calibrate.h"
+#include "harness/compare/compare.h"
+#include "harness/core/options.h"
+#include "harness/core/run.h"
+#include "harness/core/sweep_configs.h"
+#include "harness/export/export.h"
 #include "harness/help_markdown.h"
-#include "harness/matrix.h"
-#include "harness/options.h"
-#include "harness/run.h"
-#include "harness/score_seq.h"
-#include "harness/sequence_files.h"
-#include "harness/stress.h"
-#include "harness/sweep.h"
-#include "metrics/cost.h"
+#include "harness/matrix/matrix.h"
+#include "harness/score/metric_cost.h"
+#include "harness/score/score_image.h"
+#include "harness/score/score_seq.h"
+#include "harness/score/sequence_files.h"
+#include "harness/stress/stress.h"
+#include "harness/sweep/sweep.h"
 #include "metrics/flip.h"
-#include "metrics/image_io.h"
-#include "metrics/metrics.h"
 #include "renderer/scene/scene.h"
 #include "renderer/variants/variants.h"
-#include "renderer/scoring/device_cost.h"
 #include "renderer/vk/context.h"
 #include "reports/report.h"
 #include "reports/sweep.h"
@@ -51,36 +49,6 @@ int listDevices() {
         std::printf("%-5d %-40s %-28s %s%s\n", d.index, d.name.c_str(),
                     (d.driver_name + " " + d.driver_info).substr(0, 28).c_str(), d.api_version.c_str(),
                     d.is_lavapipe ? "  (default)" : "");
-    return 0;
-}
-
-// `cbrbench score`: the suite's metrics on saved images, so any number can be recomputed.
-int scoreImages(const std::string& ref_file, const std::string& img_file, const std::string& crop, double flip_ppd,
-                float exposure) {
-    cbr::harness::checkFlipPpd(flip_ppd);
-    auto ref_in = cbr::metrics::readDisplayImage(ref_file, exposure);
-    auto img_in = cbr::metrics::readDisplayImage(img_file, exposure);
-    const auto& ref = ref_in.image;
-    const auto& img = img_in.image;
-    if (ref.width != img.width || ref.height != img.height)
-        throw std::invalid_argument(img_file + ": " + std::to_string(img.width) + "x" + std::to_string(img.height) +
-                                    "; expected the reference's size " + std::to_string(ref.width) + "x" +
-                                    std::to_string(ref.height));
-    int x = 0, y = 0, w = ref.width, h = ref.height;
-    if (!crop.empty() && (std::sscanf(crop.c_str(), "%d,%d,%d,%d", &x, &y, &w, &h) != 4 || x < 0 || y < 0 || w < 11 ||
-                          h < 11 || x + w > ref.width || y + h > ref.height))
-        throw std::invalid_argument("--crop " + crop + ": expected X,Y,W,H inside the image, W and H at least 11");
-    size_t stride = size_t(ref.width) * 4, offset = size_t(y) * stride + size_t(x) * 4;
-    auto a = cbr::metrics::fromRgba8(ref.pixels.data() + offset, w, h, stride);
-    auto b = cbr::metrics::fromRgba8(img.pixels.data() + offset, w, h, stride);
-    double psnr = cbr::metrics::psnr(a, b);
-    auto s = cbr::metrics::ssim(a, b);
-    auto f = cbr::metrics::flip(a, b, flip_ppd);
-    std::printf("psnr_db %s\nssim %.6f\nssim_luma %.6f\nflip_mean %.6f\nflip_q1 %.6f\nflip_median %.6f\nflip_q3 %.6f\n",
-                std::isinf(psnr) ? "inf" : std::to_string(psnr).c_str(), s.ssim, s.luma_ssim, f.mean, f.q1, f.median,
-                f.q3);
-    for (const auto* in : {&ref_in, &img_in})
-        if (!in->conversion.empty()) std::printf("note %s\n", in->conversion.c_str());
     return 0;
 }
 
@@ -207,7 +175,8 @@ Command calibrateCommand(CLI::App& app, const std::vector<std::string>& argv) {
     cli->add_option("--from", cal->from, "an earlier calibration's directory: judge its runs again (other "
                                          "--threshold, --alpha or --repeats) without rendering");
     return {cli, [cal, variant_list, argv] {
-                cal->run.variants = splitList(variant_list->empty() ? std::string("full") : *variant_list);
+                cal->run.variants = splitList(variant_list->empty() ? std::string(variants::referenceVariant().name)
+                                                                       : *variant_list);
                 cal->run.argv = argv;
                 cal->out = cal->run.out;
                 return runCalibrate(*cal);
@@ -217,14 +186,7 @@ Command calibrateCommand(CLI::App& app, const std::vector<std::string>& argv) {
 Command metricCostCommand(CLI::App& app) {
     auto* cli = app.add_subcommand("metric-cost", "benchmark: PSNR, SSIM, ECI and FLIP milliseconds per frame, on the "
                                                    "CPU and on the device");
-    struct Args {
-        std::string res = "1920x1080";
-        int frames = 10;
-        double flip_ppd = metrics::kFlipDefaultPpd;
-        std::string scorer = "all";
-        std::string device;
-    };
-    auto a = std::make_shared<Args>();
+    auto a = std::make_shared<MetricCostOptions>();
     cli->add_option("--res", a->res, "frame size WIDTHxHEIGHT")->capture_default_str();
     cli->add_option("--frames", a->frames, "timed frames (median reported)")->capture_default_str();
     cli->add_option("--flip-ppd", a->flip_ppd, kFlipPpdHelp);
@@ -232,26 +194,7 @@ Command metricCostCommand(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::IsMember({"all", "cpu", "device"}));
     cli->add_option("--device", a->device, "device index or name substring for the device scorer (default: lavapipe, else the first)");
-    return {cli, [a] {
-                uint32_t w = 0, h = 0;
-                parseResolution(a->res, w, h);
-                checkFlipPpd(a->flip_ppd);
-                if (a->scorer != "device") {
-                    auto c = metrics::measureMetricCost(int(w), int(h), a->frames, a->flip_ppd);
-                    std::printf("cpu scorer per %ux%u frame (median of %d, %d threads): psnr %.1f ms, ssim %.1f ms, "
-                                "eci %.1f ms, flip %.1f ms, total %.1f ms\n",
-                                w, h, a->frames, c.threads, c.psnr_ms, c.ssim_ms, c.eci_ms, c.flip_ms,
-                                c.psnr_ms + c.ssim_ms + c.eci_ms + c.flip_ms);
-                }
-                if (a->scorer != "cpu") {
-                    vk::Context ctx({false, a->device});
-                    auto d = scoring::measureDeviceCost(ctx, w, h, a->frames, a->flip_ppd);
-                    std::printf("device scorer per %ux%u frame (median of %d, %s): all four metrics %.2f ms of GPU "
-                                "time, %.2f ms from recording to the figures on the host\n",
-                                w, h, a->frames, ctx.description.name.c_str(), d.gpu_ms, d.wall_ms);
-                }
-                return 0;
-            }};
+    return {cli, [a] { return runMetricCost(*a); }};
 }
 
 Command scoreCommand(CLI::App& app) {
@@ -300,7 +243,7 @@ Command scoreSeqCommand(CLI::App& app, const std::vector<std::string>& argv) {
     cli->add_option("--fail", seq->fail, "METRIC=VALUE (repeatable): exit 2 when the worst frame crosses it");
     // idiff's convention, where 2 is a failed comparison: a bad option is 5.
     return {cli,
-            [seq, argv] {
+            [seq, argv]() -> int {
                 seq->argv = argv;
                 try {
                     return runScoreSeq(*seq);
@@ -368,7 +311,7 @@ Command sweepCommand(CLI::App& app, const std::vector<std::string>& argv) {
                     throw std::invalid_argument("sweep: comma lists in --scene, --pipeline or --res; expected one of "
                                                 "each (a sweep is one job: its configurations are compared with each "
                                                 "other; --path may list several)");
-                return runBenchmark(o);
+                return runSweep(o);
             }};
 }
 

@@ -5,6 +5,8 @@
 #include <memory>
 #include <sstream>
 
+#include "harness/core/exit_codes.h"
+
 namespace cbr::harness {
 namespace {
 
@@ -98,12 +100,16 @@ Command helpCommand(CLI::App& app) {
     auto* cli = app.add_subcommand("help", "print every command's options; --markdown: the command-line reference "
                                             "as Markdown (docs/reference/command-line.md)");
     auto markdown = std::make_shared<bool>(false);
+    auto exit_codes = std::make_shared<bool>(false);
     cli->add_flag("--markdown", *markdown, "print the reference as one Markdown page");
-    return {cli, [&app, markdown] {
+    cli->add_flag("--exit-codes", *exit_codes,
+                  "print every command's exit codes as a Markdown table (docs/reference/exit-codes.md)");
+    return {cli, [&app, markdown, exit_codes] {
                 // app.help() would print the help of the parsed subcommand, this one: format the app.
-                const std::string text = *markdown ? commandLineMarkdown(app)
-                                                   : app.get_formatter()->make_help(&app, "cbrbench",
-                                                                                    CLI::AppFormatMode::All);
+                const std::string text = *exit_codes ? exitCodeMarkdown()
+                                         : *markdown ? commandLineMarkdown(app)
+                                                     : app.get_formatter()->make_help(&app, "cbrbench",
+                                                                                      CLI::AppFormatMode::All);
                 std::fputs(text.c_str(), stdout);
                 return 0;
             }};

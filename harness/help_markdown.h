@@ -7,7 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "harness/cli.h"
+#include "harness/command.h"
 
 namespace cbr::harness {
 

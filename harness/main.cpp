@@ -7,9 +7,9 @@
 #include <CLI/CLI.hpp>
 
 #include "harness/cli.h"
-#include "harness/interrupt.h"
-#include "harness/process.h"
-#include "harness/progress.h"
+#include "harness/core/interrupt.h"
+#include "harness/core/process.h"
+#include "harness/core/progress.h"
 #include "renderer/vk/check.h"
 
 int main(int argc, char** argv) {
@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
     } catch (const cbr::harness::Interrupted&) {
         std::fprintf(stderr, "cbrbench: interrupted: stopped before the next frame; this run's partial output was "
                              "removed and nothing else was touched\n");
-        return 130;
+        return cbr::harness::kExitInterrupted;
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "cbrbench: %s\n", e.what());
         return cbr::harness::kExitBadInput;
@@ -50,6 +50,6 @@ int main(int argc, char** argv) {
         return cbr::harness::kExitBadInput;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "cbrbench: error: %s\n", e.what());
-        return 1;
+        return cbr::harness::kExitFailed;
     }
 }

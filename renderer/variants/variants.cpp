@@ -23,6 +23,8 @@ constexpr Variant kVariants[] = {
 
 std::span<const Variant> allVariants() { return kVariants; }
 
+const Variant& referenceVariant() { return kVariants[0]; }
+
 const Variant& supersampledReference() {
     static constexpr Variant kReference{"reference", "k x k supersampled, box-filtered: the ssaa reference",
                                         buildSupersampledReference};

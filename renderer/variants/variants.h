@@ -75,6 +75,9 @@ std::span<const Variant> allVariants();
 // Throws std::invalid_argument naming the accepted variants for an unknown name.
 const Variant& findVariant(std::string_view name);
 std::string variantNames();  // "full, drr, ..."
+// The reference every other variant is scored and timed against: the table's first row
+// (full: native resolution, one sample per pixel). A run always renders it first.
+const Variant& referenceVariant();
 // A checkerboard variant of the table (false for unknown names).
 bool isCheckerboardVariant(std::string_view name);
 // The supersampled reference (`--reference ssaa`), shaped like a variant row but not in the table.

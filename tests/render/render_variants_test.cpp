@@ -8,6 +8,7 @@
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
 #include "renderer/variants/variants.h"
+#include "reports/report_data.h"
 #include "tests/render/bench_runner.h"
 
 namespace cbr::test {
@@ -84,6 +85,15 @@ TEST(RenderVariants, AtriumEveryVariantValidatesCleanly) {
             if (p["name"] == "transparent") transparent = p["ran"].get<bool>();
         EXPECT_TRUE(transparent) << v["name"];
     }
+}
+
+// The table's reference row is the one the reports (which read no renderer header) name.
+TEST(VariantTable, ReferenceRowIsTheReportsReference) {
+    const variants::Variant& ref = variants::referenceVariant();
+    EXPECT_EQ(ref.name, reports::kReference);
+    EXPECT_EQ(&ref, &variants::allVariants().front());
+    EXPECT_EQ(&ref, &variants::findVariant(reports::kReference));
+    EXPECT_FALSE(ref.checkerboard);
 }
 
 TEST(RenderVariants, QualityIsScoredAgainstFull) {

@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "harness/stats.h"
-#include "harness/verdict.h"
+#include "harness/core/stats.h"
+#include "harness/core/verdict.h"
 
 using cbr::harness::benjaminiHochberg;
 using cbr::harness::mannWhitneyMinP;

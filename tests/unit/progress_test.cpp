@@ -1,7 +1,7 @@
 // The progress bar's line: count, percentage, rate and time left.
 #include <gtest/gtest.h>
 
-#include "harness/progress.h"
+#include "harness/core/progress.h"
 
 using cbr::harness::ProgressBar;
 

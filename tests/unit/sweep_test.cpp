@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "harness/sweep.h"
+#include "harness/core/sweep_configs.h"
 #include "reports/sweep.h"
 
 using cbr::harness::expandSweep;

@@ -1,0 +1,69 @@
+// The exit-code table (exit_codes.h) and its Markdown form.
+#include "harness/core/exit_codes.h"
+
+#include <iterator>
+#include <set>
+
+namespace cbr::harness {
+namespace {
+
+using enum ExitColumn;
+
+constexpr const char* kColumnHeads[] = {
+    "`run`, `sweep`, `plan`, `report`, `export`, `calibrate`, `metric-cost`, `score`, listings",
+    "`run` of a matrix, `merge`", "`stress`", "`compare`", "`score-seq`"};
+
+constexpr ExitMeaning kMeanings[] = {
+    {kExitDone, Run, "done (a variant that failed or was skipped is a row in the results, not an exit code)"},
+    {kExitDone, Matrix, "every job ran / every planned job merged"},
+    {kExitDone, Stress, "every case holds"},
+    {kCompareSame, Compare, "no regression (cells SAME, FASTER, BETTER or UNKNOWN without `--strict`)"},
+    {kSeqPass, ScoreSeq, "pass"},
+    {kExitFailed, Run, "unexpected error (a Vulkan error outside one variant's run, a full disk)"},
+    {kExitFailed, Matrix,
+     "a job failed (its `failed` row in jobs.csv; the others ran) / planned jobs missing from the merge (listed)"},
+    {kExitFailed, Stress, "a case failed"},
+    {kCompareRegression, Compare, "regression: a cell SLOWER or WORSE"},
+    {kSeqWarn, ScoreSeq, "a `--warn` threshold crossed"},
+    {kExitBadInput, Run, "bad input: one line naming what, where and what is accepted; no output directory"},
+    {kExitBadInput, Matrix,
+     "bad input; merge also refuses other plans, mixed devices or drivers and a job in two shards"},
+    {kExitBadInput, Stress, "bad input"},
+    {kCompareInconclusive, Compare, "UNKNOWN cells with `--strict`"},
+    {kSeqFail, ScoreSeq, "a `--fail` threshold crossed"},
+    {kCompareBadInput, Compare, "bad input or runs from different devices or drivers; nothing written"},
+    {kSeqSize, ScoreSeq, "images of different sizes"},
+    {kSeqFile, ScoreSeq, "a file missing or unreadable, or a frame without its partner"},
+    {kSeqBadOption, ScoreSeq, "a bad option"},
+    {kExitInterrupted, Run,
+     "interrupted (SIGINT or SIGTERM): stopped before the next frame, the partial output removed"},
+    {kExitInterrupted, Matrix, "same"},
+    {kExitInterrupted, Stress, "same"},
+    {kExitInterrupted, Compare, "same"},
+    {kExitInterrupted, ScoreSeq, "same"},
+};
+
+}  // namespace
+
+std::span<const ExitMeaning> exitMeanings() { return kMeanings; }
+
+std::string exitCodeMarkdown() {
+    std::string md = "| code |";
+    for (const char* head : kColumnHeads) md += std::string(" ") + head + " |";
+    md += "\n|---|";
+    for (size_t i = 0; i < std::size(kColumnHeads); ++i) md += "---|";
+    md += "\n";
+    std::set<int> codes;
+    for (const auto& m : kMeanings) codes.insert(m.code);
+    for (int code : codes) {
+        std::string cells[std::size(kColumnHeads)];
+        for (const auto& m : kMeanings)
+            if (m.code == code) cells[size_t(m.column)] = m.meaning;
+        md += "| " + std::to_string(code) + " |";
+        for (const auto& c : cells) md += c.empty() ? std::string(" |") : " " + c + " |";
+        md += "\n";
+    }
+    return md;
+}
+
+}  // namespace cbr::harness

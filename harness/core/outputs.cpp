@@ -1,0 +1,216 @@
+// The run's result files from its frame rows, and the summary printed at the end.
+#include "harness/core/outputs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "harness/core/outputs_internal.h"
+#include "harness/core/stats.h"
+#include "metrics/metrics.h"
+#include "renderer/vk/context.h"
+
+namespace cbr::harness {
+namespace {
+
+// One variant's ok frames, gathered for its summary row.
+struct Samples {
+    std::vector<double> ms, psnr, ssim, ssim_luma, mse, fs, eci, flicker, flip;
+    double crawl_num = 0, crawl_den = 0;
+    std::vector<std::vector<double>> per_rep, ratios;  // per repetition: times, baseline / time
+    std::map<std::string, std::vector<double>> pass_ms, stat_values;
+    std::vector<std::string> pass_order, stat_order;
+    std::vector<double> widths, heights;
+};
+
+// `full_ms`: the variant's baseline's time per (repeat, frame), for paired ratios.
+Samples collect(const RunResults& r, const VariantRun& vr, const std::map<std::pair<int, int>, double>& full_ms) {
+    Samples c;
+    c.per_rep.resize(size_t(r.repeats));
+    c.ratios.resize(size_t(r.repeats));
+    for (const auto& row : r.rows) {
+        if (row.variant != vr.name || row.status != "ok") continue;
+        c.ms.push_back(row.gpu_ms);
+        c.per_rep[size_t(row.repeat)].push_back(row.gpu_ms);
+        c.widths.push_back(row.render_width);
+        c.heights.push_back(row.render_height);
+        auto f = full_ms.find({row.repeat, row.frame});
+        if (f != full_ms.end() && row.gpu_ms > 0) c.ratios[size_t(row.repeat)].push_back(f->second / row.gpu_ms);
+        for (const auto& [name, value] : row.stats) {
+            if (!c.stat_values.count(name)) c.stat_order.push_back(name);
+            c.stat_values[name].push_back(value);
+        }
+        double frame_fs = 0;
+        bool any_fs = false;
+        for (const auto& pt : row.passes) {
+            if (!c.pass_ms.count(pt.name)) c.pass_order.push_back(pt.name);
+            c.pass_ms[pt.name].push_back(pt.gpu_ms);
+            if (pt.fs_invocations >= 0) {
+                frame_fs += double(pt.fs_invocations);
+                any_fs = true;
+            }
+        }
+        if (any_fs) c.fs.push_back(frame_fs);
+        if (row.quality.mse) c.mse.push_back(*row.quality.mse);
+        if (row.quality.psnr_db) c.psnr.push_back(*row.quality.psnr_db);
+        if (row.quality.ssim) c.ssim.push_back(*row.quality.ssim);
+        if (row.quality.ssim_luma) c.ssim_luma.push_back(*row.quality.ssim_luma);
+        if (row.quality.flip_mean) c.flip.push_back(*row.quality.flip_mean);
+        if (row.quality.eci) {
+            c.eci.push_back(*row.quality.eci);
+            c.crawl_num += row.quality.crawl_numerator;
+            c.crawl_den += row.quality.crawl_denominator;
+        }
+        if (row.quality.flicker_ratio) c.flicker.push_back(*row.quality.flicker_ratio);
+    }
+    return c;
+}
+
+// Times: percentiles, noise across repetitions, and the speedup with its interval.
+void timeStats(VariantSummary& s, const Samples& c, int repeats) {
+    const auto& ms = c.ms;
+    s.frames = int(ms.size()) / std::max(1, repeats);
+    s.gpu_ms_median = median(ms);
+    s.gpu_ms_p5 = percentile(ms, 5);
+    s.gpu_ms_p95 = percentile(ms, 95);
+    s.gpu_ms_p99 = percentile(ms, 99);
+    s.gpu_ms_mean = mean(ms);
+    std::vector<double> rep_medians;
+    for (const auto& rep : c.per_rep)
+        if (!rep.empty()) rep_medians.push_back(median(rep));
+    s.noise_cv = coefficientOfVariation(rep_medians);
+    {
+        std::vector<std::vector<double>> rep_ms;
+        for (const auto& rep : c.per_rep)
+            if (!rep.empty()) rep_ms.push_back(rep);
+        if (rep_ms.size() >= 2) {
+            Interval ci = bootstrapMedianOverRuns(rep_ms);
+            s.gpu_ms_ci_low = ci.low;
+            s.gpu_ms_ci_high = ci.high;
+        }
+    }
+    std::vector<double> pooled;
+    std::vector<std::vector<double>> runs;
+    for (const auto& rr : c.ratios)
+        if (!rr.empty()) {
+            pooled.insert(pooled.end(), rr.begin(), rr.end());
+            runs.push_back(rr);
+        }
+    if (!pooled.empty()) {
+        s.speedup = median(pooled);
+        if (runs.size() >= 2) {
+            Interval ci = bootstrapMedianOverRuns(runs);
+            s.speedup_low = ci.low;
+            s.speedup_high = ci.high;
+        }
+    }
+}
+
+// Quality over the sequence, render size, per-pass times and per-frame statistics.
+void qualityStats(VariantSummary& s, Samples& c) {
+    const auto& psnr = c.psnr;
+    const auto& ssim = c.ssim;
+    const auto& eci = c.eci;
+    if (!c.mse.empty()) {
+        // Sequence PSNR from the mean of the per-frame MSEs (metrics.md).
+        s.psnr_db = metrics::psnrFromMse(mean(c.mse));
+        s.psnr_db_min = *std::min_element(psnr.begin(), psnr.end());
+        s.psnr_db_p5 = percentile(psnr, 5);
+    }
+    if (!ssim.empty()) {
+        s.ssim_mean = mean(ssim);
+        s.ssim_min = *std::min_element(ssim.begin(), ssim.end());
+    }
+    if (!c.ssim_luma.empty()) s.ssim_luma_mean = mean(c.ssim_luma);
+    if (!c.flip.empty()) s.flip_mean = mean(c.flip);
+    if (!eci.empty()) {
+        // Sequence ECI pools numerators and denominators (metrics.md); crawl comes in
+        // bursts, so p95 and max besides.
+        s.eci = c.crawl_den > 0 ? std::sqrt(c.crawl_num / c.crawl_den) : 0.0;
+        s.eci_p95 = percentile(eci, 95);
+        s.eci_max = *std::max_element(eci.begin(), eci.end());
+    }
+    if (!c.flicker.empty()) s.flicker_ratio_mean = mean(c.flicker);
+    if (!c.fs.empty()) s.fs_invocations_median = median(c.fs);
+    s.render_width = uint32_t(median(c.widths));
+    s.render_height = uint32_t(median(c.heights));
+    for (const auto& name : c.pass_order) s.pass_ms_median.push_back({name, median(c.pass_ms[name])});
+    for (const auto& name : c.stat_order) s.stats_mean.push_back({name, mean(c.stat_values[name])});
+}
+
+}  // namespace
+
+std::vector<VariantSummary> summarize(const RunResults& r) {
+    std::vector<VariantSummary> out;
+    // Each baseline's (full's) per-(repeat, frame) times, for paired ratios; a sweep pairs
+    // each configuration with the full configuration at its shading cost.
+    std::map<std::string, std::map<std::pair<int, int>, double>> baseline_ms;
+    for (const auto& vr : r.variants) baseline_ms[vr.baseline];
+    for (const auto& row : r.rows)
+        if (row.status == "ok" && baseline_ms.count(row.variant))
+            baseline_ms[row.variant][{row.repeat, row.frame}] = row.gpu_ms;
+
+    for (const auto& vr : r.variants) {
+        VariantSummary s;
+        s.variant = vr.name;
+        s.status = vr.status;
+        s.note = vr.note;
+        Samples c = collect(r, vr, baseline_ms[vr.baseline]);
+        if (c.ms.empty()) {
+            if (s.status == "ok") s.status = "failed", s.note = "no frame completed";
+            out.push_back(s);
+            continue;
+        }
+        timeStats(s, c, r.repeats);
+        qualityStats(s, c);
+        out.push_back(s);
+    }
+    return out;
+}
+
+// frames.csv, summary.csv, run.json; the NaN cells of both tables are counted in run.json.
+void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
+    size_t nan_cells = writeFramesCsv(dir / "frames.csv", rc.results, rc.settings.width, rc.settings.height);
+    auto summaries = summarize(rc.results);
+    nan_cells += writeSummaryCsv(dir / "summary.csv", rc.results, summaries);
+    writeRunJson(dir / "run.json", rc, summaries, nan_cells);
+}
+
+void printSummary(std::ostream& out, const std::filesystem::path& dir, const RunContext& rc) {
+    auto summaries = summarize(rc.results);
+    char line[512];
+    int name_width = 10;  // a sweep's configuration labels are longer than variant names
+    for (const auto& s : summaries) name_width = std::max(name_width, int(std::min<size_t>(s.variant.size(), 60)));
+    std::snprintf(line, sizeof line, "%-*s %-8s %10s %10s %9s %10s %8s %8s %8s\n", name_width, "variant", "status",
+                  "render", "gpu_ms", "speedup", "psnr_db", "ssim", "flip", "eci");
+    out << "cbrbench: " << rc.scene.name << " / " << rc.path.name << " at " << rc.settings.width << "x"
+        << rc.settings.height << ", " << rc.results.frames << " frames x " << rc.results.repeats << " repeats on "
+        << rc.ctx.description.name << "\n" << line;
+    auto fmt = [](const std::optional<double>& v, const char* f) {
+        if (!v) return std::string("-");
+        if (std::isinf(*v)) return std::string("inf");
+        char b[32];
+        std::snprintf(b, sizeof b, f, *v);
+        return std::string(b);
+    };
+    for (const auto& s : summaries) {
+        std::string render = std::to_string(s.render_width) + "x" + std::to_string(s.render_height);
+        std::snprintf(line, sizeof line, "%-*s %-8s %10s %10s %9s %10s %8s %8s %8s\n", name_width, s.variant.c_str(),
+                      s.status.c_str(),
+                      s.frames ? render.c_str() : "-",
+                      s.frames ? fmt(s.gpu_ms_median, "%.3f").c_str() : "-", fmt(s.speedup, "%.3fx").c_str(),
+                      fmt(s.psnr_db, "%.2f").c_str(), fmt(s.ssim_mean, "%.4f").c_str(),
+                      fmt(s.flip_mean, "%.4f").c_str(), fmt(s.eci, "%.4f").c_str());
+        out << line;
+    }
+    auto& val = rc.ctx.validation;
+    if (rc.ctx.validation_enabled)
+        out << "validation messages: " << val.errors.load() + val.warnings.load() << " (" << val.errors.load()
+            << " errors, " << val.warnings.load() << " warnings)\n";
+    out << "report:  " << (dir / "report.html").string() << "\n";
+    out << "results: " << dir.string() << "/ (summary.csv, frames.csv, run.json"
+        << (rc.options.save_frames ? ", frames/" : "") << ")\n";
+}
+
+}  // namespace cbr::harness

@@ -1,0 +1,119 @@
+// Scoring of quality frames on worker threads: PSNR, SSIM and FLIP per frame, edge crawl
+// in frame order per variant, and the worst frames kept for the report (method/metrics.md).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/core/results.h"
+#include "harness/core/wall_account.h"
+#include "harness/core/worker_pool.h"
+#include "metrics/image.h"
+#include "metrics/temporal.h"
+#include "renderer/scoring/device_metrics.h"
+
+namespace cbr::harness {
+
+using Bytes = std::shared_ptr<const std::vector<uint8_t>>;
+using Floats = std::shared_ptr<const std::vector<float>>;
+
+// One quality frame of a variant, as read back.
+struct QualityFrame {
+    int index = 0;
+    Bytes rgba;                                    // display image, RGBA8
+    Bytes classes;                                 // checkerboard class map (R8), may be null
+    std::shared_ptr<const std::vector<float>> analysis;  // motion.xy, depth, previous depth
+    bool cut = false;                              // history reset (first frame or camera cut)
+};
+
+class QualityScorer {
+public:
+    // flip_ppd: FLIP's pixels per degree (--flip-ppd). `wall`, when given, receives the
+    // workers' time per metric and for image encoding.
+    QualityScorer(int width, int height, double flip_ppd, WorkerPool& workers, WallAccount* wall = nullptr);
+    ~QualityScorer();
+
+    // Reference frame `frame`, to be scored against by `uses` frames (one per other variant):
+    // it is dropped once they are done (or skipped), so memory does not grow with the path.
+    // Frames handed to score() before their reference arrived are scored now.
+    void setReference(size_t frame, Bytes rgba, int uses);
+    // A variant that will not score `frame` after all (it failed): one use fewer.
+    void skip(size_t frame);
+    // The reference failed: frames waiting for it, and frames to come, get a note instead.
+    void referenceFailed();
+    // Scores `frame` of `variant` into `row` (which must outlive finish()). `is_reference`:
+    // the variant is the reference itself (PSNR inf, SSIM 1, ECI 0, FLIP 0 without computing).
+    void score(const std::string& variant, bool is_reference, FrameRow& row, QualityFrame frame);
+    // A frame scored elsewhere (on the device) that may be the variant's worst by SSIM or by
+    // edge crawl: its images, kept if so, and for the latter its crawl map (a float per pixel,
+    // as CrawlFrame::crawl_map; may be null), kept as its heat map. ssim_map and flip_map (a
+    // float per pixel, as metrics::ssimMap and metrics::flip's map; may be null) are kept with
+    // either kind and replace finish()'s recomputing them from the images.
+    void offerWorst(const std::string& variant, int frame, const Quality& quality, Bytes reference, Bytes image,
+                    Bytes classes, Floats crawl_map = nullptr, Floats ssim_map = nullptr, Floats flip_map = nullptr);
+    // The images of a worst frame kept elsewhere (on the device), fetched when it is written.
+    struct WorstImages {
+        Bytes reference, image, classes;
+        Floats crawl_map, ssim_map, flip_map;
+    };
+    using WorstLoader = std::function<bool(WorstImages&)>;
+    // A variant's worst frame by `kind` (ssim or eci) whose images `load` brings only when
+    // finish() writes it, one at a time: a run never holds every variant's at once.
+    void offerWorstLater(const std::string& variant, const std::string& kind, int frame, double value, WorstLoader load);
+    // Waits for every job; writes the worst frames (by SSIM and by ECI) of each variant
+    // as PNGs under dir/worst/, with their error, SSIM, FLIP, crawl and class maps, each
+    // distinct image once, encoded on the workers, and the report's smaller copies under
+    // dir/worst/page/. Returns the worst frames in variant order with their files.
+    std::vector<WorstFrame> finish(const std::filesystem::path& dir);
+
+private:
+    struct Chain;
+    struct Worst;
+    class Writer;
+    struct Reference {
+        Bytes rgba;
+        int uses = 0;  // scores still to come; may go below 0 before the frame arrives (skips)
+        std::vector<std::function<void()>> waiting;  // scores handed in before the frame
+    };
+    void crawlStep(const std::string& variant, FrameRow& row, const QualityFrame& frame, const Bytes& ref);
+    void submitScore(Chain& c, const std::string& variant, FrameRow& row, QualityFrame frame, Bytes ref);
+    void release(size_t frame);  // with mutex_ held
+    bool loadWorst(Worst& worst);
+    Chain& chain(const std::string& variant);
+
+    int width_, height_;
+    double flip_ppd_;
+    WorkerPool& workers_;
+    WallAccount* wall_;
+    mutable std::mutex mutex_;
+    std::map<size_t, Reference> references_;  // the frames still to be scored against
+    bool reference_failed_ = false;
+    std::map<std::string, std::unique_ptr<Chain>> chains_;
+    std::vector<std::string> variant_order_;  // first-scored order: the order finish() reports
+};
+
+// At most this many worst-frame images are encoded at once for w x h images: each encode holds
+// about twice the frame's RGBA8 bytes while it runs (a coloured map, the filtered rows, the
+// stream), and a 4K run must stay within its memory (about 66 MB an encode there: 11 at once).
+inline constexpr double kWorstEncodeBytesPerPixel = 8;
+unsigned worstImageEncoders(int width, int height);
+
+// Every distinct file of the worst frames, in first-use order (run.json `files`).
+std::vector<std::string> worstFiles(const std::vector<WorstFrame>& worst);
+
+// The row's figures from the device scorer's (the same definitions; notes where one is
+// missing or not finite).
+void fillQuality(Quality& quality, const scoring::DeviceScores& scores);
+
+// Heat-map colouring of a one-channel image (0 black ... 1 white through red and yellow).
+std::vector<uint8_t> heatMap(const metrics::Image& value, double scale);
+// Checkerboard class map (R8 classes) as RGBA8 colours.
+std::vector<uint8_t> classMapRgba(const std::vector<uint8_t>& classes);
+
+}  // namespace cbr::harness

@@ -1,0 +1,101 @@
+// The run's steps, shared by run.cpp, run_prepare.cpp and run_loop.cpp (not for other commands).
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include "camera_paths/path.h"
+#include "harness/core/builtin_context.h"
+#include "harness/core/options.h"
+#include "harness/core/progress.h"
+#include "harness/core/quality.h"
+#include "harness/core/results.h"
+#include "harness/core/scene_load.h"
+#include "harness/core/sweep_configs.h"
+#include "harness/core/wall_account.h"
+#include "harness/core/worker_pool.h"
+#include "renderer/gpu/gpu_scene.h"
+#include "renderer/renderer.h"
+#include "renderer/scoring/frame_scoring.h"
+#include "renderer/scene/scene.h"
+#include "renderer/variants/variants.h"
+#include "renderer/vk/context.h"
+
+namespace cbr::harness {
+
+// Everything checked before the first output exists.
+struct Prepared {
+    RunOptions options;
+    render::Settings settings;
+    scene::Scene scene;
+    paths::CameraPath path;
+    std::vector<double> times;
+    std::vector<paths::CameraPose> poses;
+    PathPlacement placement;  // how a built-in path was placed (run.json path.placement)
+    std::vector<const variants::Variant*> order;
+    // What runs, in order within each repetition: a variant with its settings (a plain
+    // run: one per variant; a sweep: one per configuration).
+    struct Config {
+        const variants::Variant* variant = nullptr;
+        render::Settings settings;
+        SweepConfig sweep;
+    };
+    std::vector<Config> configs;
+    std::vector<SweepParam> params;
+    std::filesystem::path out;
+    SceneLoad load;
+};
+
+// Options to settings, configurations, scene and path, output directory (run_prepare.cpp).
+Prepared prepare(const RunOptions& o);
+
+// The state the render loop's steps share, from the uploaded scene to the scored frames.
+// Members are destroyed in reverse: renderers, then the scorer, then the workers (which
+// finish their PNG writes into `out` before the output directory goes).
+struct RunState {
+    RunState(const Prepared& p, vk::Context& ctx, gpu::GpuScene& gpu_scene, const std::filesystem::path& out,
+             WallAccount& wall);
+
+    const Prepared& p;
+    const RunOptions& options;
+    vk::Context& ctx;
+    gpu::GpuScene& gpu_scene;
+    const std::filesystem::path out;  // the temporary output directory
+    WallAccount& wall;  // started before the scene loaded
+    const int w, h;
+    RunResults results;
+    WorkerPool workers;
+    QualityScorer scorer;
+    // The alignment check looks at the middle frame of a path of at least 3 frames.
+    const size_t mid;
+    std::vector<Bytes> mid_images;
+    std::vector<Bytes> reference_frames;  // only the alignment check's, around the middle frame
+    // The quality pass's rows, one per (configuration, frame): only their scores are kept,
+    // copied into repetition 0's timed rows.
+    std::vector<FrameRow> quality_rows;
+    FrameRow& qualityRow(size_t config, size_t frame) { return quality_rows[config * p.poses.size() + frame]; }
+    ProgressBar progress;  // frames rendered, on a terminal
+    // --scorer device (or auto on a GPU): the metrics in Vulkan compute, shared by the
+    // renderers (declared before them, so it outlives them).
+    std::unique_ptr<scoring::DeviceScoring> device_scoring;
+    // One renderer per variant for the whole run: pipelines and targets are built once.
+    std::vector<std::unique_ptr<render::Renderer>> renderers;
+    std::unique_ptr<render::Renderer> ssaa_reference;  // --reference ssaa, during the quality pass
+};
+
+// The `rep` of a ConfigPass that renders the untimed, scored quality frames.
+constexpr int kQualityPass = -1;
+
+// The loop's steps in the order runBenchmark calls them (run_loop.cpp).
+void makeSsaaReference(RunState& s);
+void makeRenderers(RunState& s);
+// --scorer: the device scorer for every renderer, or the CPU's (RunResults::scorer says which).
+void chooseScorer(RunState& s);
+void calibrateSlowdown(RunState& s);
+void renderQualityFrames(RunState& s);
+void renderRepetitions(RunState& s);
+void scoreFrames(RunState& s);
+
+}  // namespace cbr::harness

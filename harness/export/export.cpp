@@ -1,0 +1,40 @@
+// `cbrbench export RUN_DIR --format gbench [--out FILE]`: a finished run's results in another
+// tool's format (the formats are the core's, harness/core/exports.h, which run --export uses).
+#include "harness/export/export.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/core/exit_codes.h"
+#include "harness/core/exports.h"
+#include "reports/csv.h"
+#include "reports/report_data.h"
+
+namespace cbr::harness {
+
+namespace fs = std::filesystem;
+
+int runExport(const std::string& run_dir, const std::string& format, const std::string& out_file) {
+    auto formats = parseExportFormats(format, "export --format");
+    if (formats.size() != 1) throw std::invalid_argument("export --format: give one format; accepted: " + std::string(kExportFormats));
+    if (!fs::is_directory(run_dir))
+        throw std::invalid_argument("export " + run_dir + ": not a directory; expected a run's output directory");
+    fs::path out = out_file.empty() ? fs::path(run_dir) / exportFileName(formats[0]) : fs::path(out_file);
+    fs::path parent = fs::absolute(out).parent_path();
+    if (!fs::is_directory(parent) || fs::is_directory(out))
+        throw std::invalid_argument("export --out " + out.string() + ": accepted: a file path in an existing directory");
+    reports::RunData d;
+    try {
+        d = reports::loadRun(run_dir);
+    } catch (const nlohmann::json::exception& e) {
+        throw std::invalid_argument("export " + (fs::path(run_dir) / "run.json").string() + ": " + e.what());
+    }
+    reports::writeTextAtomically(out, exportText(d, formats[0]));
+    std::printf("export: %s\n", out.c_str());
+    return kExitDone;
+}
+
+}  // namespace cbr::harness

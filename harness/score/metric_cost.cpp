@@ -1,0 +1,37 @@
+// `cbrbench metric-cost` (metric_cost.h): the CPU scorer's metrics one by one, the device
+// scorer's all four together.
+#include "harness/score/metric_cost.h"
+
+#include <cstdint>
+#include <cstdio>
+
+#include "harness/core/exit_codes.h"
+#include "harness/core/options.h"
+#include "metrics/cost.h"
+#include "renderer/scoring/device_cost.h"
+#include "renderer/vk/context.h"
+
+namespace cbr::harness {
+
+int runMetricCost(const MetricCostOptions& o) {
+    uint32_t w = 0, h = 0;
+    parseResolution(o.res, w, h);
+    checkFlipPpd(o.flip_ppd);
+    if (o.scorer != "device") {
+        auto c = metrics::measureMetricCost(int(w), int(h), o.frames, o.flip_ppd);
+        std::printf("cpu scorer per %ux%u frame (median of %d, %d threads): psnr %.1f ms, ssim %.1f ms, "
+                    "eci %.1f ms, flip %.1f ms, total %.1f ms\n",
+                    w, h, o.frames, c.threads, c.psnr_ms, c.ssim_ms, c.eci_ms, c.flip_ms,
+                    c.psnr_ms + c.ssim_ms + c.eci_ms + c.flip_ms);
+    }
+    if (o.scorer != "cpu") {
+        vk::Context ctx({false, o.device});
+        auto d = scoring::measureDeviceCost(ctx, w, h, o.frames, o.flip_ppd);
+        std::printf("device scorer per %ux%u frame (median of %d, %s): all four metrics %.2f ms of GPU "
+                    "time, %.2f ms from recording to the figures on the host\n",
+                    w, h, o.frames, ctx.description.name.c_str(), d.gpu_ms, d.wall_ms);
+    }
+    return kExitDone;
+}
+
+}  // namespace cbr::harness

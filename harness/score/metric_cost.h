@@ -1,0 +1,21 @@
+// `cbrbench metric-cost`: what the suite's metrics cost per frame, on the CPU and on the device.
+#pragma once
+
+#include <string>
+
+#include "metrics/flip.h"
+
+namespace cbr::harness {
+
+struct MetricCostOptions {
+    std::string res = "1920x1080";
+    int frames = 10;
+    double flip_ppd = metrics::kFlipDefaultPpd;
+    std::string scorer = "all";  // cpu, device or all
+    std::string device;          // the device scorer's device ("": lavapipe, else the first)
+};
+
+// Prints one line per scorer measured. Bad input throws std::invalid_argument.
+int runMetricCost(const MetricCostOptions& o);
+
+}  // namespace cbr::harness

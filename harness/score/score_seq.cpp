@@ -1,0 +1,471 @@
+// `cbrbench score-seq`: two image sequences scored frame by frame with the run's own scorer
+// (PSNR, SSIM, FLIP, edge crawl and flicker), into a run-shaped folder with a report.
+#include "harness/core/process.h"
+#include "harness/score/score_seq.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <thread>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/core/options.h"
+#include "harness/core/outputs.h"
+#include "harness/core/output_cells.h"
+#include "harness/core/progress.h"
+#include "harness/core/quality.h"
+#include "harness/score/sequence_files.h"
+#include "metrics/image_io.h"
+#include "metrics/temporal.h"
+#include "reports/csv.h"
+#include "reports/output_dir.h"
+#include "reports/report.h"
+#include "reports/report_data.h"
+
+namespace cbr::harness {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// What score-seq reads, matched up before anything is scored or written.
+struct SeqInputs {
+    Sequence reference, test;
+    std::vector<fs::path> test_files, motion_files;  // per reference frame
+    double motion_sx = 1, motion_sy = 1;
+    std::string name;
+};
+
+// Per frame beyond the FrameRow: where it came from and how its motion was found.
+struct SeqFrameInfo {
+    long number = 0;
+    fs::path reference, test;
+    double shift_dx = 0, shift_dy = 0, shift_response = 0;
+    bool shift_rejected = false;  // the estimate explained less than no motion: 0 used
+    bool cut = false;
+};
+
+void parseMotionScale(const std::string& spec, double& sx, double& sy) {
+    double x = 0, y = 0;
+    char tail = 0;
+    const int n = std::sscanf(spec.c_str(), "%lf,%lf%c", &x, &y, &tail);
+    if (n == 1 && spec.find(',') == std::string::npos) y = x;
+    else if (n != 2) x = NAN;
+    if (!std::isfinite(x) || !std::isfinite(y) || x == 0 || y == 0)
+        throw SequenceError(kSeqBadOption, "--motion-scale " + spec +
+                                               ": accepted: SX,SY or S, finite and non-zero (e.g. -1,-1 when the "
+                                               "files hold current-minus-previous, or 960,540 for UV units)");
+    sx = x;
+    sy = y;
+}
+
+// A pattern's file-name stem before the number (frames/cbr-aso_%04d.png: cbr-aso), else
+// the folder's name; "test" when neither gives a usable label.
+std::string defaultName(const std::string& spec, bool pattern) {
+    const fs::path t(spec);
+    std::string name;
+    if (pattern) {
+        name = t.filename().string();
+        name = name.substr(0, name.find('%'));
+        while (!name.empty() && std::string("_-. ").find(name.back()) != std::string::npos) name.pop_back();
+    }
+    if (name.empty()) {
+        const fs::path dir = fs::absolute(pattern ? t.parent_path() : t).lexically_normal();
+        name = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
+    }
+    if (name.empty() || name == reports::kReference || name.find_first_of("/\\,\"") != std::string::npos) name = "test";
+    return name;
+}
+
+SeqInputs planInputs(const ScoreSeqOptions& o) {
+    SeqInputs in;
+    in.reference = listSequence(o.reference, "REFERENCE");
+    in.test = listSequence(o.test, "TEST");
+    in.test_files = matchSequence(in.reference, in.test, "TEST");
+    if (!o.motion.empty()) {
+        parseMotionScale(o.motion_scale, in.motion_sx, in.motion_sy);
+        in.motion_files = matchSequence(in.reference, listSequence(o.motion, "--motion"), "--motion");
+    } else if (o.motion_scale != "1,1") {
+        throw SequenceError(kSeqBadOption, "--motion-scale without --motion: it scales the motion files' vectors");
+    }
+    in.name = o.name.empty() ? defaultName(o.test, in.test.pattern) : o.name;
+    if (in.name.find_first_of("/\\,\"") != std::string::npos || in.name == reports::kReference)
+        throw SequenceError(kSeqBadOption, "--name " + in.name + ": accepted: a label without / \\ , \" (and not full)");
+    return in;
+}
+
+metrics::DisplayImage readFrame(const fs::path& file, float exposure, const char* what, long number) {
+    try {
+        return metrics::readDisplayImage(file, exposure);
+    } catch (const std::invalid_argument& e) {
+        if (std::string(e.what()).rfind("--exposure", 0) == 0) throw SequenceError(kSeqBadOption, e.what());
+        throw SequenceError(kSeqFile, std::string(what) + " frame " + std::to_string(number) + ": " + e.what());
+    }
+}
+
+void checkSize(const metrics::Rgba8Image& img, int w, int h, const fs::path& file, const char* what) {
+    if (img.width != w || img.height != h)
+        throw SequenceError(kSeqSize, std::string(what) + " " + file.string() + ": " + std::to_string(img.width) + "x" +
+                                          std::to_string(img.height) + "; the reference's first frame is " +
+                                          std::to_string(w) + "x" + std::to_string(h) +
+                                          " (accepted: every frame of both sequences the same size)");
+}
+
+// motion.xy, depth, previous depth per pixel: QualityFrame::analysis's layout.
+std::shared_ptr<std::vector<float>> motionFromFile(const fs::path& file, int w, int h, double sx, double sy) {
+    metrics::FloatImage m;
+    try {
+        m = metrics::readFloatImage(file);
+    } catch (const std::invalid_argument& e) {
+        throw SequenceError(kSeqFile, std::string("--motion ") + e.what());
+    }
+    if (m.width != w || m.height != h)
+        throw SequenceError(kSeqSize, "--motion " + file.string() + ": " + std::to_string(m.width) + "x" +
+                                          std::to_string(m.height) + "; the reference's frames are " +
+                                          std::to_string(w) + "x" + std::to_string(h));
+    if (m.channels < 2)
+        throw SequenceError(kSeqFile, "--motion " + file.string() + ": " + std::to_string(m.channels) +
+                                          " channel; accepted: 2 or more (the first two are the motion in x and y)");
+    const size_t n = size_t(w) * size_t(h);
+    auto out = std::make_shared<std::vector<float>>(n * 4, 1.0f);
+    for (size_t i = 0; i < n; ++i) {
+        (*out)[4 * i] = float(m.data[i * size_t(m.channels)] * sx);
+        (*out)[4 * i + 1] = float(m.data[i * size_t(m.channels) + 1] * sy);
+    }
+    return out;
+}
+
+std::shared_ptr<std::vector<float>> uniformAnalysis(int w, int h, double dx, double dy) {
+    const size_t n = size_t(w) * size_t(h);
+    auto out = std::make_shared<std::vector<float>>(n * 4, 1.0f);
+    for (size_t i = 0; i < n; ++i) {
+        (*out)[4 * i] = float(dx);
+        (*out)[4 * i + 1] = float(dy);
+    }
+    return out;
+}
+
+// Every frame pair, in order; rows and infos are filled, the scorer keeps the worst frames.
+struct Scored {
+    int width = 0, height = 0;
+    std::vector<std::string> conversions;  // how inputs were made display images (once per kind)
+};
+
+Scored scoreFrames(const ScoreSeqOptions& o, const SeqInputs& in, RunResults& results, std::vector<SeqFrameInfo>& infos,
+                   std::unique_ptr<QualityScorer>& scorer, WorkerPool& workers) {
+    Scored s;
+    const size_t n = in.reference.frames.size();
+    const std::set<long> cuts(o.cuts.begin(), o.cuts.end());
+    std::set<std::string> seen_conversions;
+    std::optional<metrics::Image> previous_reference;
+    ProgressBar bar("frames", int(n));
+    for (size_t i = 0; i < n; ++i) {
+        const auto& rf = in.reference.frames[i];
+        auto ref = readFrame(rf.file, o.exposure, "REFERENCE", rf.number);
+        auto img = readFrame(in.test_files[i], o.exposure, "TEST", rf.number);
+        if (i == 0) {
+            s.width = ref.image.width;
+            s.height = ref.image.height;
+            scorer = std::make_unique<QualityScorer>(s.width, s.height, o.flip_ppd, workers);
+        }
+        checkSize(ref.image, s.width, s.height, rf.file, "REFERENCE");
+        checkSize(img.image, s.width, s.height, in.test_files[i], "TEST");
+        for (const auto* c : {&ref.conversion, &img.conversion}) {
+            // One note per kind of conversion, not per file: drop the file name.
+            const std::string kind = c->empty() ? std::string() : c->substr(c->find(' ') + 1);
+            if (!kind.empty() && seen_conversions.insert(kind).second) s.conversions.push_back(*c);
+        }
+        SeqFrameInfo info;
+        info.number = rf.number;
+        info.reference = rf.file;
+        info.test = in.test_files[i];
+        info.cut = i == 0 || cuts.count(rf.number) > 0;
+        std::shared_ptr<std::vector<float>> analysis;
+        if (!in.motion_files.empty()) {
+            analysis = motionFromFile(in.motion_files[i], s.width, s.height, in.motion_sx, in.motion_sy);
+        } else {
+            auto cur = metrics::fromRgba8(ref.image.pixels.data(), s.width, s.height, size_t(s.width) * 4);
+            if (previous_reference && !info.cut) {
+                auto shift = metrics::estimateGlobalShift(*previous_reference, cur);
+                info.shift_dx = shift.dx;
+                info.shift_dy = shift.dy;
+                info.shift_response = shift.response;
+                info.shift_rejected = shift.rejected;
+            }
+            analysis = uniformAnalysis(s.width, s.height, info.shift_dx, info.shift_dy);
+            previous_reference = std::move(cur);
+        }
+        FrameRow& row = results.rows.emplace_back();
+        row.variant = in.name;
+        row.frame = int(i);
+        row.render_width = uint32_t(s.width);
+        row.render_height = uint32_t(s.height);
+        infos.push_back(info);
+        scorer->setReference(i, std::make_shared<const std::vector<uint8_t>>(std::move(ref.image.pixels)), 1);
+        QualityFrame qf;
+        qf.index = int(i);
+        qf.rgba = std::make_shared<const std::vector<uint8_t>>(std::move(img.image.pixels));
+        qf.analysis = std::move(analysis);
+        qf.cut = info.cut;
+        scorer->score(in.name, false, row, std::move(qf));
+        // Read ahead only as far as the workers keep up: memory stays a few frames deep.
+        workers.waitUntilAtMost(size_t(2 * std::max(1u, std::thread::hardware_concurrency())));
+        bar.step(in.name + " " + rf.file.filename().string());
+    }
+    return s;
+}
+
+}  // namespace
+
+SeqThreshold parseSeqThreshold(const std::string& spec, const std::string& option) {
+    struct Known {
+        const char* metric;
+        const char* column;
+        bool higher_is_worse;
+    };
+    static const Known kKnown[] = {{"psnr", "psnr_db", false}, {"ssim", "ssim", false}, {"flip", "flip_mean", true},
+                                   {"eci", "eci", true},       {"flicker", "flicker_ratio", true}};
+    const auto eq = spec.find('=');
+    SeqThreshold t;
+    t.metric = spec.substr(0, eq);
+    const Known* k = nullptr;
+    for (const auto& c : kKnown)
+        if (t.metric == c.metric) k = &c;
+    double v = NAN;
+    if (eq != std::string::npos) {
+        char* end = nullptr;
+        const std::string value = spec.substr(eq + 1);
+        v = std::strtod(value.c_str(), &end);
+        if (value.empty() || *end) v = NAN;
+    }
+    if (!k || !std::isfinite(v))
+        throw SequenceError(kSeqBadOption, option + " " + spec +
+                                               ": accepted: METRIC=VALUE with METRIC psnr (dB; crossed below), ssim "
+                                               "(below), flip, eci or flicker (above), e.g. " + option + " psnr=30");
+    t.column = k->column;
+    t.value = v;
+    t.higher_is_worse = k->higher_is_worse;
+    return t;
+}
+
+namespace {
+
+// frames.csv of a sequence: the run's quality columns plus where each frame came from.
+void writeSeqFramesCsv(const fs::path& file, const RunResults& r, const std::vector<SeqFrameInfo>& infos,
+                       bool motion_files) {
+    reports::CsvTable t({"variant", "repeat", "frame", "frame_number", "reference_file", "test_file", "psnr_db", "mse",
+                         "ssim", "ssim_luma", "flip_mean", "flip_q1", "flip_median", "flip_q3", "eci",
+                         "flicker_ratio", "crawl_valid_fraction", "motion", "shift_dx", "shift_dy",
+                         "shift_response", "global_shift_rejected", "cut", "note"});
+    for (size_t i = 0; i < r.rows.size(); ++i) {
+        const auto& row = r.rows[i];
+        const auto& q = row.quality;
+        const auto& info = infos[i];
+        std::map<std::string, reports::Cell> m;
+        m["variant"] = row.variant;
+        m["repeat"] = 0;
+        m["frame"] = row.frame;
+        m["frame_number"] = info.number;
+        m["reference_file"] = info.reference.string();
+        m["test_file"] = info.test.string();
+        m["psnr_db"] = optional(q.psnr_db);
+        m["mse"] = optional(q.mse);
+        m["ssim"] = optional(q.ssim);
+        m["ssim_luma"] = optional(q.ssim_luma);
+        m["flip_mean"] = optional(q.flip_mean);
+        m["flip_q1"] = optional(q.flip_q1);
+        m["flip_median"] = optional(q.flip_median);
+        m["flip_q3"] = optional(q.flip_q3);
+        m["eci"] = optional(q.eci);
+        m["flicker_ratio"] = optional(q.flicker_ratio);
+        m["crawl_valid_fraction"] = optional(q.crawl_valid_fraction);
+        m["motion"] = motion_files ? "files" : "global shift";
+        if (!motion_files && !info.cut) {
+            m["shift_dx"] = info.shift_dx;
+            m["shift_dy"] = info.shift_dy;
+            m["shift_response"] = info.shift_response;
+            m["global_shift_rejected"] = info.shift_rejected;
+        }
+        m["cut"] = info.cut;
+        m["note"] = q.note + row.note;
+        t.addRow(m);
+    }
+    t.write(file);
+    reportNaNs(t, "frames.csv");
+}
+
+void writeSeqSummaryCsv(const fs::path& file, const VariantSummary& s, int width, int height) {
+    reports::CsvTable t({"variant", "status", "frames", "repeats", "width", "height", "psnr_db_mean", "psnr_db_min",
+                         "psnr_db_p5", "ssim_mean", "ssim_min", "ssim_luma_mean", "flip_mean", "eci", "eci_p95",
+                         "eci_max", "flicker_ratio_mean", "note"});
+    std::map<std::string, reports::Cell> m;
+    m["variant"] = s.variant;
+    m["status"] = "ok";
+    m["frames"] = s.frames;
+    m["repeats"] = 1;
+    m["width"] = width;
+    m["height"] = height;
+    summaryQualityCells(m, s);
+    m["note"] = s.note;
+    t.addRow(m);
+    t.write(file);
+    reportNaNs(t, "summary.csv");
+}
+
+json finiteOrNull(const std::optional<double>& v) { return v && std::isfinite(*v) ? json(*v) : json(nullptr); }
+
+// A threshold crossed: the worst frame's value against it.
+struct Crossing {
+    const SeqThreshold* threshold;
+    bool fail;
+    int frame;
+    long number;
+    double value;
+};
+
+std::vector<Crossing> judge(const std::vector<SeqThreshold>& warn, const std::vector<SeqThreshold>& fail,
+                            const RunResults& r, const std::vector<SeqFrameInfo>& infos) {
+    std::vector<Crossing> out;
+    auto value = [](const Quality& q, const std::string& column) -> std::optional<double> {
+        if (column == "psnr_db") return q.psnr_db;
+        if (column == "ssim") return q.ssim;
+        if (column == "flip_mean") return q.flip_mean;
+        if (column == "eci") return q.eci;
+        return q.flicker_ratio;
+    };
+    for (bool is_fail : {true, false})
+        for (const auto& t : is_fail ? fail : warn) {
+            std::optional<Crossing> worst;
+            for (size_t i = 0; i < r.rows.size(); ++i) {
+                auto v = value(r.rows[i].quality, t.column);
+                if (!v || std::isnan(*v)) continue;
+                const bool crossed = t.higher_is_worse ? *v > t.value : *v < t.value;
+                const bool worse = !worst || (t.higher_is_worse ? *v > worst->value : *v < worst->value);
+                if (crossed && worse) worst = Crossing{&t, is_fail, int(i), infos[i].number, *v};
+            }
+            if (worst) out.push_back(*worst);
+        }
+    return out;
+}
+
+json runJson(const ScoreSeqOptions& o, const SeqInputs& in, const Scored& s, const VariantSummary& sum,
+             const std::vector<Crossing>& crossings, const std::vector<SeqThreshold>& warn,
+             const std::vector<SeqThreshold>& fail, double seconds, const std::vector<WorstFrame>& worst) {
+    json j;
+    j["kind"] = "score-seq";
+    j["tool"] = {{"name", "cbrbench"}, {"version", CBR_VERSION}, {"commit", CBR_GIT_COMMIT}};
+    j["date"] = isoDate();
+    j["command_line"] = o.argv;
+    j["host"] = hostJson();
+    j["wall_seconds"] = seconds;
+    j["settings"] = {{"width", s.width}, {"height", s.height}, {"flip_ppd", o.flip_ppd}, {"exposure", o.exposure}};
+    j["scene"] = {{"name", "captured sequence"}};
+    j["path"] = {{"name", in.name}};
+    json motion = {{"source", in.motion_files.empty() ? "global shift" : "files"}};
+    if (in.motion_files.empty())
+        motion["method"] = "one translation per frame pair: phase correlation of the reference's luma (OpenCV "
+                           "phaseCorrelate, Hann window), refined by Gauss-Newton steps on the sigma-1 blurred luma, "
+                           "kept where it explains the reference's change better than no motion (else 0); no "
+                           "disocclusion test (no depth)";
+    else
+        motion.update({{"files", o.motion}, {"scale", {in.motion_sx, in.motion_sy}},
+                       {"convention", "the first two channels x scale: the surface at pixel p of frame t was at p + "
+                                      "motion in frame t-1, in pixels; no disocclusion test (no depth)"}});
+    j["sequence"] = {{"reference", o.reference},
+                     {"test", o.test},
+                     {"frames", in.reference.frames.size()},
+                     {"matched_by", in.reference.pattern && in.test.pattern ? "frame number" : "sorted name"},
+                     {"motion", motion},
+                     {"cuts", o.cuts},
+                     {"conversions", s.conversions}};
+    json th = {{"warn", json::array()}, {"fail", json::array()}};
+    for (const auto& t : warn) th["warn"].push_back({{"metric", t.metric}, {"value", t.value}});
+    for (const auto& t : fail) th["fail"].push_back({{"metric", t.metric}, {"value", t.value}});
+    th["crossed"] = json::array();
+    for (const auto& c : crossings)
+        th["crossed"].push_back({{"metric", c.threshold->metric}, {"threshold", c.threshold->value},
+                                 {"level", c.fail ? "fail" : "warn"}, {"frame", c.frame},
+                                 {"frame_number", c.number}, {"value", finiteOrNull(c.value)}});
+    bool any_fail = false, any_warn = false;
+    for (const auto& c : crossings) (c.fail ? any_fail : any_warn) = true;
+    th["verdict"] = any_fail ? "FAILURE" : any_warn ? "WARNING" : "PASS";
+    j["thresholds"] = th;
+    j["summary"] = {{"psnr_db", finiteOrNull(sum.psnr_db)},
+                    {"psnr_db_is_inf", sum.psnr_db && std::isinf(*sum.psnr_db)},
+                    {"ssim_mean", finiteOrNull(sum.ssim_mean)},
+                    {"flip_mean", finiteOrNull(sum.flip_mean)},
+                    {"eci", finiteOrNull(sum.eci)},
+                    {"flicker_ratio_mean", finiteOrNull(sum.flicker_ratio_mean)}};
+    j["variants"] = json::array({{{"name", in.name}, {"status", "ok"}}});
+    j["worst"] = worstJson(worst);
+    return j;
+}
+
+std::string fmtValue(const std::optional<double>& v, int digits) {
+    if (!v) return "-";
+    if (std::isinf(*v)) return "inf";
+    char b[32];
+    std::snprintf(b, sizeof b, "%.*f", digits, *v);
+    return b;
+}
+
+}  // namespace
+
+int runScoreSeq(const ScoreSeqOptions& o) {
+    const auto start = std::chrono::steady_clock::now();
+    checkFlipPpd(o.flip_ppd);
+    std::vector<SeqThreshold> warn, fail;
+    for (const auto& w : o.warn) warn.push_back(parseSeqThreshold(w, "--warn"));
+    for (const auto& f : o.fail) fail.push_back(parseSeqThreshold(f, "--fail"));
+    const SeqInputs in = planInputs(o);
+    const fs::path final_dir = o.out.empty() ? fs::path("out") / ("score-seq-" + timestampForName()) : fs::path(o.out);
+    reports::OutputDir out(final_dir);
+
+    RunResults results;
+    std::vector<SeqFrameInfo> infos;
+    WorkerPool workers(std::max(1u, std::thread::hardware_concurrency()));
+    std::unique_ptr<QualityScorer> scorer;
+    const Scored s = scoreFrames(o, in, results, infos, scorer, workers);
+    results.worst = scorer->finish(out.path());
+    results.worst_files = worstFiles(results.worst);
+    results.frames = int(results.rows.size());
+    results.repeats = 1;
+    VariantRun vr;
+    vr.name = vr.variant = in.name;
+    results.variants.push_back(vr);
+    results.order = {in.name};
+    const VariantSummary sum = summarize(results).at(0);
+    const auto crossings = judge(warn, fail, results, infos);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    writeSeqFramesCsv(out.path() / "frames.csv", results, infos, !in.motion_files.empty());
+    writeSeqSummaryCsv(out.path() / "summary.csv", sum, s.width, s.height);
+    reports::writeTextAtomically(out.path() / "run.json",
+                                 runJson(o, in, s, sum, crossings, warn, fail, seconds, results.worst).dump(2) + "\n");
+    reports::writeReport(out.path());
+    out.commit();
+
+    std::printf("score-seq: %zu frames of %dx%d, %s against %s\n", results.rows.size(), s.width, s.height,
+                in.name.c_str(), o.reference.c_str());
+    std::printf("psnr_db %s (min %s)\nssim %s (min %s)\nflip_mean %s\neci %s (p95 %s, max %s)\nflicker_ratio %s\n",
+                fmtValue(sum.psnr_db, 3).c_str(), fmtValue(sum.psnr_db_min, 3).c_str(),
+                fmtValue(sum.ssim_mean, 5).c_str(), fmtValue(sum.ssim_min, 5).c_str(),
+                fmtValue(sum.flip_mean, 5).c_str(), fmtValue(sum.eci, 5).c_str(), fmtValue(sum.eci_p95, 5).c_str(),
+                fmtValue(sum.eci_max, 5).c_str(), fmtValue(sum.flicker_ratio_mean, 4).c_str());
+    bool any_fail = false, any_warn = false;
+    for (const auto& c : crossings) {
+        (c.fail ? any_fail : any_warn) = true;
+        std::printf("%s: %s %s at frame %ld beyond %s %s=%g\n", c.fail ? "FAILURE" : "WARNING", c.threshold->metric.c_str(),
+                    fmtValue(c.value, 5).c_str(), c.number, c.fail ? "--fail" : "--warn", c.threshold->metric.c_str(),
+                    c.threshold->value);
+    }
+    if (!warn.empty() || !fail.empty()) std::printf("%s\n", any_fail ? "FAILURE" : any_warn ? "WARNING" : "PASS");
+    std::printf("output: %s\nreport: %s\n", out.finalPath().c_str(), (out.finalPath() / "report.html").c_str());
+    return any_fail ? kSeqFail : any_warn ? kSeqWarn : kSeqPass;
+}
+
+}  // namespace cbr::harness

@@ -1,0 +1,14 @@
+// `cbrbench sweep`: the run's configurations over swept settings (harness/core/sweep_configs.h),
+// and the outer dimensions (several paths, reference kinds) that each get a run of their own.
+#pragma once
+
+#include "harness/core/options.h"
+
+namespace cbr::harness {
+
+// `options.sweep` set: one run when nothing outer is swept, else one run per combination
+// into OUT/<dir>/ with OUT/sweep.csv and the index sweep.html; every input is checked
+// before the first renders and OUT appears whole or not at all. Returns the exit code.
+int runSweep(const RunOptions& options);
+
+}  // namespace cbr::harness

@@ -1,0 +1,76 @@
+// compare.html (compare_html.h): the rule, the thresholds and one row per cell.
+#include "reports/compare_html.h"
+
+#include <sstream>
+
+#include "reports/html.h"
+
+namespace cbr::reports {
+namespace {
+
+// A verdict's cell colour.
+std::string compareVerdictClass(const std::string& v) {
+    if (v == "SLOWER" || v == "WORSE") return "bad";
+    if (v == "FASTER" || v == "BETTER") return "good";
+    if (v == "UNKNOWN") return "unk";
+    return "";
+}
+
+void compareHead(std::ostringstream& h, const ComparePage& page) {
+    h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>cbrbench compare</title>\n"
+      << "<style>body{font:14px system-ui,sans-serif;margin:2em;max-width:90em}table{border-collapse:collapse}"
+         "td,th{border:1px solid #ccc;padding:3px 6px;text-align:right}td.l,th.l{text-align:left}"
+         ".bad{background:#f8d0d0}.good{background:#d0f0d0}.unk{background:#f4ecc8}code{font-size:90%}</style>"
+         "</head><body>\n";
+    h << "<h1>cbrbench compare: " << esc(page.outcome) << "</h1>\n";
+    h << "<p>Baseline <code>" << esc(page.baseline_dir) << "</code> against current <code>" << esc(page.current_dir)
+      << "</code>, device " << esc(page.device) << ".</p>\n";
+    h << "<p>Threshold " << fmt(page.threshold * 100, 2) << "%, alpha " << fmt(page.alpha, 3)
+      << " (false discovery rate), PSNR " << fmt(page.psnr_db, 3) << " dB, SSIM " << fmt(page.ssim, 4) << ", ECI "
+      << fmt(page.eci_threshold * 100, 2) << "% relative.</p>\n";
+    h << "<h2>Rule</h2><p>" << esc(page.time_rule) << " Detectable: the smallest change these repetitions would call "
+         "SLOWER, the threshold plus the interval's half-width."
+      << " Quality: PSNR (psnr_db_mean) and SSIM (ssim_mean) BETTER or WORSE when they change by more than their "
+         "absolute thresholds, ECI (lower is better) when it changes by more than its relative threshold; else SAME. "
+         "Runs on different devices or drivers are refused. Exit code 1 for any SLOWER or WORSE cell.</p>\n";
+}
+
+void compareRow(std::ostringstream& h, const CompareRow& r) {
+    auto td = [&](const std::string& text) { h << "<td>" << text << "</td>"; };
+    auto verdict = [&](const std::string& v) { h << "<td class=\"" << compareVerdictClass(v) << "\">" << esc(v) << "</td>"; };
+    auto percent = [&](std::optional<double> v) { td(v ? fmt(*v * 100, 2) + "%" : kDash); };
+    h << "<tr><td class=l>" << esc(r.variant) << "</td><td class=l><code>" << esc(r.context) << "</code></td>";
+    td(std::to_string(r.base_reps) + " / " + std::to_string(r.cur_reps));
+    td(fmt(r.base_ms, 4));
+    td(fmt(r.cur_ms, 4));
+    percent(r.change);
+    td(r.interval);
+    percent(r.detectable);
+    percent(r.noise);
+    td(fmt(r.p, 4));
+    td(fmt(r.q, 4));
+    verdict(r.time_verdict);
+    td(fmt(r.psnr_delta, 3));
+    verdict(r.psnr_verdict);
+    td(fmt(r.ssim_delta, 4));
+    verdict(r.ssim_verdict);
+    percent(r.eci_change);
+    verdict(r.eci_verdict);
+    h << "<td class=l>" << esc(r.note) << "</td></tr>\n";
+}
+
+}  // namespace
+
+std::string compareHtml(const ComparePage& page) {
+    std::ostringstream h;
+    compareHead(h, page);
+    h << "<h2>Cells</h2><table><tr><th class=l>variant</th><th class=l>cell</th><th>reps</th><th>baseline ms</th>"
+         "<th>current ms</th><th>change</th><th>interval (HL estimate)</th><th>detectable</th><th>noise</th><th>p</th>"
+         "<th>q</th><th>time</th><th>PSNR &Delta; dB</th>"
+         "<th>PSNR</th><th>SSIM &Delta;</th><th>SSIM</th><th>ECI change</th><th>ECI</th><th class=l>note</th></tr>\n";
+    for (const auto& r : page.rows) compareRow(h, r);
+    h << "</table>\n</body></html>\n";
+    return h.str();
+}
+
+}  // namespace cbr::reports

@@ -1,0 +1,36 @@
+// compare.html: the page of `cbrbench compare`'s verdicts. The harness judges the cells
+// (harness/compare); this only draws what it was given.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cbr::reports {
+
+// One cell: a variant in one context (scene, path, pipeline, resolution, settings).
+struct CompareRow {
+    std::string variant, context;
+    size_t base_reps = 0, cur_reps = 0;
+    std::optional<double> base_ms, cur_ms;
+    std::optional<double> change, detectable, noise;  // fractions (0.03 = 3%)
+    std::optional<double> p, q;
+    std::string interval;  // "[+1.2%, +4.5%] 90%", or "-" without a bounded interval
+    std::string time_verdict;
+    std::optional<double> psnr_delta, ssim_delta, eci_change;  // dB, absolute, fraction
+    std::string psnr_verdict, ssim_verdict, eci_verdict;
+    std::string note;
+};
+
+struct ComparePage {
+    std::string outcome;  // "regression", "no regression", ...
+    std::string baseline_dir, current_dir, device;
+    double threshold = 0, alpha = 0, psnr_db = 0, ssim = 0, eci_threshold = 0;  // as judged
+    std::string time_rule;  // the time verdicts' rule in words
+    std::vector<CompareRow> rows;
+};
+
+std::string compareHtml(const ComparePage& page);
+
+}  // namespace cbr::reports
