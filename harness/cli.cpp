@@ -88,10 +88,10 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
         ->capture_default_str();
     cmd->add_option("--near", o.near, "near plane of every keyframe, scene units (after placement)");
     cmd->add_option("--far", o.far, "far plane of every keyframe, scene units (after placement)");
-    cmd->add_option("--host-memory-limit", o.host_memory_limit_mib,
+    cmd->add_option("--host-memory-limit", o.control.host_memory_limit_mib,
                     "MiB: refuse a run whose estimated peak is above this (default: what the host has available)")
         ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--device-memory-limit", o.device_memory_limit_mib,
+    cmd->add_option("--device-memory-limit", o.control.device_memory_limit_mib,
                     "MiB: refuse a run whose estimated device memory is above this (default: the device's budget)")
         ->check(CLI::NonNegativeNumber);
 }
@@ -177,7 +177,7 @@ Command calibrateCommand(CLI::App& app, const std::vector<std::string>& argv) {
     return {cli, [cal, variant_list, argv] {
                 cal->run.variants = splitList(variant_list->empty() ? std::string(variants::referenceVariant().name)
                                                                        : *variant_list);
-                cal->run.argv = argv;
+                cal->run.control.argv = argv;
                 cal->out = cal->run.out;
                 return runCalibrate(*cal);
             }};
@@ -266,7 +266,7 @@ struct RunArgs {
     // The options as parsed, with the variant list split and the command line recorded.
     RunOptions& parsed(const std::vector<std::string>& argv) {
         o.variants = splitList(variant_list);
-        o.argv = argv;
+        o.control.argv = argv;
         return o;
     }
 };
@@ -306,7 +306,7 @@ Command sweepCommand(CLI::App& app, const std::vector<std::string>& argv) {
         ->required();
     return {cli, [r, argv] {
                 RunOptions& o = r->parsed(argv);
-                o.sweep = true;
+                o.control.sweep = true;
                 if (isMatrix(o))
                     throw std::invalid_argument("sweep: comma lists in --scene, --pipeline or --res; expected one of "
                                                 "each (a sweep is one job: its configurations are compared with each "

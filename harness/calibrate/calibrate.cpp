@@ -126,8 +126,8 @@ reports::RunData runOnce(const Plan& p, const std::string& name, const std::stri
     RunOptions r = p.o.run;
     r.repeat = p.repeats.back();
     r.debug_slowdown = slowdown;
-    r.quiet = true;
-    r.sweep = false;
+    r.control.silent = true;
+    r.control.sweep = false;
     r.out = (p.out / "runs" / name).string();
     std::printf("calibrate: %s%s\n", name.c_str(), slowdown.empty() ? "" : (" (" + slowdown + ")").c_str());
     std::fflush(stdout);
@@ -317,7 +317,7 @@ int runCalibrate(const CalibrateOptions& options) {
     writeTables(p, judged, out.path());
     nlohmann::json j;
     j["command"] = "calibrate";
-    j["argv"] = p.o.run.argv;
+    j["argv"] = p.o.run.control.argv;
     j["device"] = judged.device;
     j["setup"] = judged.setup;
     if (!p.o.from.empty()) j["from"] = p.o.from;

@@ -110,15 +110,15 @@ void checkMemory(RunState& s) {
     m.device_heap_mib = double(heaps.heap_bytes) / kMiB;
     if (heaps.has_budget) m.device_budget_mib = double(heaps.budget_bytes) / kMiB;
 
-    if (s.options.host_memory_limit_mib > 0) {
-        m.host_limit_mib = s.options.host_memory_limit_mib;
+    if (s.options.control.host_memory_limit_mib > 0) {
+        m.host_limit_mib = s.options.control.host_memory_limit_mib;
         m.host_limit_from = "--host-memory-limit";
     } else {
         m.host_limit_mib = currentRssMib() + availableHostMib();
         m.host_limit_from = "the run's own and the host's MemAvailable";
     }
-    if (s.options.device_memory_limit_mib > 0) {
-        m.device_limit_mib = s.options.device_memory_limit_mib;
+    if (s.options.control.device_memory_limit_mib > 0) {
+        m.device_limit_mib = s.options.control.device_memory_limit_mib;
         m.device_limit_from = "--device-memory-limit";
     } else if (heaps.has_budget) {
         // The budget covers what the process already uses: its own allocations are inside it.
@@ -131,7 +131,7 @@ void checkMemory(RunState& s) {
     if (m.host_limit_mib > 0 && m.host_estimate_mib > m.host_limit_mib)
         refuse(s, "host", m.host_estimate_mib * kMiB, m.host_limit_mib * kMiB, m.host_limit_from, "--host-memory-limit");
     // On lavapipe the heaps are the host's memory, checked above, unless a limit is given.
-    const bool device_limited = !shared || s.options.device_memory_limit_mib > 0;
+    const bool device_limited = !shared || s.options.control.device_memory_limit_mib > 0;
     if (device_limited && m.device_limit_mib > 0 && m.device_estimate_mib > m.device_limit_mib)
         refuse(s, "device", m.device_estimate_mib * kMiB, m.device_limit_mib * kMiB, m.device_limit_from,
                "--device-memory-limit");

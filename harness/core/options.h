@@ -10,6 +10,19 @@
 
 namespace cbr::harness {
 
+// How a run is driven, apart from what it measures (RunOptions' settings): none of these
+// changes an image or a time, none is in the plan hash or compare's key.
+struct RunControl {
+    bool sweep = false;               // write sweep.csv and sweep.html besides the run's files
+    std::string shown_out;            // where the output ends up, if not --out (an outer sweep's temporary)
+    bool silent = false;              // calibrate's runs: no progress bar, report.html or printed summary
+    std::vector<std::string> argv;    // the command line, for run.json
+    // A run whose estimate exceeds these stops before its first frame (0: what the host has
+    // available; the device's budget or heap size).
+    double host_memory_limit_mib = 0;
+    double device_memory_limit_mib = 0;
+};
+
 struct RunOptions {
     std::string scene = "atrium";     // procedural name or .gltf/.glb path
     std::string path = "flythrough";  // built-in name or .json path
@@ -34,14 +47,7 @@ struct RunOptions {
     double scene_scale = 1.0;
     std::optional<double> near, far;     // every keyframe's clip planes, after placement
     std::vector<std::string> params;  // `cbrbench sweep --param` specs (empty: a plain run)
-    bool sweep = false;               // write sweep.csv and sweep.html besides the run's files
-    std::string shown_out;            // where the output ends up, if not --out (an outer sweep's temporary)
-    bool quiet = false;               // calibrate's runs: no report.html, no printed summary
-    std::vector<std::string> argv;    // the command line, for run.json
-    // A run whose estimate exceeds these stops before its first frame (0: what the host has
-    // available; the device's budget or heap size).
-    double host_memory_limit_mib = 0;
-    double device_memory_limit_mib = 0;
+    RunControl control;
 };
 
 // Parsed "WxH"; throws std::invalid_argument for anything else or a 0 dimension.

@@ -341,7 +341,7 @@ void writeRunJson(const std::filesystem::path& file, const RunContext& rc, const
     json j;
     j["tool"] = {{"name", "cbrbench"}, {"version", CBR_VERSION}, {"commit", CBR_GIT_COMMIT}};
     j["date"] = isoDate();
-    j["command_line"] = rc.options.argv;
+    j["command_line"] = rc.options.control.argv;
     j["host"] = hostJson();
     j["wall_seconds"] = r.seconds;
     j["first_frame_wall_seconds"] = r.first_frame_seconds;

@@ -68,13 +68,13 @@ void writeFiles(RunState& s, reports::OutputDir& out) {
     {
         WallAccount::Scope scope(s.wall, WallPart::Outputs);
         writeOutputs(out.path(), rc);
-        if (options.sweep) writeSweepCsv(out.path(), rc);
+        if (options.control.sweep) writeSweepCsv(out.path(), rc);
         writeExports(out.path(), parseExportFormats(options.exports, "--export"));
     }
     {
         WallAccount::Scope scope(s.wall, WallPart::Report);
-        if (!options.quiet) reports::writeReport(out.path());
-        if (options.sweep) reports::writeSweepReport(out.path());
+        if (!options.control.silent) reports::writeReport(out.path());
+        if (options.control.sweep) reports::writeSweepReport(out.path());
     }
     noteMemory(s, "report");
     s.wall.close();
@@ -82,9 +82,9 @@ void writeFiles(RunState& s, reports::OutputDir& out) {
     updateRunJsonWall(out.path(), rc);
     out.commit();
     // An outer sweep's run is renamed once more with the others: name where it will be.
-    const std::filesystem::path shown = options.shown_out.empty() ? out.finalPath() : std::filesystem::path(options.shown_out);
-    if (!options.quiet) printSummary(std::cout, shown, rc);
-    if (options.sweep) {
+    const std::filesystem::path shown = options.control.shown_out.empty() ? out.finalPath() : std::filesystem::path(options.control.shown_out);
+    if (!options.control.silent) printSummary(std::cout, shown, rc);
+    if (options.control.sweep) {
         for (const auto& line : reports::sweepSummaryLines(reports::loadSweep(out.finalPath()).points))
             std::cout << line << "\n";
         std::cout << "sweep: " << (shown / "sweep.csv").string() << ", " << (shown / "sweep.html").string() << "\n";
@@ -92,8 +92,6 @@ void writeFiles(RunState& s, reports::OutputDir& out) {
 }
 
 }  // namespace
-
-void checkRunOptions(const RunOptions& options) { (void)prepare(options); }
 
 int runBenchmark(const RunOptions& options) {
     WallAccount wall;
@@ -126,7 +124,7 @@ int runBenchmark(const RunOptions& options) {
     chooseScorer(s);
     checkMemory(s);
     // Once the run is known to fit: a refused run says one line, and nothing else.
-    if (!options.quiet) std::fprintf(stderr, "cbrbench: %s\n", sceneLoadLine(p.scene, p.load).c_str());
+    if (!options.control.silent) std::fprintf(stderr, "cbrbench: %s\n", sceneLoadLine(p.scene, p.load).c_str());
     calibrateSlowdown(s);
     renderQualityFrames(s);
     noteMemory(s, "quality_pass");
@@ -136,7 +134,7 @@ int runBenchmark(const RunOptions& options) {
     noteMemory(s, "worst_images");
     releaseAndMeasure(s);
     writeFiles(s, out);
-    if (!options.quiet) std::fprintf(stderr, "cbrbench: %s\n", s.wall.line().c_str());
+    if (!options.control.silent) std::fprintf(stderr, "cbrbench: %s\n", s.wall.line().c_str());
     return 0;
 }
 

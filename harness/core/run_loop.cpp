@@ -54,7 +54,7 @@ RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene
       progress("frames",
                int(prepared.configs.size() * prepared.poses.size()) * (prepared.options.repeat + 1) +
                    (prepared.options.tune.reference == settings::Reference::Ssaa ? int(prepared.poses.size()) : 0),
-               !prepared.options.quiet),
+               !prepared.options.control.silent),
       renderers(prepared.configs.size()) {}
 
 namespace {

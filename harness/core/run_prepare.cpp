@@ -71,7 +71,7 @@ void makeConfigs(const RunOptions& o, Prepared& p) {
     }
     for (const auto& spec : o.params) p.params.push_back(parseSweepParam(spec));
     std::vector<SweepConfig> configs;
-    if (o.sweep) {
+    if (o.control.sweep) {
         configs = expandSweep(p.params, o.variants);
     } else {
         for (const auto* v : p.order) configs.push_back({std::string(v->name), {}, std::string(v->name), std::string(reference.name)});
@@ -110,14 +110,43 @@ std::filesystem::path outputDirectory(const RunOptions& o) {
     std::filesystem::path out =
         o.out.empty() ? std::filesystem::path("out") / (specStem(o.scene) + "-" + specStem(o.path) + "-" + timestampForName())
                       : std::filesystem::path(o.out);
-    if (o.sweep && o.out.empty())
+    if (o.control.sweep && o.out.empty())
         out = std::filesystem::path("out") / ("sweep-" + specStem(o.scene) + "-" + specStem(o.path) + "-" + timestampForName());
     if (std::filesystem::exists(out))
         throw std::invalid_argument("--out " + out.string() + ": already exists; expected a new directory");
     return out;
 }
 
+// The scene and path named without loading the scene: a built-in name or a file that is
+// there, a path file parsed (it needs no scene). What needs the scene itself (a glTF's
+// contents, its camera for --path gltf, --animation names) is checked when the run loads
+// it, still before any output.
+void checkSpecs(const RunOptions& o) {
+    const auto& procedural = scene::proceduralScenes();
+    const bool named = std::any_of(procedural.begin(), procedural.end(), [&](const auto& s) { return s.name == o.scene; });
+    std::error_code ec;
+    // Neither: loadScene says what is wrong in its own words, having loaded nothing.
+    if (!named && !std::filesystem::is_regular_file(o.scene, ec)) (void)scene::loadScene(o.scene);
+    if (isGltfPathSpec(o.path)) return;
+    if (std::filesystem::path(o.path).extension() == ".json") {
+        (void)paths::loadPath(o.path);
+        return;
+    }
+    const auto& builtin = paths::builtinPaths();
+    if (std::none_of(builtin.begin(), builtin.end(), [&](const auto& b) { return b.name == o.path; }))
+        (void)paths::builtinPath(o.path, {});  // throws, naming the paths there are
+}
+
 }  // namespace
+
+void checkRunOptions(const RunOptions& o) {
+    Prepared p;
+    p.settings = settingsFromOptions(o);
+    (void)parseExportFormats(o.exports, "--export");
+    makeConfigs(o, p);
+    checkSpecs(o);
+    (void)outputDirectory(o);
+}
 
 Prepared prepare(const RunOptions& o) {
     Prepared p;

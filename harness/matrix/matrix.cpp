@@ -129,7 +129,7 @@ std::string isoNow() {
 bool isMatrix(const RunOptions& o) {
     for (const auto* s : {&o.scene, &o.path, &o.pipeline, &o.resolution})
         // A sweep's paths are its outer dimension (one sweep per path, run.cpp), not jobs.
-        if (s->find(',') != std::string::npos && !(o.sweep && s == &o.path)) return true;
+        if (s->find(',') != std::string::npos && !(o.control.sweep && s == &o.path)) return true;
     return false;
 }
 
@@ -311,7 +311,7 @@ int runMatrix(const RunOptions& o, const Shard& shard) {
               {"shards", json::array({{{"index", shard.index}, {"count", shard.count}, {"source", shard.source}}})},
               {"device", device},
               {"date", isoNow()},
-              {"command", o.argv}};
+              {"command", o.control.argv}};
     json all = json::array();
     for (size_t k = 0; k < jobs.size(); ++k)
         all.push_back({{"job", jobs[k].id}, {"shard", shardOf(k, shard)}});

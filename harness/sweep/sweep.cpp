@@ -43,7 +43,7 @@ int runOuterSweeps(const RunOptions& options, const std::vector<OuterSweep>& out
     std::vector<std::string> dirs;
     for (const auto& o : outer) {
         RunOptions s = sub(o, out.path() / o.dir);
-        s.shown_out = (final_out / o.dir).string();
+        s.control.shown_out = (final_out / o.dir).string();
         std::cout << "sweep " << dirs.size() + 1 << "/" << outer.size() << ": " << o.dir << "\n";
         if (int rc = runBenchmark(s); rc != 0) return rc;
         dirs.push_back(o.dir);

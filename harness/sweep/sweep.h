@@ -6,7 +6,7 @@
 
 namespace cbr::harness {
 
-// `options.sweep` set: one run when nothing outer is swept, else one run per combination
+// `options.control.sweep` set: one run when nothing outer is swept, else one run per combination
 // into OUT/<dir>/ with OUT/sweep.csv and the index sweep.html; every input is checked
 // before the first renders and OUT appears whole or not at all. Returns the exit code.
 int runSweep(const RunOptions& options);
