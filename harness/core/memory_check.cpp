@@ -8,6 +8,8 @@
 #include <string>
 #include <thread>
 
+#include "harness/core/quality.h"
+#include "harness/core/scene_load.h"
 #include "renderer/vk/memory_use.h"
 
 namespace cbr::harness {
@@ -32,32 +34,28 @@ struct Growth {
     double device = 0;  // device-local memory still to be allocated
 };
 
-Growth growth(const RunState& s) {
-    const double px = double(s.w) * double(s.h);
-    const double configs = double(s.p.configs.size());
-    const double scored = std::max(0.0, configs - (s.options.tune.reference == settings::Reference::Ssaa ? 0.0 : 1.0));
-    const double frames = double(s.p.poses.size());
-    const bool device = s.results.scorer == "device";
-    int in_flight = 1;
-    bool analysis = false;
-    for (const auto& c : s.p.configs) {
-        in_flight = std::max(in_flight, c.settings.frames_in_flight);
-        analysis |= c.settings.analysis;
-    }
+Growth growth(const MemoryPlan& plan) {
+    const double px = double(plan.width) * double(plan.height);
+    const double configs = double(plan.configs);
+    const double scored = double(plan.scored);
+    const double frames = double(plan.frames);
+    const bool device = plan.device_scorer;
+    const int in_flight = std::max(1, plan.frames_in_flight);
+    const bool analysis = plan.analysis;
     Growth g;
     // A quality frame read back: RGBA8, the class map, the motion analysis (RGBA32F).
     const double readback = px * (4 + 1 + (analysis ? 16 : 0));
     // The frame rows: a timed row per repetition and a quality row, per configuration and frame
     // (about 3 KB each with what goes with them: lavapipe, 320x180, 60 -> 1,200 frames x 3
     // configurations x 2 rows added 19 MB).
-    const double rows = frames * configs * double(s.options.repeat + 1) * 3072;
+    const double rows = frames * configs * double(plan.repeat + 1) * 3072;
     // The alignment check's images, kept to the end: every configuration's middle frame and
     // the reference's three around it.
     const double alignment = (configs + 3) * px * 4;
     // The worst images' phase: encodes at once (about twice a frame's RGBA8 each) and the worst
     // frames they read, up to three at once (RGBA8 reference and image, class map, float maps).
     const double worst_frames = std::min(3.0, scored * 2);
-    const double encoders = std::min(double(worstImageEncoders(s.w, s.h)), worst_frames * 7);
+    const double encoders = std::min(double(worstImageEncoders(plan.width, plan.height)), worst_frames * 7);
     const double writing = encoders * kWorstEncodeBytesPerPixel * px + worst_frames * px * 21;
     double scoring;
     if (device) {
@@ -84,11 +82,10 @@ std::string mib(double bytes) {
     return text;
 }
 
-[[noreturn]] void refuse(const RunState& s, const char* what, double need, double limit, const std::string& from,
+[[noreturn]] void refuse(const MemoryPlan& plan, const char* what, double need, double limit, const std::string& from,
                          const char* option) {
-    throw std::invalid_argument(std::string("--res ") + s.options.resolution + ", " +
-                                std::to_string(s.p.configs.size()) + " configurations, " +
-                                std::to_string(s.p.poses.size()) + " frames: the run needs about " + mib(need) +
+    throw std::invalid_argument(std::string("--res ") + plan.resolution + ", " + std::to_string(plan.configs) +
+                                " configurations, " + std::to_string(plan.frames) + " frames: the run needs about " + mib(need) +
                                 " of " + what + " memory, above the limit of " + mib(limit) + " (" + from +
                                 "); expected a lower --res, fewer --variants, or a higher " + option);
 }
@@ -98,27 +95,26 @@ std::string mib(double bytes) {
 double currentRssMib() { return procMib("/proc/self/status", "VmRSS:"); }
 double availableHostMib() { return procMib("/proc/meminfo", "MemAvailable:"); }
 
-void checkMemory(RunState& s) {
-    MemoryFigures& m = s.results.memory;
-    const Growth g = growth(s);
-    const vk::HeapReading heaps = vk::readDeviceHeaps(s.ctx);
+void checkMemory(const MemoryPlan& plan, const vk::Context& ctx, MemoryFigures& m) {
+    const Growth g = growth(plan);
+    const vk::HeapReading heaps = vk::readDeviceHeaps(ctx);
     // lavapipe's "device" memory is the host's: it counts against both.
-    const bool shared = s.ctx.description.is_lavapipe || s.ctx.description.device_type == "cpu";
-    const double device_now = double(s.ctx.memory_use.deviceLocal());
+    const bool shared = ctx.description.is_lavapipe || ctx.description.device_type == "cpu";
+    const double device_now = double(ctx.memory_use.deviceLocal());
     m.device_estimate_mib = (device_now + g.device + (shared ? g.mapped : 0)) / kMiB;
     m.host_estimate_mib = currentRssMib() + (g.host + g.mapped + (shared ? g.device : 0)) / kMiB;
     m.device_heap_mib = double(heaps.heap_bytes) / kMiB;
     if (heaps.has_budget) m.device_budget_mib = double(heaps.budget_bytes) / kMiB;
 
-    if (s.options.control.host_memory_limit_mib > 0) {
-        m.host_limit_mib = s.options.control.host_memory_limit_mib;
+    if (plan.host_limit_mib > 0) {
+        m.host_limit_mib = plan.host_limit_mib;
         m.host_limit_from = "--host-memory-limit";
     } else {
         m.host_limit_mib = currentRssMib() + availableHostMib();
         m.host_limit_from = "the run's own and the host's MemAvailable";
     }
-    if (s.options.control.device_memory_limit_mib > 0) {
-        m.device_limit_mib = s.options.control.device_memory_limit_mib;
+    if (plan.device_limit_mib > 0) {
+        m.device_limit_mib = plan.device_limit_mib;
         m.device_limit_from = "--device-memory-limit";
     } else if (heaps.has_budget) {
         // The budget covers what the process already uses: its own allocations are inside it.
@@ -129,27 +125,26 @@ void checkMemory(RunState& s) {
         m.device_limit_from = "the device-local heaps' size";
     }
     if (m.host_limit_mib > 0 && m.host_estimate_mib > m.host_limit_mib)
-        refuse(s, "host", m.host_estimate_mib * kMiB, m.host_limit_mib * kMiB, m.host_limit_from, "--host-memory-limit");
+        refuse(plan, "host", m.host_estimate_mib * kMiB, m.host_limit_mib * kMiB, m.host_limit_from, "--host-memory-limit");
     // On lavapipe the heaps are the host's memory, checked above, unless a limit is given.
-    const bool device_limited = !shared || s.options.control.device_memory_limit_mib > 0;
+    const bool device_limited = !shared || plan.device_limit_mib > 0;
     if (device_limited && m.device_limit_mib > 0 && m.device_estimate_mib > m.device_limit_mib)
-        refuse(s, "device", m.device_estimate_mib * kMiB, m.device_limit_mib * kMiB, m.device_limit_from,
+        refuse(plan, "device", m.device_estimate_mib * kMiB, m.device_limit_mib * kMiB, m.device_limit_from,
                "--device-memory-limit");
 }
 
-void noteMemory(RunState& s, const char* phase) {
+void noteMemory(const vk::Context& ctx, const char* phase, MemoryFigures& m, WallAccount& wall) {
     const double rss = peakRssMib();
-    s.wall.notePeakRss(phase, rss);
-    MemoryFigures& m = s.results.memory;
+    wall.notePeakRss(phase, rss);
     MemoryFigures::Reading r;
     r.after = phase;
     r.peak_rss_mib = rss;
-    r.device_allocated_mib = double(s.ctx.memory_use.deviceLocal()) / kMiB;
-    const vk::HeapReading heaps = vk::readDeviceHeaps(s.ctx);
+    r.device_allocated_mib = double(ctx.memory_use.deviceLocal()) / kMiB;
+    const vk::HeapReading heaps = vk::readDeviceHeaps(ctx);
     if (heaps.has_budget) r.device_usage_mib = double(heaps.usage_bytes) / kMiB;
     m.after.push_back(r);
-    m.device_allocated_peak_mib = double(s.ctx.memory_use.deviceLocalPeak()) / kMiB;
-    m.host_visible_allocated_peak_mib = double(s.ctx.memory_use.hostVisiblePeak()) / kMiB;
+    m.device_allocated_peak_mib = double(ctx.memory_use.deviceLocalPeak()) / kMiB;
+    m.host_visible_allocated_peak_mib = double(ctx.memory_use.hostVisiblePeak()) / kMiB;
 }
 
 }  // namespace cbr::harness

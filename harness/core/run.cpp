@@ -40,6 +40,26 @@ gpu::GpuScene uploadScene(vk::Context& ctx, Prepared& p, WallAccount& wall) {
     return gpu_scene;
 }
 
+// What the run will hold, for its memory estimate.
+MemoryPlan memoryPlan(const RunState& s) {
+    MemoryPlan plan;
+    plan.resolution = s.options.resolution;
+    plan.width = s.w;
+    plan.height = s.h;
+    plan.configs = s.p.configs.size();
+    plan.scored = s.options.tune.reference == settings::Reference::Ssaa ? plan.configs : plan.configs - 1;
+    plan.frames = s.p.poses.size();
+    plan.repeat = s.options.repeat;
+    plan.device_scorer = s.results.scorer == "device";
+    for (const auto& c : s.p.configs) {
+        plan.frames_in_flight = std::max(plan.frames_in_flight, c.settings.frames_in_flight);
+        plan.analysis |= c.settings.analysis;
+    }
+    plan.host_limit_mib = s.options.control.host_memory_limit_mib;
+    plan.device_limit_mib = s.options.control.device_memory_limit_mib;
+    return plan;
+}
+
 // Renderers and scene released, then what is measured once the frames are done: the copy
 // bandwidth, the peak memory and the run's wall time.
 void releaseAndMeasure(RunState& s) {
@@ -76,7 +96,7 @@ void writeFiles(RunState& s, reports::OutputDir& out) {
         if (!options.control.silent) reports::writeReport(out.path());
         if (options.control.sweep) reports::writeSweepReport(out.path());
     }
-    noteMemory(s, "report");
+    noteMemory(s.ctx, "report", s.results.memory, s.wall);
     s.wall.close();
     s.results.seconds = s.wall.total();
     updateRunJsonWall(out.path(), rc);
@@ -122,16 +142,16 @@ int runBenchmark(const RunOptions& options) {
     makeRenderers(s);
     makeSsaaReference(s);
     chooseScorer(s);
-    checkMemory(s);
+    checkMemory(memoryPlan(s), ctx, s.results.memory);
     // Once the run is known to fit: a refused run says one line, and nothing else.
     if (!options.control.silent) std::fprintf(stderr, "cbrbench: %s\n", sceneLoadLine(p.scene, p.load).c_str());
     calibrateSlowdown(s);
     renderQualityFrames(s);
-    noteMemory(s, "quality_pass");
+    noteMemory(s.ctx, "quality_pass", s.results.memory, s.wall);
     renderRepetitions(s);
-    noteMemory(s, "timed_frames");
+    noteMemory(s.ctx, "timed_frames", s.results.memory, s.wall);
     scoreFrames(s);
-    noteMemory(s, "worst_images");
+    noteMemory(s.ctx, "worst_images", s.results.memory, s.wall);
     releaseAndMeasure(s);
     writeFiles(s, out);
     if (!options.control.silent) std::fprintf(stderr, "cbrbench: %s\n", s.wall.line().c_str());
