@@ -39,10 +39,10 @@ struct RunOptions {
     bool save_frames = false;
     std::string out;                  // "" -> out/<scene>-<path>-<date-time>
     std::string debug_slowdown;          // PASS=PCT: a known slowdown for testing regression detection
-    std::string exports;                 // --export: comma list of formats (harness/export.h)
+    std::string exports;                 // --export: comma list of formats (harness/core/exports.h)
     std::string pipeline = "forward";    // forward | deferred, or a comma list of them (a job matrix)
     settings::Tunables tune;             // every row of the settings table, typed (settings/table.h)
-    // Placement (harness/placement.h): world' = offset + scale * world, scene and path together.
+    // Placement (harness/core/placement.h): world' = offset + scale * world, scene and path together.
     std::string scene_offset;            // "X,Y,Z" ("": none)
     double scene_scale = 1.0;
     std::optional<double> near, far;     // every keyframe's clip planes, after placement

@@ -174,8 +174,8 @@ void sweepSettingCells(std::map<std::string, Cell>& row, const VariantRun& vr, c
     for (const auto& r : settings::table())
         if (r.sweep && !r.variants.empty() && settings::appliesTo(r, vr.variant))
             row[r.column] = r.type == settings::Type::Word ? Cell(settings::text(r, rc.settings)) : Cell(r.field.get(rc.settings));
-    // cbr-clip always reads the full history (renderer/variants/checkerboard.cpp).
-    if (vr.variant == "cbr-clip") row["cbr_history"] = std::string("full");
+    // A variant that keeps the full history whatever --cbr-history asks (the variant table).
+    if (variants::findVariant(vr.variant).full_history) row["cbr_history"] = std::string("full");
     for (const auto& st : vr.settings) {
         std::string column = st.name;
         std::replace(column.begin(), column.end(), '-', '_');

@@ -263,7 +263,7 @@ json validationJson(vk::Context& ctx) {
             {"first_messages", messages}};
 }
 
-// Where the wall time went (harness/wall_account.h): the main thread's parts, which add up
+// Where the wall time went (harness/core/wall_account.h): the main thread's parts, which add up
 // to `seconds`, and the workers' CPU time per task, which overlaps them.
 json wallJson(const WallAccount& wall) {
     json parts = json::object(), workers = json::object();

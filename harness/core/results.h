@@ -69,7 +69,7 @@ struct WorstFrame {
 struct VariantRun {
     std::string name;      // the configuration's label: the variant's name, or e.g. cbr-cso_tol=0.01 in a sweep
     std::string variant;   // the variant in the table (full, drr, cbr-aso, cbr-cso)
-    std::string baseline = "full";  // the full configuration its speedups are paired with
+    std::string baseline;  // the reference configuration its speedups are paired with (run_loop sets it)
     std::vector<SweepSetting> settings;  // swept settings (sweep only)
     std::optional<AlignmentCheck> alignment;
     std::string status = "ok";
