@@ -217,9 +217,10 @@ std::vector<std::vector<SweepSetting>> combinations(const std::vector<const Swee
 
 std::vector<SweepConfig> expandSweep(const std::vector<SweepParam>& params, const std::vector<std::string>& variants) {
     // In table order (renderer/variants), the reference first.
-    std::vector<std::string> wanted{"full"};
+    const std::string reference(cbr::variants::referenceVariant().name);
+    std::vector<std::string> wanted{reference};
     for (const auto& v : cbr::variants::allVariants())
-        if (v.name != "full" &&
+        if (v.name != reference &&
             (variants.empty() || std::find(variants.begin(), variants.end(), v.name) != variants.end()))
             wanted.emplace_back(v.name);
     for (const auto& v : variants) {
@@ -252,7 +253,7 @@ std::vector<SweepConfig> expandSweep(const std::vector<SweepParam>& params, cons
                     c.settings.push_back({"shading-cost", cost});
                     c.label += "_cost=" + formatParamValue(cost);
                 }
-                if (v == "full") base_label = c.label;
+                if (v == reference) base_label = c.label;
                 c.baseline = base_label;
                 out.push_back(std::move(c));
             }
