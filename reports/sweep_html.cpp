@@ -153,7 +153,7 @@ std::string paramsSection(const std::vector<SweepPoint>& points) {
         if (!f.number) continue;
         const bool tol = std::string(f.name) == "cso-tolerance";
         for (const auto& v : variantsOf(points))
-            if (v != "full") html += paramCharts(points, v.c_str(), f, tol ? "cbr-aso" : nullptr, tol);
+            if (v != kReference) html += paramCharts(points, v.c_str(), f, tol ? "cbr-aso" : nullptr, tol);
     }
     if (shadingCosts(points).size() > 1) {
         html += "<h3>GPU time against shading cost</h3><div class=\"grid2\">";
