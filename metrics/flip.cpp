@@ -34,28 +34,8 @@ namespace {
 
 using namespace flip_detail;
 
-// Section 4 of the paper: colour error exponent qc, re-mapping knee pc (a fraction of the
-// largest error cmax) mapped to pt, feature detector width w in degrees; the feature error
-// exponent qf = 0.5 is the square root in finalRow().
-constexpr float kQc = 0.7f;
-constexpr float kPc = 0.4f;
-constexpr float kPt = 0.95f;
-constexpr double kFeatureWidthDeg = 0.082;
-
-// Contrast sensitivity of each YCxCz channel as the paper's sum of Gaussians in the spatial
-// domain, x in degrees: S(x) = a1 sqrt(pi/b1) exp(-pi^2 x^2/b1) + a2 sqrt(pi/b2) exp(-pi^2 x^2/b2).
-struct Csf {
-    double a1, b1, a2, b2;
-};
-constexpr Csf kCsfAchromatic{1.0, 0.0047, 0.0, 1e-5};
-constexpr Csf kCsfRedGreen{1.0, 0.0053, 0.0, 1e-5};
-constexpr Csf kCsfBlueYellow{34.1, 0.04, 13.5, 0.025};
-
-// CIE L*a*b*'s f(t): cube root above (6/29)^3, a line below.
-constexpr float kLabDelta = 6.0f / 29.0f;
-constexpr float kLabDeltaCube = kLabDelta * kLabDelta * kLabDelta;
-constexpr float kLabSlope = 1.0f / (3.0f * kLabDelta * kLabDelta);
-constexpr float kLabOffset = 4.0f / 29.0f;
+// FLIP's section-4 constants, its contrast sensitivity functions and L*a*b*'s f(t) are
+// metrics/flip_colour.h's, shared with the device scorer.
 
 // Output tile: its input lines (plus the filter halo) and a ring of 2 * halo + 1 filtered
 // rows stay in a core's L2 cache; tiles are also the unit of parallel work.
@@ -200,12 +180,6 @@ bool toCodes(const DecodeTable& table, const Image& image, int y0, int y1, uint8
     return mismatch == 0;
 }
 
-// Both sides computed, then selected: the loops around it stay branch-free vector code.
-[[gnu::always_inline]] inline float labF(float t) {
-    const float root = cubeRoot(t), line = kLabSlope * t + kLabOffset;
-    return t > kLabDeltaCube ? root : line;
-}
-
 [[gnu::always_inline]] inline float unitClamp(float v) { return std::min(std::max(v, 0.0f), 1.0f); }
 
 // Filtered YCxCz -> linear RGB clamped to [0,1] -> L*a*b* with the Hunt adjustment
@@ -230,23 +204,6 @@ bool toCodes(const DecodeTable& table, const Image& image, int y0, int y1, uint8
 // HyAB (Abasi et al. 2020): city-block in lightness, Euclidean in chroma.
 [[gnu::always_inline]] inline float hyab(float l1, float a1, float b1, float l2, float a2, float b2) {
     return std::abs(l1 - l2) + std::sqrt((a1 - a2) * (a1 - a2) + (b1 - b2) * (b1 - b2));
-}
-
-// The largest colour error cmax: HyAB between Hunt-adjusted green and blue, to the power qc.
-float maxColourError() {
-    float lab[2][3];
-    const float rgb[2][3] = {{0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};
-    for (int i = 0; i < 2; ++i) {
-        float xyz[3];
-        for (int j = 0; j < 3; ++j)
-            xyz[j] = (kRgbToXyz[j][0] * rgb[i][0] + kRgbToXyz[j][1] * rgb[i][1] + kRgbToXyz[j][2] * rgb[i][2]) *
-                     kInvWhite[j];
-        const float fx = labF(xyz[0]), fy = labF(xyz[1]), fz = labF(xyz[2]);
-        lab[i][0] = 116.0f * fy - 16.0f;
-        lab[i][1] = 0.01f * lab[i][0] * (500.0f * (fx - fy));
-        lab[i][2] = 0.01f * lab[i][0] * (200.0f * (fy - fz));
-    }
-    return std::pow(hyab(lab[0][0], lab[0][1], lab[0][2], lab[1][0], lab[1][1], lab[1][2]), kQc);
 }
 
 struct Constants {

@@ -189,4 +189,54 @@ struct Source {
     return x > 0.0f ? v : (p == 0.0f ? 1.0f : 0.0f);
 }
 
+// Section 4 of the paper: colour error exponent qc, re-mapping knee pc (a fraction of the
+// largest error cmax) mapped to pt, feature detector width w in degrees; the feature error
+// exponent qf = 0.5 is the square root of the feature term.
+constexpr float kQc = 0.7f;
+constexpr float kPc = 0.4f;
+constexpr float kPt = 0.95f;
+constexpr double kFeatureWidthDeg = 0.082;
+
+// Contrast sensitivity of each YCxCz channel as the paper's sum of Gaussians in the spatial
+// domain, x in degrees: S(x) = a1 sqrt(pi/b1) exp(-pi^2 x^2/b1) + a2 sqrt(pi/b2) exp(-pi^2 x^2/b2).
+struct Csf {
+    double a1, b1, a2, b2;
+};
+constexpr Csf kCsfAchromatic{1.0, 0.0047, 0.0, 1e-5};
+constexpr Csf kCsfRedGreen{1.0, 0.0053, 0.0, 1e-5};
+constexpr Csf kCsfBlueYellow{34.1, 0.04, 13.5, 0.025};
+
+// CIE L*a*b*'s f(t): cube root above (6/29)^3, a line below.
+constexpr float kLabDelta = 6.0f / 29.0f;
+constexpr float kLabDeltaCube = kLabDelta * kLabDelta * kLabDelta;
+constexpr float kLabSlope = 1.0f / (3.0f * kLabDelta * kLabDelta);
+constexpr float kLabOffset = 4.0f / 29.0f;
+
+// L*a*b*'s f(t). Both sides computed, then selected: the loops around it stay branch-free
+// vector code.
+[[gnu::always_inline]] inline float labF(float t) {
+    const float root = cubeRoot(t), line = kLabSlope * t + kLabOffset;
+    return t > kLabDeltaCube ? root : line;
+}
+
+// The largest colour error cmax: HyAB (city-block in lightness, Euclidean in chroma) between
+// Hunt-adjusted green and blue, to the power qc.
+inline float maxColourError() {
+    float lab[2][3];
+    const float rgb[2][3] = {{0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};
+    for (int i = 0; i < 2; ++i) {
+        float xyz[3];
+        for (int j = 0; j < 3; ++j)
+            xyz[j] = (kRgbToXyz[j][0] * rgb[i][0] + kRgbToXyz[j][1] * rgb[i][1] + kRgbToXyz[j][2] * rgb[i][2]) *
+                     kInvWhite[j];
+        const float fx = labF(xyz[0]), fy = labF(xyz[1]), fz = labF(xyz[2]);
+        lab[i][0] = 116.0f * fy - 16.0f;
+        lab[i][1] = 0.01f * lab[i][0] * (500.0f * (fx - fy));
+        lab[i][2] = 0.01f * lab[i][0] * (200.0f * (fy - fz));
+    }
+    const float hyab = std::abs(lab[0][0] - lab[1][0]) + std::sqrt((lab[0][1] - lab[1][1]) * (lab[0][1] - lab[1][1]) +
+                                                                   (lab[0][2] - lab[1][2]) * (lab[0][2] - lab[1][2]));
+    return std::pow(hyab, kQc);
+}
+
 }  // namespace cbr::metrics::flip_detail

@@ -17,27 +17,9 @@
 namespace cbr::scoring::detail {
 namespace {
 
-// FLIP section 4 and its contrast sensitivity functions (metrics/flip.cpp).
-constexpr float kQc = 0.7f;
-constexpr float kPc = 0.4f;
-constexpr double kFeatureWidthDeg = 0.082;
-struct Csf {
-    double a1, b1, a2, b2;
-};
-constexpr Csf kCsfAchromatic{1.0, 0.0047, 0.0, 1e-5};
-constexpr Csf kCsfRedGreen{1.0, 0.0053, 0.0, 1e-5};
-constexpr Csf kCsfBlueYellow{34.1, 0.04, 13.5, 0.025};
-// The colour conversions and the cube root are metrics/flip_colour.h's own, so that both
-// scorers' cmax comes from the same constants.
-using metrics::flip_detail::cubeRoot;
-using metrics::flip_detail::kInvWhite;
-using metrics::flip_detail::kRgbToXyz;
-using metrics::flip_detail::kWhite;
-using metrics::flip_detail::kXyzToRgb;
-constexpr float kLabDelta = 6.0f / 29.0f;
-constexpr float kLabDeltaCube = kLabDelta * kLabDelta * kLabDelta;
-constexpr float kLabSlope = 1.0f / (3.0f * kLabDelta * kLabDelta);
-constexpr float kLabOffset = 4.0f / 29.0f;
+// FLIP's section-4 constants, contrast sensitivity functions, colour conversions and cube
+// root are metrics/flip_colour.h's own, so that both scorers work from the same numbers.
+using namespace metrics::flip_detail;
 
 // Appends w as floats; returns where they start.
 int append(std::vector<float>& taps, const std::vector<double>& w) {
@@ -147,30 +129,6 @@ void flipFeatureKernels(double ppd, Params& p) {
     p.head.flip_d = appendFlip(p.taps, d);
     p.head.flip_dd = appendFlip(p.taps, dd);
 }
-
-float labF(float t) { return t > kLabDeltaCube ? cubeRoot(t) : kLabSlope * t + kLabOffset; }
-
-// cmax: HyAB between Hunt-adjusted green and blue, to the power qc (flip.cpp maxColourError).
-float maxColourError() {
-    float lab[2][3];
-    const float rgb[2][3] = {{0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};
-    for (int i = 0; i < 2; ++i) {
-        float xyz[3];
-        for (int j = 0; j < 3; ++j)
-            xyz[j] = (kRgbToXyz[j][0] * rgb[i][0] + kRgbToXyz[j][1] * rgb[i][1] + kRgbToXyz[j][2] * rgb[i][2]) *
-                     kInvWhite[j];
-        const float fx = labF(xyz[0]), fy = labF(xyz[1]), fz = labF(xyz[2]);
-        lab[i][0] = 116.0f * fy - 16.0f;
-        lab[i][1] = 0.01f * lab[i][0] * (500.0f * (fx - fy));
-        lab[i][2] = 0.01f * lab[i][0] * (200.0f * (fy - fz));
-    }
-    const float hyab = std::abs(lab[0][0] - lab[1][0]) +
-                       std::sqrt((lab[0][1] - lab[1][1]) * (lab[0][1] - lab[1][1]) +
-                                 (lab[0][2] - lab[1][2]) * (lab[0][2] - lab[1][2]));
-    return std::pow(hyab, kQc);
-}
-
-float srgbToLinear(float s) { return s <= 0.04045f ? s / 12.92f : std::pow((s + 0.055f) / 1.055f, 2.4f); }
 
 void checkCrawl(const char* name, double value) {
     if (!(value >= 0) || !std::isfinite(value))
