@@ -7,6 +7,7 @@
 #include <fstream>
 #include <set>
 
+#include "renderer/vk/sanitizers.h"
 #include "tests/render/bench_runner.h"
 
 namespace cbr::test {
@@ -107,7 +108,10 @@ TEST(Quality, WorstFramesAreWrittenOnceWithPageCopies) {
     const double peak = m["peak_rss_mib"].get<double>(), estimate = m["estimate_host_mib"].get<double>();
     EXPECT_GT(peak, 0);
     EXPECT_LE(estimate, m["host_limit_mib"].get<double>());
+    // A sanitized build's shadow memory and quarantine are no part of what the run estimates.
+#ifndef CBR_SANITIZED
     EXPECT_GE(estimate, 0.75 * peak) << "the estimate misses a quarter of the peak";
+#endif
     EXPECT_GT(m["device_allocated_peak_mib"].get<double>(), 0);
     std::vector<std::string> phases;
     for (const auto& reading : m["after"]) phases.push_back(reading["after"].get<std::string>());
