@@ -1,5 +1,6 @@
 // sweep.csv's schema, reading it back, and combining the sweeps of outer dimensions.
 #include "reports/sweep.h"
+#include "settings/table.h"
 
 #include <algorithm>
 #include <cmath>
@@ -75,29 +76,29 @@ std::string groupName(const Group& g, bool paths_vary, bool references_vary) {
 
 }  // namespace sweep_detail
 
-const std::vector<std::string>& sweepColumns() {
-    static const std::vector<std::string> cols = {
-        "config", "variant", "path", "reference", "pipeline", "shading_cost", "drr_scale", "drr_filter",
-        "cso_tolerance", "cso_mode", "cbr_lod_bias", "cbr_route", "cbr_history", "taau_scale", "taau_blend", "status", "note", "frames", "repeats",
-        "gpu_ms_median", "gpu_ms_ci_low", "gpu_ms_ci_high", "noise_cv", "speedup_vs_full", "speedup_ci_low",
-        "speedup_ci_high", "psnr_db", "ssim", "eci", "flicker_ratio", "px_shaded", "px_reused", "px_missing_parity",
-        "px_occluded", "px_offscreen", "px_reset", "px_clipped"};
-    return cols;
+const std::vector<SweepSettingField>& sweepSettingFields() {
+    static const std::vector<SweepSettingField> fields = [] {
+        std::vector<SweepSettingField> out;
+        for (const auto& row : settings::table())
+            if (row.sweep && !row.outer && !row.variants.empty())
+                out.push_back({row.name, row.column, row.type != settings::Type::Word});
+        return out;
+    }();
+    return fields;
 }
 
-const std::vector<SweepSettingField>& sweepSettingFields() {
-    static const std::vector<SweepSettingField> fields = {
-        {"cso-tolerance", "cso_tolerance", &SweepPoint::cso_tolerance, nullptr},
-        {"cso-mode", "cso_mode", nullptr, &SweepPoint::cso_mode},
-        {"drr-scale", "drr_scale", &SweepPoint::drr_scale, nullptr},
-        {"drr-filter", "drr_filter", nullptr, &SweepPoint::drr_filter},
-        {"cbr-lod-bias", "cbr_lod_bias", &SweepPoint::cbr_lod_bias, nullptr},
-        {"cbr-route", "cbr_route", nullptr, &SweepPoint::cbr_route},
-        {"cbr-history", "cbr_history", nullptr, &SweepPoint::cbr_history},
-        {"taau-scale", "taau_scale", &SweepPoint::taau_scale, nullptr},
-        {"taau-blend", "taau_blend", &SweepPoint::taau_blend, nullptr},
-    };
-    return fields;
+const std::vector<std::string>& sweepColumns() {
+    static const std::vector<std::string> cols = [] {
+        std::vector<std::string> out = {"config", "variant", "path", "reference", "pipeline", "shading_cost"};
+        for (const auto& f : sweepSettingFields()) out.push_back(f.column);
+        for (const char* c : {"status", "note", "frames", "repeats", "gpu_ms_median", "gpu_ms_ci_low", "gpu_ms_ci_high",
+                              "noise_cv", "speedup_vs_full", "speedup_ci_low", "speedup_ci_high", "psnr_db", "ssim", "eci",
+                              "flicker_ratio", "px_shaded", "px_reused", "px_missing_parity", "px_occluded",
+                              "px_offscreen", "px_reset", "px_clipped"})
+            out.push_back(c);
+        return out;
+    }();
+    return cols;
 }
 
 const SweepSettingField* findSweepSetting(const std::string& name) {
@@ -108,14 +109,15 @@ const SweepSettingField* findSweepSetting(const std::string& name) {
 
 std::optional<std::string> settingText(const SweepPoint& p, const SweepSettingField& f) {
     if (f.number) {
-        if (!(p.*f.number)) return std::nullopt;
+        const auto n = p.number(f.column);
+        if (!n) return std::nullopt;
         char buf[32];
-        double v = *(p.*f.number);
+        double v = *n;
         std::snprintf(buf, sizeof buf, "%.4g", v == 0 ? 0.0 : v);  // as configuration labels write it
         return std::string(buf);
     }
-    const std::string& w = p.*f.word;
-    return w.empty() ? std::nullopt : std::optional<std::string>(w);
+    auto it = p.words.find(f.column);
+    return it == p.words.end() || it->second.empty() ? std::nullopt : std::optional<std::string>(it->second);
 }
 
 std::string sweepGroupDir(const std::string& path, const std::string& reference, bool paths_vary, bool references_vary) {
@@ -145,8 +147,11 @@ SweepData loadSweep(const std::filesystem::path& dir) {
         p.reference = csv.text(r, "reference");
         p.shading_cost = csv.num(r, "shading_cost").value_or(1);
         for (const auto& f : sweepSettingFields()) {
-            if (f.number) p.*f.number = csv.num(r, f.column);
-            else p.*f.word = csv.text(r, f.column);
+            if (!f.number) {
+                if (auto w = csv.text(r, f.column); !w.empty()) p.words[f.column] = w;
+            } else if (auto v = csv.num(r, f.column)) {
+                p.numbers[f.column] = *v;
+            }
         }
         p.gpu_ms = csv.num(r, "gpu_ms_median");
         p.gpu_ms_low = csv.num(r, "gpu_ms_ci_low");

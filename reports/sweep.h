@@ -19,9 +19,14 @@ struct SweepPoint {
     std::string status;   // ok, failed, skipped
     std::string path, reference;  // the outer dimensions: one sweep per (path, reference)
     double shading_cost = 1;
-    // The settings of the variants they change (empty on the others' rows).
-    std::optional<double> drr_scale, cso_tolerance, cbr_lod_bias, taau_scale, taau_blend;
-    std::string drr_filter, cso_mode, cbr_route, cbr_history;
+    // The settings of the variants they change, by sweep.csv column (absent on the others' rows):
+    // every row of the settings table that sweeps per variant (sweepSettingFields()).
+    std::map<std::string, double> numbers;
+    std::map<std::string, std::string> words;
+    std::optional<double> number(const std::string& column) const {
+        auto it = numbers.find(column);
+        return it == numbers.end() ? std::nullopt : std::optional<double>(it->second);
+    }
     std::optional<double> gpu_ms, gpu_ms_low, gpu_ms_high, speedup, speedup_low, speedup_high;
     std::optional<double> psnr_db, ssim, eci, flicker;
     std::map<std::string, double> classes;  // px_* mean shares
@@ -31,12 +36,12 @@ struct SweepPoint {
 const std::vector<std::string>& sweepColumns();
 
 // The settings a sweep can vary per configuration (shading cost is the workload, not a
-// choice), with their sweep.csv column and SweepPoint field (a number or a word).
+// choice): the settings table's rows that sweep and name their variants, in its order, with
+// their sweep.csv column and whether they hold a number or a word.
 struct SweepSettingField {
     const char* name;    // as --param names it, e.g. cbr-lod-bias
     const char* column;  // e.g. cbr_lod_bias
-    std::optional<double> SweepPoint::*number;  // null for word-valued settings
-    std::string SweepPoint::*word;              // null for numeric settings
+    bool number;         // a number (SweepPoint::numbers), else a word (SweepPoint::words)
 };
 const std::vector<SweepSettingField>& sweepSettingFields();
 const SweepSettingField* findSweepSetting(const std::string& name);

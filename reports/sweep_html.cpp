@@ -94,7 +94,7 @@ std::string paramCharts(const std::vector<SweepPoint>& points, const std::string
                         const char* flat, bool with_classes) {
     std::set<double> xs_set;
     for (const auto& p : points)
-        if (p.variant == variant && p.*f.number) xs_set.insert(*(p.*f.number));
+        if (p.variant == variant && p.number(f.column)) xs_set.insert(*p.number(f.column));
     if (xs_set.size() < 2) return "";
     std::vector<double> xs(xs_set.begin(), xs_set.end());
     const bool log_x = xs.front() > 0 && xs.back() / xs.front() >= 20;
@@ -103,7 +103,7 @@ std::string paramCharts(const std::vector<SweepPoint>& points, const std::string
     const Families fam = familiesFor(points, variant, f);
     std::vector<std::string> families;
     for (const auto& p : points)
-        if (p.variant == variant && p.*f.number) {
+        if (p.variant == variant && p.number(f.column)) {
             std::string family = fam.of(p);
             if (std::find(families.begin(), families.end(), family) == families.end()) families.push_back(family);
         }
@@ -124,7 +124,7 @@ std::string paramCharts(const std::vector<SweepPoint>& points, const std::string
             for (double x : xs) {
                 std::optional<double> y;
                 for (const auto& p : points)
-                    if (p.variant == variant && p.*f.number && *(p.*f.number) == x && p.status == "ok" &&
+                    if (p.variant == variant && p.number(f.column) == x && p.status == "ok" &&
                         fam.of(p) == families[k])
                         y = m.value(p);
                 s.y.push_back(y);

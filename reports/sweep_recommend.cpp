@@ -31,8 +31,8 @@ std::vector<const SweepPoint*> checkerboardConfigs(const std::vector<SweepPoint>
             if (p.variant != v || p.shading_cost != cost || p.status != "ok" || !p.gpu_ms) continue;
             bool at_choice = std::string(v) == "cbr-aso" || choices.empty();
             for (const auto& ch : choices)
-                at_choice = at_choice || (ch.shading_cost == cost && ch.tolerance && p.cso_tolerance &&
-                                          fmtShort(*p.cso_tolerance) == fmtShort(*ch.tolerance));
+                at_choice = at_choice || (ch.shading_cost == cost && ch.tolerance && p.number("cso_tolerance") &&
+                                          fmtShort(*p.number("cso_tolerance")) == fmtShort(*ch.tolerance));
             if (at_choice && (!best || psnrKey(p) > psnrKey(*best))) best = &p;
         }
         if (best) cbr.push_back(best);
@@ -47,7 +47,7 @@ std::vector<ToleranceChoice> recommendTolerance(const std::vector<SweepPoint>& p
     for (double cost : shadingCosts(points)) {
         std::vector<const SweepPoint*> cso;
         for (const auto& p : points)
-            if (p.variant == "cbr-cso" && p.shading_cost == cost && p.status == "ok" && p.gpu_ms && p.cso_tolerance)
+            if (p.variant == "cbr-cso" && p.shading_cost == cost && p.status == "ok" && p.gpu_ms && p.number("cso_tolerance"))
                 cso.push_back(&p);
         if (cso.empty()) continue;
         ToleranceChoice c;
@@ -68,12 +68,12 @@ std::vector<ToleranceChoice> recommendTolerance(const std::vector<SweepPoint>& p
             if (psnrKey(*p) >= top - 0.02) plateau.push_back(p), low_eci = std::min(low_eci, p->eci.value_or(1e300));
         const SweepPoint* best = nullptr;
         for (const auto* p : plateau)
-            if (p->eci.value_or(1e300) <= low_eci + 1e-4 && (!best || *p->cso_tolerance > *best->cso_tolerance)) best = p;
+            if (p->eci.value_or(1e300) <= low_eci + 1e-4 && (!best || *p->number("cso_tolerance") > *best->number("cso_tolerance"))) best = p;
         const SweepPoint* worst = cso.front();
         for (const auto* p : cso)
             if (psnrKey(*p) < psnrKey(*worst)) worst = p;
-        c.tolerance = best->cso_tolerance;
-        std::string s = "cso-tolerance " + fmtShort(*best->cso_tolerance) + costSuffix(points, cost) + ": ";
+        c.tolerance = best->number("cso_tolerance");
+        std::string s = "cso-tolerance " + fmtShort(*best->number("cso_tolerance")) + costSuffix(points, cost) + ": ";
         const bool on_plateau = plateau.size() > 1;
         const std::string n = std::to_string(cso.size());
         if (aso && none_within) {
@@ -92,7 +92,7 @@ std::vector<ToleranceChoice> recommendTolerance(const std::vector<SweepPoint>& p
         }
         s += ", with ECI " + fmt(best->eci, 4) + (aso ? " (cbr-aso " + fmt(aso->eci, 4) + ")" : std::string());
         if (worst != best && best->psnr_db && worst->psnr_db && *best->psnr_db - *worst->psnr_db >= 0.01)
-            s += ", while tolerance " + fmtShort(*worst->cso_tolerance) + " loses " +
+            s += ", while tolerance " + fmtShort(*worst->number("cso_tolerance")) + " loses " +
                  fmt(*best->psnr_db - *worst->psnr_db, 2) + " dB";
         else
             s += "; PSNR varies less than 0.01 dB across the tolerances";
@@ -117,7 +117,7 @@ std::vector<EqualCost> equalCost(const std::vector<SweepPoint>& points, const st
             e.cbr_psnr = c->psnr_db;
             e.cbr_ssim = c->ssim;
             e.cbr_eci = c->eci;
-            const std::string who = c->variant == "cbr-cso" ? "cbr-cso (tolerance " + fmtShort(*c->cso_tolerance) + ")"
+            const std::string who = c->variant == "cbr-cso" ? "cbr-cso (tolerance " + fmtShort(*c->number("cso_tolerance")) + ")"
                                                             : c->variant;
             if (drr.empty()) {
                 e.verdict = who + ": no drr configuration ran" + costSuffix(points, cost) + ", so there is nothing to "
@@ -135,13 +135,13 @@ std::vector<EqualCost> equalCost(const std::vector<SweepPoint>& points, const st
                 double f = span > 0 ? (e.cbr_ms - *lo->gpu_ms) / span : 0.0;
                 e.matched = true;
                 e.drr_ms = e.cbr_ms;
-                e.drr_scale = lerp(lo->drr_scale, hi->drr_scale, f);
+                e.drr_scale = lerp(lo->number("drr_scale"), hi->number("drr_scale"), f);
                 e.drr_psnr = lerp(lo->psnr_db, hi->psnr_db, f);
                 e.drr_ssim = lerp(lo->ssim, hi->ssim, f);
                 e.drr_eci = lerp(lo->eci, hi->eci, f);
             } else {
                 const SweepPoint* near = e.cbr_ms < *drr.front()->gpu_ms ? drr.front() : drr.back();
-                e.drr_scale = near->drr_scale;
+                e.drr_scale = near->number("drr_scale");
                 e.drr_ms = near->gpu_ms;
                 e.drr_psnr = near->psnr_db;
                 e.drr_ssim = near->ssim;
@@ -268,7 +268,7 @@ std::optional<SettingChoice> chooseSetting(const Group& g, double cost, const Sw
         for (const auto& t : tolerances)
             if (t.shading_cost == cost && t.tolerance)
                 for (const auto* p : ran)
-                    if (p->variant == "cbr-cso" && !best && fmtShort(*p->cso_tolerance) == fmtShort(*t.tolerance))
+                    if (p->variant == "cbr-cso" && !best && fmtShort(*p->number("cso_tolerance")) == fmtShort(*t.tolerance))
                         best = p, c.sentence = t.sentence;
     }
     if (!best) {

@@ -33,6 +33,7 @@ std::vector<Row> makeTable() {
     const std::vector<const char*> kCheckerboard = {"cbr-aso", "cbr-cso", "cbr-clip"};
     std::vector<Row> rows;
     auto add = [&](Row r) { rows.push_back(std::move(r)); };
+    // The order is the help's, sweep's labels' and sweep.csv's (its columns are held by a test).
     // Numbers: name, column, help, type, {}, min, max, min_open, max_open.
     add({"shading-cost", "shading_cost", "fragment shading about K times more expensive, same image", Type::Int, {}, 1,
          1024, false, false, {}, {}, "cost", false, 1, Hash::Always, true, false, field<&Tunables::shading_cost>()});
@@ -45,18 +46,6 @@ std::vector<Row> makeTable() {
     add({"drr-target-ms", "drr_target_ms", "dynamic drr: target GPU frame time in ms (0: fixed scale)", Type::Real, {},
          0, kNoMax, false, true, {}, {"drr"}, nullptr, false, 0, Hash::Always, true, false,
          field<&Tunables::drr_target_ms>()});
-    add({"taau-scale", "taau_scale", "taau per-axis render scale", Type::Real, {}, 0, 1, true, false, {}, {"taau"},
-         "tscale", false, 13, Hash::UnlessDefault, true, false, field<&Tunables::taau_scale>()});
-    add({"taau-phases", "taau_phases", "taau Halton(2,3) jitter phases", Type::Int, {}, 8, 16, false, false, {8, 16},
-         {"taau"}, nullptr, false, 14, Hash::UnlessDefault, true, false, field<&Tunables::taau_phases>()});
-    add({"taau-blend", "taau_blend", "taau history blend weight of a sample on the pixel centre", Type::Real, {}, 0, 1,
-         true, false, {}, {"taau"}, "blend", false, 15, Hash::UnlessDefault, true, false,
-         field<&Tunables::taau_blend>()});
-    add({"taau-lod-offset", "taau_lod_offset",
-         "added to taau's texture LOD bias of log2(render width / output width): below 0 sharper textures, more "
-         "shimmer for the history to absorb",
-         Type::Real, {}, -4, 4, false, false, {}, {"taau"}, nullptr, false, 16, Hash::UnlessDefault, true, false,
-         field<&Tunables::taau_lod_offset>()});
     add({"cso-tolerance", "cso_tolerance", "cbr-cso depth tolerance (relative, or scene units)", Type::Real, {}, 0,
          kNoMax, true, true, {}, {"cbr-cso"}, "tol", false, 4, Hash::Always, true, false,
          field<&Tunables::cso_tolerance>()});
@@ -74,6 +63,18 @@ std::vector<Row> makeTable() {
          "resolved frame, clipped to the neighbourhood)",
          Type::Word, {"quarter", "full"}, 0, 0, false, false, {}, {"cbr-aso", "cbr-cso"}, "history", false, 10,
          Hash::UnlessDefault, true, false, field<&Tunables::cbr_history>()});
+    add({"taau-scale", "taau_scale", "taau per-axis render scale", Type::Real, {}, 0, 1, true, false, {}, {"taau"},
+         "tscale", false, 13, Hash::UnlessDefault, true, false, field<&Tunables::taau_scale>()});
+    add({"taau-phases", "taau_phases", "taau Halton(2,3) jitter phases", Type::Int, {}, 8, 16, false, false, {8, 16},
+         {"taau"}, nullptr, false, 14, Hash::UnlessDefault, true, false, field<&Tunables::taau_phases>()});
+    add({"taau-blend", "taau_blend", "taau history blend weight of a sample on the pixel centre", Type::Real, {}, 0, 1,
+         true, false, {}, {"taau"}, "blend", false, 15, Hash::UnlessDefault, true, false,
+         field<&Tunables::taau_blend>()});
+    add({"taau-lod-offset", "taau_lod_offset",
+         "added to taau's texture LOD bias of log2(render width / output width): below 0 sharper textures, more "
+         "shimmer for the history to absorb",
+         Type::Real, {}, -4, 4, false, false, {}, {"taau"}, nullptr, false, 16, Hash::UnlessDefault, true, false,
+         field<&Tunables::taau_lod_offset>()});
     add({"history-filter", "history_filter",
          "how --cbr-history full reads the history (bilinear blurs frame after frame)", Type::Word,
          {"catmull-rom", "bilinear"}, 0, 0, false, false, {}, kCheckerboard, nullptr, false, 11, Hash::UnlessDefault,

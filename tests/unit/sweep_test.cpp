@@ -89,8 +89,8 @@ SweepPoint point(const std::string& variant, double ms, double psnr, double eci,
     p.psnr_db = psnr;
     p.ssim = 0.9;
     p.eci = eci;
-    p.cso_tolerance = tol;
-    p.drr_scale = scale;
+    if (tol) p.numbers["cso_tolerance"] = *tol;
+    if (scale) p.numbers["drr_scale"] = *scale;
     return p;
 }
 
@@ -264,8 +264,8 @@ SweepPoint lodPoint(const std::string& path, double lod, double ms, double psnr,
     p.path = path;
     p.reference = "full";
     p.ssim = ssim;
-    p.cbr_lod_bias = lod;
-    p.cbr_route = "auto";
+    p.numbers["cbr_lod_bias"] = lod;
+    p.words["cbr_route"] = "auto";
     return p;
 }
 
@@ -301,7 +301,7 @@ TEST(SweepRecommendSettings, PsnrTiesGoToHigherSsimThenLowerEciThenLowerTime) {
     EXPECT_EQ(cbr::reports::recommendSettings(eci)[0].value, "0");
     // Routes give the same image: the faster wins.
     std::vector<SweepPoint> routes{lodPoint("a", -1, 5.0, 30.0), lodPoint("a", -1, 4.9, 30.0)};
-    routes[0].cbr_route = "multiview", routes[1].cbr_route = "msaa-locations";
+    routes[0].words["cbr_route"] = "multiview", routes[1].words["cbr_route"] = "msaa-locations";
     auto c = cbr::reports::recommendSettings(routes);
     ASSERT_EQ(c.size(), 1u);
     EXPECT_EQ(c[0].setting, "cbr-route");
@@ -310,8 +310,8 @@ TEST(SweepRecommendSettings, PsnrTiesGoToHigherSsimThenLowerEciThenLowerTime) {
 
 TEST(SweepRecommendSettings, ASettingWhoseConfigurationsAllSkippedGetsNoValue) {
     std::vector<SweepPoint> pts{lodPoint("a", -1, 5.0, 30.0), lodPoint("a", -1, 5.0, 30.0)};
-    pts[0].cbr_route = "msaa-jitter", pts[0].status = "skipped", pts[0].gpu_ms.reset();
-    pts[1].cbr_route = "multiview";
+    pts[0].words["cbr_route"] = "msaa-jitter", pts[0].status = "skipped", pts[0].gpu_ms.reset();
+    pts[1].words["cbr_route"] = "multiview";
     auto c = cbr::reports::recommendSettings(pts);
     ASSERT_EQ(c.size(), 1u);
     EXPECT_EQ(c[0].value, "multiview");  // the skipped route is no candidate
