@@ -332,17 +332,8 @@ double flipTile(const Kernels& k, const Constants& constants, const DecodeTable&
             dst[x] = error[x];
             bucket[x] = std::max(std::min(int32_t(error[x] * float(kBuckets)), int32_t(kBuckets - 1)), int32_t(0));
         }
-        double r0 = 0, r1 = 0, r2 = 0, r3 = 0;
-        int x = 0;
-        for (; x + 4 <= n; x += 4) {
-            r0 += error[x];
-            r1 += error[x + 1];
-            r2 += error[x + 2];
-            r3 += error[x + 3];
-        }
-        for (; x < n; ++x) r0 += error[x];
-        sum += (r0 + r1) + (r2 + r3);
-        for (x = 0; x < n; ++x) buckets[bucket[x]] += error[x];
+        sum += rowSum(error, n);
+        for (int x = 0; x < n; ++x) buckets[bucket[x]] += error[x];
     }
     return ok ? sum : std::numeric_limits<double>::quiet_NaN();
 }

@@ -34,6 +34,13 @@ typedef float Vec8 __attribute__((vector_size(32)));
 // By reference, not by value: an AVX-sized value would change the default clone's ABI.
 inline void load8(Vec8& v, const float* p) { std::memcpy(&v, p, sizeof v); }
 inline void store8(float* p, const Vec8& v) { std::memcpy(p, &v, sizeof v); }
+// A block's four registers from p[0, 32) and back.
+[[gnu::always_inline]] inline void loadBlock(const float* p, Vec8& v0, Vec8& v1, Vec8& v2, Vec8& v3) {
+    load8(v0, p), load8(v1, p + 8), load8(v2, p + 16), load8(v3, p + 24);
+}
+[[gnu::always_inline]] inline void storeBlock(float* p, const Vec8& a0, const Vec8& a1, const Vec8& a2, const Vec8& a3) {
+    store8(p, a0), store8(p + 8, a1), store8(p + 16, a2), store8(p + 24, a3);
+}
 constexpr int kBlock = 32;  // outputs per block: four registers
 
 // out[x] = sum_t w[t] src(t)[x] for x < n, src(t) = the t-th input row.
@@ -43,18 +50,15 @@ template <typename Source>
     for (; x + kBlock <= n; x += kBlock) {
         Vec8 a0, a1, a2, a3, v0, v1, v2, v3;
         const float* in = src(0) + x;
-        load8(v0, in), load8(v1, in + 8), load8(v2, in + 16), load8(v3, in + 24);
+        loadBlock(in, v0, v1, v2, v3);
         a0 = w[0] * v0, a1 = w[0] * v1, a2 = w[0] * v2, a3 = w[0] * v3;
         for (size_t t = 1; t < taps; ++t) {
             in = src(t) + x;
-            load8(v0, in), load8(v1, in + 8), load8(v2, in + 16), load8(v3, in + 24);
+            loadBlock(in, v0, v1, v2, v3);
             const float wt = w[t];
             a0 += wt * v0, a1 += wt * v1, a2 += wt * v2, a3 += wt * v3;
         }
-        store8(out + x, a0);
-        store8(out + x + 8, a1);
-        store8(out + x + 16, a2);
-        store8(out + x + 24, a3);
+        storeBlock(out + x, a0, a1, a2, a3);
     }
     if (x == n) return;
     scaled(out + x, src(0) + x, w[0], n - x);
@@ -73,14 +77,14 @@ template <bool kAnti, typename Source>
         Vec8 a0{}, a1{}, a2{}, a3{}, v0, v1, v2, v3, u0, u1, u2, u3;
         if (!kAnti) {
             const float* in = src(c) + x;
-            load8(v0, in), load8(v1, in + 8), load8(v2, in + 16), load8(v3, in + 24);
+            loadBlock(in, v0, v1, v2, v3);
             a0 = w[c] * v0, a1 = w[c] * v1, a2 = w[c] * v2, a3 = w[c] * v3;
         }
         for (size_t t = 0; t < c; ++t) {
             const float* in = src(t) + x;
             const float* mirror = src(taps - 1 - t) + x;
-            load8(v0, in), load8(v1, in + 8), load8(v2, in + 16), load8(v3, in + 24);
-            load8(u0, mirror), load8(u1, mirror + 8), load8(u2, mirror + 16), load8(u3, mirror + 24);
+            loadBlock(in, v0, v1, v2, v3);
+            loadBlock(mirror, u0, u1, u2, u3);
             if (kAnti)
                 v0 -= u0, v1 -= u1, v2 -= u2, v3 -= u3;
             else
@@ -88,10 +92,7 @@ template <bool kAnti, typename Source>
             const float wt = w[t];
             a0 += wt * v0, a1 += wt * v1, a2 += wt * v2, a3 += wt * v3;
         }
-        store8(out + x, a0);
-        store8(out + x + 8, a1);
-        store8(out + x + 16, a2);
-        store8(out + x + 24, a3);
+        storeBlock(out + x, a0, a1, a2, a3);
     }
     for (; x < n; ++x) {
         float a = kAnti ? 0.0f : w[c] * src(c)[x];

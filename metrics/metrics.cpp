@@ -305,18 +305,7 @@ bool ssimTile(const SsimInput& a, const SsimInput& b, bool with_luma, const doub
                 // b1 >= C1 and b2 >= C2 (less rounding): constant images stay finite.
                 values[x] = (a1 * a2) / (b1 * b2);
             }
-            // Four partial sums break the add latency chain; per-row sums keep the
-            // rounding error near numpy's pairwise mean.
-            double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
-            int x = 0;
-            for (; x + 4 <= out_cols; x += 4) {
-                s0 += values[x];
-                s1 += values[x + 1];
-                s2 += values[x + 2];
-                s3 += values[x + 3];
-            }
-            for (; x < out_cols; ++x) s0 += values[x];
-            channel_sum += (s0 + s1) + (s2 + s3);
+            channel_sum += rowSum(values, out_cols);
             if (map && !is_luma) {
                 double* map_row = map + size_t(y0 + r) * width + x0;
                 for (int i = 0; i < out_cols; ++i) {

@@ -14,3 +14,23 @@
 #ifndef CBR_SIMD_CLONES
 #define CBR_SIMD_CLONES
 #endif
+
+namespace cbr::metrics {
+
+// A row's sum in four partial sums, (s0 + s1) + (s2 + s3): they break the add latency chain,
+// and per-row sums keep the rounding near numpy's pairwise mean.
+template <typename T>
+[[gnu::always_inline]] inline double rowSum(const T* v, int n) {
+    double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+    int x = 0;
+    for (; x + 4 <= n; x += 4) {
+        s0 += v[x];
+        s1 += v[x + 1];
+        s2 += v[x + 2];
+        s3 += v[x + 3];
+    }
+    for (; x < n; ++x) s0 += v[x];
+    return (s0 + s1) + (s2 + s3);
+}
+
+}  // namespace cbr::metrics

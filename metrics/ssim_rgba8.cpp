@@ -215,18 +215,7 @@ void ssimTileRgba8(const uint8_t* a, const uint8_t* b, int width, const Tile& t,
                 const double b2 = (double(fs[x]) - (da * da + db * db)) + kC2Codes;
                 values[x] = (a1 * a2) / (b1 * b2);
             }
-            // Four partial sums break the add latency chain; per-row sums keep the rounding
-            // near numpy's pairwise mean.
-            double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
-            int x = 0;
-            for (; x + 4 <= out_cols; x += 4) {
-                s0 += values[x];
-                s1 += values[x + 1];
-                s2 += values[x + 2];
-                s3 += values[x + 3];
-            }
-            for (; x < out_cols; ++x) s0 += values[x];
-            channel_sum += (s0 + s1) + (s2 + s3);
+            channel_sum += rowSum(values, out_cols);
         }
         sums[c] += channel_sum;
     }
