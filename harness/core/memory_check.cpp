@@ -101,8 +101,9 @@ void checkMemory(const MemoryPlan& plan, const vk::Context& ctx, MemoryFigures& 
     // lavapipe's "device" memory is the host's: it counts against both.
     const bool shared = ctx.description.is_lavapipe || ctx.description.device_type == "cpu";
     const double device_now = double(ctx.memory_use.deviceLocal());
+    const double rss_now = currentRssMib();
     m.device_estimate_mib = (device_now + g.device + (shared ? g.mapped : 0)) / kMiB;
-    m.host_estimate_mib = currentRssMib() + (g.host + g.mapped + (shared ? g.device : 0)) / kMiB;
+    m.host_estimate_mib = rss_now + (g.host + g.mapped + (shared ? g.device : 0)) / kMiB;
     m.device_heap_mib = double(heaps.heap_bytes) / kMiB;
     if (heaps.has_budget) m.device_budget_mib = double(heaps.budget_bytes) / kMiB;
 
@@ -110,7 +111,7 @@ void checkMemory(const MemoryPlan& plan, const vk::Context& ctx, MemoryFigures& 
         m.host_limit_mib = plan.host_limit_mib;
         m.host_limit_from = "--host-memory-limit";
     } else {
-        m.host_limit_mib = currentRssMib() + availableHostMib();
+        m.host_limit_mib = rss_now + availableHostMib();
         m.host_limit_from = "the run's own and the host's MemAvailable";
     }
     if (plan.device_limit_mib > 0) {

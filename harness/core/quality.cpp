@@ -173,26 +173,6 @@ void QualityScorer::submitScore(Chain& c, const std::string& variant, FrameRow& 
     });
 }
 
-void QualityScorer::offerWorst(const std::string& variant, int frame, const Quality& q, Bytes reference, Bytes image,
-                               Bytes classes, Floats crawl_map, Floats ssim_map, Floats flip_map) {
-    const size_t pixels = size_t(width_) * size_t(height_);
-    for (Floats* map : {&ssim_map, &flip_map})
-        if (*map && (*map)->size() != pixels) *map = nullptr;
-    Chain& c = chain(variant);
-    std::lock_guard lock(c.mutex);
-    if (q.ssim && (c.worst_ssim.frame < 0 || *q.ssim < c.worst_ssim.value))
-        c.worst_ssim = {frame, *q.ssim, reference, image, classes, nullptr, ssim_map, flip_map};
-    if (q.eci && (c.worst_eci.frame < 0 || *q.eci > c.worst_eci.value)) {
-        Bytes heat;
-        if (crawl_map && crawl_map->size() == pixels) {
-            // The heat map crawlStep keeps for the CPU scorer's frames, from the same values.
-            const metrics::Image map{width_, height_, 1, std::vector<double>(crawl_map->begin(), crawl_map->end())};
-            heat = std::make_shared<const std::vector<uint8_t>>(heatMap(map, 8.0));
-        }
-        c.worst_eci = {frame, *q.eci, reference, image, classes, heat, ssim_map, flip_map};
-    }
-}
-
 void QualityScorer::offerWorstLater(const std::string& variant, const std::string& kind, int frame, double value,
                                     WorstLoader load) {
     Chain& c = chain(variant);

@@ -50,13 +50,6 @@ public:
     // Scores `frame` of `variant` into `row` (which must outlive finish()). `is_reference`:
     // the variant is the reference itself (PSNR inf, SSIM 1, ECI 0, FLIP 0 without computing).
     void score(const std::string& variant, bool is_reference, FrameRow& row, QualityFrame frame);
-    // A frame scored elsewhere (on the device) that may be the variant's worst by SSIM or by
-    // edge crawl: its images, kept if so, and for the latter its crawl map (a float per pixel,
-    // as CrawlFrame::crawl_map; may be null), kept as its heat map. ssim_map and flip_map (a
-    // float per pixel, as metrics::ssimMap and metrics::flip's map; may be null) are kept with
-    // either kind and replace finish()'s recomputing them from the images.
-    void offerWorst(const std::string& variant, int frame, const Quality& quality, Bytes reference, Bytes image,
-                    Bytes classes, Floats crawl_map = nullptr, Floats ssim_map = nullptr, Floats flip_map = nullptr);
     // The images of a worst frame kept elsewhere (on the device), fetched when it is written.
     struct WorstImages {
         Bytes reference, image, classes;
