@@ -11,6 +11,7 @@
 #include "harness/compare/compare.h"
 #include "harness/core/options.h"
 #include "harness/core/run.h"
+#include "harness/core/variant_roles.h"
 #include "harness/core/sweep_configs.h"
 #include "harness/export/export.h"
 #include "harness/help_markdown.h"
@@ -78,9 +79,18 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_flag("--save-frames", o.save_frames, "save display images as PNG (the scored quality pass)");
     cmd->add_option("--export", o.exports, "also write the results as: gbench (gbench.json, Google Benchmark JSON)");
     cmd->add_option("--out", o.out, "output directory (default out/<scene>-<path>-<date-time>)");
-    cmd->add_option("--debug-slowdown", o.debug_slowdown,
-                    "PASS=PCT: make one pass PCT percent slower with calibrated extra GPU work (tests the detector; needs "
-                    "--warmup >= 2)");
+    cmd->add_option_function<std::string>(
+           "--debug-slowdown",
+           [&o](const std::string& text) {
+               try {
+                   o.debug_slowdown = parseSlowdown(text);
+               } catch (const std::invalid_argument& e) {
+                   throw CLI::ValidationError(e.what());
+               }
+           },
+           "PASS=PCT: make one pass PCT percent slower with calibrated extra GPU work (tests the detector; needs "
+           "--warmup >= 2)")
+        ->type_name("PASS=PCT");
     cmd->add_option("--pipeline", o.pipeline, "forward or deferred (G-buffer, lighting resolve)")->capture_default_str();
     settings::addOptions(cmd, o.tune);
     cmd->add_option("--scene-offset", o.scene_offset, "X,Y,Z: move the scene and the camera path by this (e.g. 1e6,1e6,1e6)");
@@ -120,7 +130,7 @@ Command reportCommand(CLI::App& app) {
                     std::printf("report: %s\n", (d / "report.html").c_str());
                 }
                 if (sweep_dir) {
-                    reports::writeSweepReport(d);
+                    reports::writeSweepReport(d, variantRoles());
                     std::printf("sweep report: %s\n", (d / "sweep.html").c_str());
                 }
                 return 0;

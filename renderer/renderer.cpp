@@ -479,6 +479,8 @@ void Renderer::writeUniforms(Slot& slot, const FrameRequest& request, const vari
 void Renderer::calibrateSlowdown(const FrameResult& warmup) {
     if (!spin_.pipeline || warmup.index >= 0 || calibrated_) return;
     for (const auto& p : warmup.passes) {
+        if (std::find(warm_up_passes_.begin(), warm_up_passes_.end(), p.name) == warm_up_passes_.end())
+            warm_up_passes_.push_back(p.name);
         if (p.name == settings_.debug_slowdown_pass) pass_ms_.push_back(p.gpu_ms);
         if (p.name == "debug_spin_1") spin_ms_[0].push_back(p.gpu_ms);
         if (p.name == "debug_spin_2") spin_ms_[1].push_back(p.gpu_ms);

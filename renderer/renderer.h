@@ -44,6 +44,9 @@ public:
     // device until now (scoring::FrameScoring::fetchWorst). False when there is none.
     bool deviceWorst(int kind, FrameResult& out);
     std::vector<std::pair<std::string, std::string>> describe() const;
+    // --debug-slowdown: the passes its calibrating warm-up frames ran (the slowed pass among
+    // them, or the run asked for a pass this variant lacks).
+    const std::vector<std::string>& warmUpPasses() const { return warm_up_passes_; }
 
 private:
     struct Slot;
@@ -73,6 +76,7 @@ private:
     bool calibrated_ = false;               // enough samples: the amount is fixed from then on
     uint32_t spin_iterations_ = 0;          // applied in measured frames (and warm-up once calibrated)
     bool slowdown_applied_ = false;
+    std::vector<std::string> warm_up_passes_;
 
     // The untimed analysis pass (motion and depths at output size, for the crawl metric).
     vk::Image analysis_, analysis_depth_;

@@ -104,13 +104,13 @@ std::string qualitySection(const RunData& d) {
     std::string out = "<section id=\"quality\"><h2>Quality per frame</h2>";
     out += std::string("<p class=\"note\">") +
            (isSequence(d) ? "Against the reference sequence's frame of the same position."
-                          : "Against the reference (<code>full</code>, not drawn) at the same frame, repetition 0 "
-                            "(rendering is deterministic).") +
+                          : "Against the reference (<code>" + esc(d.reference) +
+                                "</code>, not drawn) at the same frame, repetition 0 (rendering is deterministic).") +
            " PSNR of a frame identical to the reference is infinite: it sits on the "
            "\u221e lane at the top (\u25b2) and never stretches the scale.</p>";
     std::vector<std::string> shown;  // variants with any per-frame quality value
     for (const auto& v : d.variants)
-        if (v != kReference && (anyValue(perFrame(d, v, "psnr_db", 0)) || anyValue(perFrame(d, v, "ssim", 0))))
+        if (v != d.reference && (anyValue(perFrame(d, v, "psnr_db", 0)) || anyValue(perFrame(d, v, "ssim", 0))))
             shown.push_back(v);
     std::vector<Series> legend;
     for (const auto& v : shown) legend.push_back({v, variantColor(d, v), {}});
@@ -196,27 +196,29 @@ std::string pixelClassSection(const RunData& d) {
     return out + "</div></section>";
 }
 
-std::string paretoSentence(const std::vector<CostQuality>& all) {
+std::string paretoSentence(const std::vector<CostQuality>& all, const std::string& reference) {
     const CostQuality* ref = nullptr;
     for (const auto& v : all)
-        if (v.name == kReference) ref = &v;
+        if (v.name == reference) ref = &v;
+    const std::string& full = reference;
     if (!ref || !ref->gpu_ms || !std::isfinite(*ref->gpu_ms) || *ref->gpu_ms <= 0)
-        return "No timed reference (full) in this run, so no variant's cost can be compared with full's.";
+        return "No timed reference (" + full + ") in this run, so no variant's cost can be compared with " + full + "'s.";
 
     std::vector<ScatterPoint> pts;
     std::vector<const CostQuality*> who;
     for (const auto& v : all) {
         if (!v.gpu_ms || !std::isfinite(*v.gpu_ms) || *v.gpu_ms <= 0) continue;
-        std::optional<double> y = v.name == kReference ? std::optional<double>(INFINITY) : v.psnr_db;
+        std::optional<double> y = v.name == reference ? std::optional<double>(INFINITY) : v.psnr_db;
         if (!y || std::isnan(*y)) continue;
         pts.push_back({v.name, "", *v.gpu_ms, y});
         who.push_back(&v);
     }
-    if (pts.size() <= 1) return "Only the reference (full) has timing and quality here, so there is nothing to compare.";
+    if (pts.size() <= 1)
+        return "Only the reference (" + full + ") has timing and quality here, so there is nothing to compare.";
     auto front = paretoFront(pts, /*y_higher_is_better=*/true);
     auto onFront = [&](size_t i) { return std::find(front.begin(), front.end(), i) != front.end(); };
     auto speed = [&](size_t i) { return *ref->gpu_ms / pts[i].x; };
-    auto psnrText = [](double p) { return std::isinf(p) ? std::string("identical to full") : fmt(p, 2) + " dB"; };
+    auto psnrText = [&](double p) { return std::isinf(p) ? "identical to " + full : fmt(p, 2) + " dB"; };
     auto measurablyFaster = [&](size_t i) {
         const CostQuality& v = *who[i];
         return speed(i) > 1.0 && (!v.ci_low || *v.ci_low > 1.0);
@@ -230,34 +232,34 @@ std::string paretoSentence(const std::vector<CostQuality>& all) {
 
     std::optional<size_t> best;
     for (size_t i = 0; i < pts.size(); ++i) {
-        if (who[i]->name == kReference || !onFront(i) || !measurablyFaster(i)) continue;
+        if (who[i]->name == reference || !onFront(i) || !measurablyFaster(i)) continue;
         if (!best || *pts[i].y > *pts[*best].y || (*pts[i].y == *pts[*best].y && pts[i].x < pts[*best].x)) best = i;
     }
     std::vector<size_t> others;
     for (size_t i = 0; i < pts.size(); ++i)
-        if (who[i]->name != kReference && (!best || i != *best)) others.push_back(i);
+        if (who[i]->name != reference && (!best || i != *best)) others.push_back(i);
     std::sort(others.begin(), others.end(), [&](size_t a, size_t b) { return pts[a].x < pts[b].x; });
 
     std::string s;
     if (!best) {
-        s = "No variant is both on the Pareto front and measurably faster than full, so full gives the best quality "
-            "for its cost here";
+        s = "No variant is both on the Pareto front and measurably faster than " + full + ", so " + full +
+            " gives the best quality for its cost here";
         for (size_t i : others)
-            s += "; " + who[i]->name + " runs at " + fmt(speed(i), 2) + "x the speed of full (" + paired(i) +
+            s += "; " + who[i]->name + " runs at " + fmt(speed(i), 2) + "x the speed of " + full + " (" + paired(i) +
                  ") with PSNR " + psnrText(*pts[i].y);
         return s + ".";
     }
     s = who[*best]->name + " gives the best quality for its cost: it is on the Pareto front with PSNR " +
         psnrText(*pts[*best].y);
     if (who[*best]->ssim) s += " (SSIM " + fmt(*who[*best]->ssim, 4) + ")";
-    s += " at " + fmt(speed(*best), 2) + "x the speed of full";
+    s += " at " + fmt(speed(*best), 2) + "x the speed of " + full;
     for (size_t i : others) {
         const double sp = speed(i);
         const bool faster = pts[i].x < pts[*best].x;
         const bool better = *pts[i].y > *pts[*best].y;
         s += "; " + who[i]->name;
         if (!measurablyFaster(i))
-            s += " is not measurably faster than full (" + paired(i) + ") at PSNR " + psnrText(*pts[i].y);
+            s += " is not measurably faster than " + full + " (" + paired(i) + ") at PSNR " + psnrText(*pts[i].y);
         else if (faster && better)
             s += " is faster (" + fmt(sp, 2) + "x) and higher quality (" + psnrText(*pts[i].y) + ")";
         else if (faster)
@@ -278,7 +280,7 @@ std::string paretoSentence(const RunData& d) {
                       summaryNum(d, v, "ssim_mean"), summaryNum(d, v, "speedup_vs_full"),
                       summaryNum(d, v, "speedup_ci_low"), summaryNum(d, v, "speedup_ci_high")});
     }
-    return paretoSentence(cq);
+    return paretoSentence(cq, d.reference);
 }
 
 std::string paretoSection(const RunData& d) {
@@ -316,7 +318,7 @@ std::string paretoSection(const RunData& d) {
             auto x = summaryNum(d, v, "gpu_ms_median");
             if (!x || !std::isfinite(*x)) continue;
             auto y = summaryNum(d, v, a.column);
-            if (v == kReference && !y) y = a.higher ? INFINITY : 0.0;
+            if (v == d.reference && !y) y = a.higher ? INFINITY : 0.0;
             if (y && a.one_minus) y = 1.0 - *y;
             c.points.push_back({v, variantColor(d, v), *x, y});
         }

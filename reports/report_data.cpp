@@ -122,6 +122,10 @@ RunData loadRun(const std::filesystem::path& dir) {
     }
     d.frame_ids.assign(frames.begin(), frames.end());
     d.repeats = int(repeats.size());
+    if (const auto it = d.run.find("reference_variant"); it != d.run.end() && it->is_string())
+        d.reference = it->get<std::string>();
+    else if (!d.run.contains("kind") && !d.variants.empty())
+        d.reference = d.variants.front();
     return d;
 }
 
@@ -215,16 +219,19 @@ std::vector<std::string> passNames(const RunData& d) {
     return out;
 }
 
-std::string variantColor(const RunData& d, const std::string& variant) { return variantColor(d.variants, variant); }
+std::string variantColor(const RunData& d, const std::string& variant) {
+    return variantColor(d.variants, variant, d.reference);
+}
 
-std::string variantColor(const std::vector<std::string>& variants, const std::string& variant) {
+std::string variantColor(const std::vector<std::string>& variants, const std::string& variant,
+                         const std::string& reference) {
     // Okabe-Ito, readable for colour-blind readers; the reference in dark grey.
     static const char* kPalette[] = {"#0072b2", "#e69f00", "#009e73", "#cc79a7", "#d55e00", "#56b4e9", "#a08c00"};
-    if (variant == kReference) return "#404040";
+    if (variant == reference) return "#404040";
     size_t k = 0;
     for (const auto& v : variants) {
         if (v == variant) break;
-        if (v != kReference) ++k;
+        if (v != reference) ++k;
     }
     return kPalette[k % std::size(kPalette)];
 }

@@ -20,6 +20,10 @@ struct RunData {
     CsvData frames;
     nlohmann::json run;                 // run.json, checked to be an object
     std::vector<std::string> variants;  // summary.csv order
+    // The variant every other is timed and scored against: run.json's reference_variant (a
+    // run's directory from before it was written: the first variant, which a run renders
+    // first); empty for score-seq, which scores against a sequence.
+    std::string reference;
     std::vector<double> frame_ids;      // sorted distinct `frame` values
     int repeats = 0;                    // distinct `repeat` values in frames.csv
 };
@@ -27,9 +31,6 @@ struct RunData {
 // Reads summary.csv, frames.csv and run.json. Throws std::invalid_argument naming the
 // file and line (or JSON pointer) for anything missing or malformed.
 RunData loadRun(const std::filesystem::path& dir);
-
-// The reference variant: `full`, as the suite defines it.
-inline constexpr const char* kReference = "full";
 
 // summary.csv row of a variant, or nullopt.
 std::optional<size_t> summaryRow(const RunData& d, const std::string& variant);
@@ -61,7 +62,8 @@ std::vector<std::string> passNames(const RunData& d);
 std::string variantColor(const RunData& d, const std::string& variant);
 // The same by position among `variants` (the order a run or sweep wrote them), so every page
 // colours the n-th variant alike and none needs to know variant names.
-std::string variantColor(const std::vector<std::string>& variants, const std::string& variant);
+std::string variantColor(const std::vector<std::string>& variants, const std::string& variant,
+                         const std::string& reference);
 std::string passColor(const std::string& pass, size_t index);
 
 // A JSON value as display text: strings as they are, numbers short, booleans yes/no,

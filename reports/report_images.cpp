@@ -206,9 +206,9 @@ std::string fromWorstDir(const RunData& d, const std::string& v) {
 std::string fromSavedFrames(const RunData& d, const std::string& v) {
     auto f = extremeFrame(d, v, "ssim", false);
     if (!f) return "<p class=\"muted\">No per-frame SSIM for " + esc(v) + ".</p>";
-    Embedded ref = embed(savedFrame(d, kReference, *f, "")), var = embed(savedFrame(d, v, *f, ""));
+    Embedded ref = embed(savedFrame(d, d.reference, *f, "")), var = embed(savedFrame(d, v, *f, ""));
     if (ref.uri.empty() || var.uri.empty())
-        return "<p class=\"muted\">frames/ lacks frame " + std::to_string(*f) + " of " + esc(v) + " or of full.</p>";
+        return "<p class=\"muted\">frames/ lacks frame " + std::to_string(*f) + " of " + esc(v) + " or of " + esc(d.reference) + ".</p>";
     std::string out = "<h4>Lowest SSIM: " + esc(frameLabel(d, v, "ssim", false)) + ", from frames/</h4>";
     out += "<div class=\"compare\">" + wipe(ref, var, v) + "<div class=\"maps\">";
     if (isCheckerboard(d, v)) {
@@ -262,7 +262,7 @@ std::string imagesSection(const RunData& d) {
                      "<code>--save-frames</code> to keep them).</p></section>";
     }
     for (const auto& v : d.variants) {
-        if (v == kReference) continue;
+        if (v == d.reference) continue;
         out += "<div class=\"variant-images\"><h3>" + esc(v) + "</h3>";
         if (!variantOk(d, v)) out += "<p class=\"muted\">" + esc(v) + " did not run (" + esc(summaryText(d, v, "status")) + ").</p>";
         else out += worst ? fromWorstDir(d, v) : fromSavedFrames(d, v);

@@ -46,7 +46,7 @@ struct CostQuality {
 // the speeds are those of the plot (median GPU ms; speed = full's median / the variant's);
 // a variant counts as faster than full only where the paired speedup's interval, when
 // there is one, lies above 1 (timing.md: report only significant differences).
-std::string paretoSentence(const std::vector<CostQuality>& variants);
+std::string paretoSentence(const std::vector<CostQuality>& variants, const std::string& reference);
 // The sentence for a loaded run.
 std::string paretoSentence(const RunData& d);
 

@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "reports/variant_roles.h"
+
 namespace cbr::reports {
 
 // One row of sweep.csv: a configuration and what it measured.
@@ -61,8 +63,9 @@ struct SweepData {
 };
 SweepData loadSweep(const std::filesystem::path& dir);
 
-// The recommended CSO tolerance at one shading cost, with one sentence why: of the cbr-cso
-// tolerances whose median GPU time stays within `margin` of cbr-aso's, those within
+// The recommended CSO tolerance at one shading cost, with one sentence why: of the
+// tolerances (cbr-cso's) whose median GPU time stays within `margin` of the time of the
+// variant's cost bound (VariantRole::cost_bound, cbr-aso), those within
 // 0.02 dB of the best sequence PSNR, of these the lowest ECI (within 1e-4), of these the
 // loosest tolerance (the edge of the quality plateau).
 struct ToleranceChoice {
@@ -71,7 +74,8 @@ struct ToleranceChoice {
     std::string sentence;
 };
 inline constexpr double kCostMargin = 0.05;
-std::vector<ToleranceChoice> recommendTolerance(const std::vector<SweepPoint>& points, double margin = kCostMargin);
+std::vector<ToleranceChoice> recommendTolerance(const std::vector<SweepPoint>& points, const VariantRoles& roles,
+                                                double margin = kCostMargin);
 
 // The recommended value of every swept setting (two or more values among the rows it
 // applies to), per path, reference and shading cost; kSettingRule says how, in one sentence.
@@ -83,8 +87,9 @@ struct SettingChoice {
     std::string config;    // the configuration it was read from
     std::string sentence;  // one sentence why
 };
-extern const char* const kSettingRule;
-std::vector<SettingChoice> recommendSettings(const std::vector<SweepPoint>& points, double margin = kCostMargin);
+std::string settingRule(const VariantRoles& roles);
+std::vector<SettingChoice> recommendSettings(const std::vector<SweepPoint>& points, const VariantRoles& roles,
+                                             double margin = kCostMargin);
 
 // One line per setting whose recommended value differs between paths at the same
 // reference and shading cost, e.g. "the recommended cbr-lod-bias differs between paths: -1
@@ -93,10 +98,11 @@ std::vector<std::string> pathDisagreements(const std::vector<SettingChoice>& cho
 
 // What `cbrbench sweep` prints after the runs: the recommendations, the rule, the
 // disagreements (as "warning: ..."), and quality at equal cost. One line each.
-std::vector<std::string> sweepSummaryLines(const std::vector<SweepPoint>& points);
+std::vector<std::string> sweepSummaryLines(const std::vector<SweepPoint>& points, const VariantRoles& roles);
 
-// Quality at equal cost: the drr scale whose GPU time matches a checkerboard
-// configuration's, interpolated linearly in time between the two swept scales around it.
+// Quality at equal cost: for each variant whose VariantRole::equal_cost_with names a scaled
+// variant (drr), the scale whose GPU time matches its configuration's, interpolated linearly
+// in time between the two swept scales around it.
 struct EqualCost {
     std::string config;  // the checkerboard configuration
     double shading_cost = 1;
@@ -106,14 +112,15 @@ struct EqualCost {
     std::optional<double> drr_scale, drr_ms, drr_psnr, drr_ssim, drr_eci;
     std::string verdict;   // one sentence
 };
-std::vector<EqualCost> equalCost(const std::vector<SweepPoint>& points, const std::vector<ToleranceChoice>& choices);
+std::vector<EqualCost> equalCost(const std::vector<SweepPoint>& points, const std::vector<ToleranceChoice>& choices,
+                                 const VariantRoles& roles);
 
 // Builds sweep.html from DIR (same offline rules as report.html) and writes it atomically.
 // A directory whose sweep.csv holds more than one (path, reference) sweep gets the index
 // page: the recommendations side by side, disagreements between paths, links to each.
-std::string sweepHtml(const std::filesystem::path& dir);
-std::string sweepIndexHtml(const std::filesystem::path& dir);
-void writeSweepReport(const std::filesystem::path& dir);
+std::string sweepHtml(const std::filesystem::path& dir, const VariantRoles& roles);
+std::string sweepIndexHtml(const std::filesystem::path& dir, const VariantRoles& roles);
+void writeSweepReport(const std::filesystem::path& dir, const VariantRoles& roles);
 
 // DIR/sweep.csv from DIR/<sub>/sweep.csv for each of `subdirs`, rows in that order (the
 // columns are the same: each row names its path and reference). Written atomically.

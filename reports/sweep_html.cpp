@@ -147,13 +147,17 @@ std::string paramCharts(const std::vector<SweepPoint>& points, const std::string
 }
 
 // Charts against every swept numeric setting, for each variant it changes.
-std::string paramsSection(const std::vector<SweepPoint>& points) {
+std::string paramsSection(const std::vector<SweepPoint>& points, const VariantRoles& roles) {
     std::string html = "<section id=\"params\"><h2>Metrics against each setting</h2>";
     for (const auto& f : sweepSettingFields()) {
         if (!f.number) continue;
         const bool tol = std::string(f.name) == "cso-tolerance";
-        for (const auto& v : variantsOf(points))
-            if (v != kReference) html += paramCharts(points, v.c_str(), f, tol ? "cbr-aso" : nullptr, tol);
+        for (const auto& v : variantsOf(points)) {
+            // The tolerance's charts show the variant that bounds its cost as a flat line.
+            const VariantRole* role = roles.find(v);
+            const char* flat = tol && role && !role->cost_bound.empty() ? role->cost_bound.c_str() : nullptr;
+            if (v != roles.reference) html += paramCharts(points, v.c_str(), f, flat, tol);
+        }
     }
     if (shadingCosts(points).size() > 1) {
         html += "<h3>GPU time against shading cost</h3><div class=\"grid2\">";
@@ -166,31 +170,33 @@ std::string paramsSection(const std::vector<SweepPoint>& points) {
         const std::vector<std::string> variants = variantsOf(points);
         for (const auto& v : variants) {
             // The first configuration of each variant per cost (the swept values' first).
-            Series s{v, variantColor(variants, v), {}};
+            Series s{v, variantColor(variants, v, roles.reference), {}};
             for (double cost : c.x) {
                 const SweepPoint* p = findVariant(points, v, cost);
                 s.y.push_back(p ? p->gpu_ms : std::nullopt);
             }
             c.series.push_back(s);
-            legend.push_back({v, variantColor(variants, v), {}});
+            legend.push_back({v, variantColor(variants, v, roles.reference), {}});
         }
         html += legendHtml(legend) + "<div class=\"chart-block\">" + lineChartSvg(c) + "</div></div>";
     }
     return html + "</section>";
 }
 
-std::string answerSection(const std::vector<SweepPoint>& points) {
-    const auto choices = recommendTolerance(points);
-    const auto settings = recommendSettings(points);
+std::string answerSection(const std::vector<SweepPoint>& points, const VariantRoles& roles) {
+    const auto choices = recommendTolerance(points, roles);
+    const auto settings = recommendSettings(points, roles);
+    const VariantRole* bounded = roles.bounded();
+    const std::string tuned = bounded ? bounded->name : "tolerance", bound = bounded ? bounded->cost_bound : "bound";
     const bool others = std::any_of(settings.begin(), settings.end(),
                                     [](const SettingChoice& c) { return c.setting != "cso-tolerance"; });
     std::string html = "<section id=\"answer\">";
     if (choices.empty() && !others)
-        html += "<p class=\"answer\"><b>CSO tolerance:</b> no cbr-cso configuration ran, so none is recommended.</p>";
+        html += "<p class=\"answer\"><b>CSO tolerance:</b> no " + esc(tuned) + " configuration ran, so none is recommended.</p>";
     for (const auto& c : choices) html += "<p class=\"answer\"><b>Recommended:</b> " + esc(c.sentence) + "</p>";
     if (!choices.empty() || !others)
-        html += "<p class=\"note\">Rule: among the cbr-cso tolerances whose median GPU time stays within " +
-                fmtShort(kCostMargin * 100) + "% of cbr-aso's at the same shading cost, those within 0.02 dB of the "
+        html += "<p class=\"note\">Rule: among the " + esc(tuned) + " tolerances whose median GPU time stays within " +
+                fmtShort(kCostMargin * 100) + "% of " + esc(bound) + "'s at the same shading cost, those within 0.02 dB of the "
                 "best sequence PSNR; of these the lowest edge crawl index (within 1e-4); of these the loosest "
                 "tolerance: the edge of the quality plateau, before more reuse starts to cost quality.</p>";
     bool any = false;
@@ -198,20 +204,33 @@ std::string answerSection(const std::vector<SweepPoint>& points) {
         if (c.setting != "cso-tolerance")
             html += "<p class=\"answer\"><b>Recommended:</b> " + esc(c.sentence) + "</p>", any = true;
     if (any) {
-        std::string rule = kSettingRule;
+        std::string rule = settingRule(roles);
         rule[0] = char(std::toupper(static_cast<unsigned char>(rule[0])));
         html += "<p class=\"note\">Rule for every other swept setting: " + esc(rule) + ".</p>";
     }
     return html + "</section>";
 }
 
-std::string equalSection(const std::vector<SweepPoint>& points) {
-    const auto equal = equalCost(points, recommendTolerance(points));
-    std::string html = "<section id=\"equal\"><h2>Quality at equal cost: checkerboard and taau against dynamic resolution</h2>";
+// "a, b and c".
+std::string listed(const std::vector<std::string>& names) {
+    std::string s;
+    for (size_t i = 0; i < names.size(); ++i) s += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
+    return s;
+}
+
+std::string equalSection(const std::vector<SweepPoint>& points, const VariantRoles& roles) {
+    const auto equal = equalCost(points, recommendTolerance(points, roles), roles);
+    const auto baselines = roles.equalCostBaselines();
+    std::vector<std::string> peers;
+    for (const auto& b : baselines)
+        for (const auto& v : roles.equalCostPeers(b)) peers.push_back(v);
+    const std::string scaled = listed(baselines);
+    std::string html = "<section id=\"equal\"><h2>Quality at equal cost: " + esc(listed(peers)) + " against " +
+                       esc(scaled) + "</h2>";
     for (const auto& e : equal) html += "<p class=\"answer\">" + esc(e.verdict) + "</p>";
     if (!equal.empty()) {
         html += "<div class=\"scroll\"><table><tr><th>configuration</th><th class=\"num\">cost</th><th class=\"num\">GPU ms"
-                "</th><th class=\"num\">PSNR dB</th><th class=\"num\">SSIM</th><th class=\"num\">ECI</th><th>drr at that "
+                "</th><th class=\"num\">PSNR dB</th><th class=\"num\">SSIM</th><th class=\"num\">ECI</th><th>" + esc(scaled) + " at that "
                 "cost</th><th class=\"num\">scale</th><th class=\"num\">GPU ms</th><th class=\"num\">PSNR dB</th>"
                 "<th class=\"num\">SSIM</th><th class=\"num\">ECI</th></tr>";
         for (const auto& e : equal)
@@ -224,17 +243,17 @@ std::string equalSection(const std::vector<SweepPoint>& points) {
                     fmt(e.drr_eci, 4) + "</td></tr>";
         html += "</table></div>";
     }
-    return html + "<p class=\"note\">The drr scale whose median GPU time equals the configuration's (checkerboard or taau), with "
-                  "its quality, interpolated linearly in time between the two swept drr scales around it (the drr times "
-                  "sorted). Without a drr scale on both sides the nearest is shown and no equal-cost claim is made.</p>"
+    return html + "<p class=\"note\">The " + esc(scaled) + " scale whose median GPU time equals the configuration's, "
+                  "with its quality, interpolated linearly in time between the two swept scales around it (their times "
+                  "sorted). Without a swept scale on both sides the nearest is shown and no equal-cost claim is made.</p>"
                   "</section>";
 }
 
-std::string planeSection(const std::vector<SweepPoint>& points) {
+std::string planeSection(const std::vector<SweepPoint>& points, const VariantRoles& roles) {
     std::string html = "<section id=\"plane\"><h2>Error against run time</h2>";
     std::vector<Series> legend;
     const std::vector<std::string> variants = variantsOf(points);
-    for (const auto& v : variants) legend.push_back({v, variantColor(variants, v), {}});
+    for (const auto& v : variants) legend.push_back({v, variantColor(variants, v, roles.reference), {}});
     for (double cost : shadingCosts(points)) {
         ScatterChart sc;
         sc.title = "PSNR against GPU time" + costSuffix(points, cost);
@@ -246,20 +265,20 @@ std::string planeSection(const std::vector<SweepPoint>& points) {
         sc.y_higher_is_better = true;
         for (const auto& p : points)
             if (p.shading_cost == cost && p.status == "ok" && p.gpu_ms)
-                sc.points.push_back({p.config, variantColor(variants, p.variant), *p.gpu_ms, p.psnr_db});
+                sc.points.push_back({p.config, variantColor(variants, p.variant, roles.reference), *p.gpu_ms, p.psnr_db});
         html += "<h3>Sequence PSNR against median GPU time" + esc(costSuffix(points, cost)) + "</h3>" +
                 legendHtml(legend) +
                 "<div class=\"chart-block\" style=\"max-width:900px\">" + scatterChartSvg(sc) + "</div>";
         std::string list;
         for (size_t i : paretoFront(sc.points, true)) list += (list.empty() ? "" : ", ") + sc.points[i].label;
         html += "<p class=\"note\">Pareto front (no other configuration is both faster and better): " + esc(list) +
-                ". Only the front is labelled (every point has a tooltip). Full's PSNR is infinite (it is the "
-                "reference); it and anything above 50 dB sit on the lane above the plot.</p>";
+                ". Only the front is labelled (every point has a tooltip). " + esc(roles.reference) +
+                "'s PSNR is infinite (it is the reference); it and anything above 50 dB sit on the lane above the plot.</p>";
     }
     return html + "</section>";
 }
 
-std::string tableSection(const std::vector<SweepPoint>& points) {
+std::string tableSection(const std::vector<SweepPoint>& points, const VariantRoles& roles) {
     std::string html = "<section id=\"table\"><h2>Configurations</h2><div class=\"scroll\"><table><tr>";
     const char* head[] = {"config", "status", "GPU ms", "95% CI", "speedup", "PSNR dB", "SSIM", "ECI", "reused %",
                           "occluded %"};
@@ -267,7 +286,7 @@ std::string tableSection(const std::vector<SweepPoint>& points) {
     html += "</tr>";
     const std::vector<std::string> variants = variantsOf(points);
     for (const auto& p : points) {
-        html += "<tr><td class=\"variant\" style=\"color:" + variantColor(variants, p.variant) + "\">" + esc(p.config) +
+        html += "<tr><td class=\"variant\" style=\"color:" + variantColor(variants, p.variant, roles.reference) + "\">" + esc(p.config) +
                 "</td><td>" + esc(p.status) + "</td><td class=\"num\">" + fmt(p.gpu_ms, 2) + "</td><td class=\"num\">" +
                 (p.gpu_ms_low ? fmt(p.gpu_ms_low, 2) + "\u2013" + fmt(p.gpu_ms_high, 2) : std::string(kDash)) +
                 "</td><td class=\"num\">" + fmt(p.speedup, 2) + "</td><td class=\"num\">" + fmt(p.psnr_db, 2) +
@@ -292,7 +311,7 @@ std::string runTitle(const nlohmann::json& run) {
 
 }  // namespace
 
-std::string sweepHtml(const std::filesystem::path& dir) {
+std::string sweepHtml(const std::filesystem::path& dir, const VariantRoles& roles) {
     const SweepData d = loadSweep(dir);
     const std::string title = runTitle(d.run);
     std::string html = pageStart(title);
@@ -304,12 +323,12 @@ std::string sweepHtml(const std::filesystem::path& dir) {
         html += "<p class=\"callout\"><b>Timing note:</b> " + esc(note) + "</p>";
     html += "<nav><a href=\"#answer\">answer</a><a href=\"#equal\">equal cost</a><a href=\"#plane\">error vs time</a>"
             "<a href=\"#params\">settings</a><a href=\"#table\">configurations</a></nav>";
-    html += answerSection(d.points) + equalSection(d.points) + planeSection(d.points) + paramsSection(d.points) +
-            tableSection(d.points);
+    html += answerSection(d.points, roles) + equalSection(d.points, roles) + planeSection(d.points, roles) +
+            paramsSection(d.points, roles) + tableSection(d.points, roles);
     return html + pageEnd();
 }
 
-std::string sweepIndexHtml(const std::filesystem::path& dir) {
+std::string sweepIndexHtml(const std::filesystem::path& dir, const VariantRoles& roles) {
     const SweepData d = loadSweep(dir);
     const auto gs = groups(d.points);
     const bool paths_vary = pathsVary(gs), refs_vary = referencesVary(gs);
@@ -321,7 +340,7 @@ std::string sweepIndexHtml(const std::filesystem::path& dir) {
     std::string html = pageStart(title) + "<h1>" + esc(title) + "</h1><div class=\"sub\">" +
                        esc(jsonString(first_run, "/device/name")) + " \u00b7 " + esc(jsonString(first_run, "/date")) +
                        " \u00b7 each sweep a run of its own (its reference rendered once), one after another</div>";
-    const auto choices = recommendSettings(d.points);
+    const auto choices = recommendSettings(d.points, roles);
     for (const auto& w : pathDisagreements(choices))
         html += "<p class=\"callout\"><b>Warning:</b> " + esc(w) + ".</p>";
     html += "<section id=\"answer\"><h2>Recommended values</h2><div class=\"scroll\"><table><tr><th>setting</th>"
@@ -343,7 +362,7 @@ std::string sweepIndexHtml(const std::filesystem::path& dir) {
         }
         html += "</tr>";
     }
-    std::string rule = kSettingRule;
+    std::string rule = settingRule(roles);
     rule[0] = char(std::toupper(static_cast<unsigned char>(rule[0])));
     html += "</table></div><p class=\"note\">Rule: " + esc(rule) + ". Hover a value for its sentence.</p>";
     for (const auto& g : gs) {
@@ -353,14 +372,14 @@ std::string sweepIndexHtml(const std::filesystem::path& dir) {
         for (const auto& c : choices)
             if (c.path == g.path && c.reference == g.reference) html += "<p class=\"answer\">" + esc(c.sentence) + "</p>";
     }
-    html += "</section>" + paramsSection(d.points);
+    html += "</section>" + paramsSection(d.points, roles);
     html += "<p class=\"note\">From sweep.csv: every sweep's rows, each naming its path and reference.</p>";
     return html + pageEnd();
 }
 
-void writeSweepReport(const std::filesystem::path& dir) {
+void writeSweepReport(const std::filesystem::path& dir, const VariantRoles& roles) {
     const bool index = groups(loadSweep(dir).points).size() > 1;
-    const std::string html = index ? sweepIndexHtml(dir) : sweepHtml(dir);
+    const std::string html = index ? sweepIndexHtml(dir, roles) : sweepHtml(dir, roles);
     writeTextAtomically(dir / "sweep.html", html);
 }
 

@@ -1,5 +1,6 @@
 // The sweep's answers: a recommended value per swept setting (the CSO tolerance by its own
-// rule), disagreements between paths, and quality at equal cost against drr.
+// rule), disagreements between paths, and quality at equal cost against a scaled variant
+// (drr). Which variant plays which part comes from the variant table (VariantRoles).
 #include "reports/sweep.h"
 
 #include <algorithm>
@@ -20,39 +21,49 @@ std::optional<double> lerp(std::optional<double> a, std::optional<double> b, dou
     return *a + f * (*b - *a);
 }
 
-// The peers of drr at equal cost: cbr-aso's, cbr-cso's and taau's best-PSNR configuration
-// at one cost (cbr-cso's at the recommended tolerance): one each, whatever else was swept.
-std::vector<const SweepPoint*> checkerboardConfigs(const std::vector<SweepPoint>& points, double cost,
-                                                   const std::vector<ToleranceChoice>& choices) {
-    std::vector<const SweepPoint*> cbr;
-    for (const char* v : {"cbr-aso", "cbr-cso", "taau"}) {
+// The peers of a scaled variant at equal cost (the variants whose equal_cost_with names it):
+// each one's best-PSNR configuration at one cost, a variant that takes the tolerance at the
+// recommended tolerance: one each, whatever else was swept.
+std::vector<const SweepPoint*> peerConfigs(const std::vector<SweepPoint>& points, double cost,
+                                              const std::vector<ToleranceChoice>& choices, const VariantRoles& roles,
+                                              const std::string& scaled) {
+    std::vector<const SweepPoint*> peers;
+    for (const auto& v : roles.equalCostPeers(scaled)) {
         const SweepPoint* best = nullptr;
         for (const auto& p : points) {
             if (p.variant != v || p.shading_cost != cost || p.status != "ok" || !p.gpu_ms) continue;
-            bool at_choice = std::string(v) == "cbr-aso" || choices.empty();
+            bool at_choice = !p.number("cso_tolerance") || choices.empty();
             for (const auto& ch : choices)
-                at_choice = at_choice || (ch.shading_cost == cost && ch.tolerance && p.number("cso_tolerance") &&
+                at_choice = at_choice || (ch.shading_cost == cost && ch.tolerance &&
                                           fmtShort(*p.number("cso_tolerance")) == fmtShort(*ch.tolerance));
             if (at_choice && (!best || psnrKey(p) > psnrKey(*best))) best = &p;
         }
-        if (best) cbr.push_back(best);
+        if (best) peers.push_back(best);
     }
-    return cbr;
+    return peers;
+}
+
+// The variant whose time bounds the tolerance's choice: the cost bound of the variant that takes it.
+std::string toleranceBound(const std::vector<const SweepPoint*>& cso, const VariantRoles& roles) {
+    const VariantRole* r = cso.empty() ? nullptr : roles.find(cso.front()->variant);
+    return r ? r->cost_bound : std::string();
 }
 
 }  // namespace
 
-std::vector<ToleranceChoice> recommendTolerance(const std::vector<SweepPoint>& points, double margin) {
+std::vector<ToleranceChoice> recommendTolerance(const std::vector<SweepPoint>& points, const VariantRoles& roles,
+                                                double margin) {
     std::vector<ToleranceChoice> out;
     for (double cost : shadingCosts(points)) {
         std::vector<const SweepPoint*> cso;
         for (const auto& p : points)
-            if (p.variant == "cbr-cso" && p.shading_cost == cost && p.status == "ok" && p.gpu_ms && p.number("cso_tolerance"))
+            if (p.shading_cost == cost && p.status == "ok" && p.gpu_ms && p.number("cso_tolerance"))
                 cso.push_back(&p);
         if (cso.empty()) continue;
         ToleranceChoice c;
         c.shading_cost = cost;
-        const SweepPoint* aso = findVariant(points, "cbr-aso", cost);
+        const std::string bound = toleranceBound(cso, roles);
+        const SweepPoint* aso = bound.empty() ? nullptr : findVariant(points, bound, cost);
         std::vector<const SweepPoint*> within;
         for (const auto* p : cso)
             if (!aso || *p->gpu_ms <= *aso->gpu_ms * (1 + margin)) within.push_back(p);
@@ -78,19 +89,19 @@ std::vector<ToleranceChoice> recommendTolerance(const std::vector<SweepPoint>& p
         const std::string n = std::to_string(cso.size());
         if (aso && none_within) {
             s += "every one of the " + n + " tolerances costs more than " + fmtShort(margin * 100) +
-                 "% above cbr-aso's " + fmtMs(*aso->gpu_ms) + ", and this one has the best sequence PSNR, " +
-                 fmtDb(best->psnr_db) + " (cbr-aso " + fmtDb(aso->psnr_db) + ")";
+                 "% above " + bound + "'s " + fmtMs(*aso->gpu_ms) + ", and this one has the best sequence PSNR, " +
+                 fmtDb(best->psnr_db) + " (" + bound + " " + fmtDb(aso->psnr_db) + ")";
         } else if (aso) {
             s += std::string(on_plateau ? "the loosest tolerance within 0.02 dB of the best sequence PSNR, "
                                         : "the best sequence PSNR, ") +
-                 fmtDb(best->psnr_db) + " against cbr-aso's " + fmtDb(aso->psnr_db) + ", among the " +
+                 fmtDb(best->psnr_db) + " against " + bound + "'s " + fmtDb(aso->psnr_db) + ", among the " +
                  std::to_string(within.size()) + " of " + n + " tolerances whose median GPU time stays within " +
-                 fmtShort(margin * 100) + "% of cbr-aso's (" + fmtMs(*best->gpu_ms) + " vs " + fmtMs(*aso->gpu_ms) + ")";
+                 fmtShort(margin * 100) + "% of " + bound + "'s (" + fmtMs(*best->gpu_ms) + " vs " + fmtMs(*aso->gpu_ms) + ")";
         } else {
             s += "the best sequence PSNR of the " + n + " tolerances, " + fmtDb(best->psnr_db) +
-                 " (no cbr-aso configuration to bound the cost)";
+                 " (no " + (bound.empty() ? std::string("variant") : bound + " configuration") + " to bound the cost)";
         }
-        s += ", with ECI " + fmt(best->eci, 4) + (aso ? " (cbr-aso " + fmt(aso->eci, 4) + ")" : std::string());
+        s += ", with ECI " + fmt(best->eci, 4) + (aso ? " (" + bound + " " + fmt(aso->eci, 4) + ")" : std::string());
         if (worst != best && best->psnr_db && worst->psnr_db && *best->psnr_db - *worst->psnr_db >= 0.01)
             s += ", while tolerance " + fmtShort(*worst->number("cso_tolerance")) + " loses " +
                  fmt(*best->psnr_db - *worst->psnr_db, 2) + " dB";
@@ -102,86 +113,125 @@ std::vector<ToleranceChoice> recommendTolerance(const std::vector<SweepPoint>& p
     return out;
 }
 
-std::vector<EqualCost> equalCost(const std::vector<SweepPoint>& points, const std::vector<ToleranceChoice>& choices) {
-    std::vector<EqualCost> out;
-    for (double cost : shadingCosts(points)) {
-        std::vector<const SweepPoint*> drr;
-        for (const auto& p : points)
-            if (p.variant == "drr" && p.shading_cost == cost && p.status == "ok" && p.gpu_ms) drr.push_back(&p);
-        std::sort(drr.begin(), drr.end(), [](auto* a, auto* b) { return *a->gpu_ms < *b->gpu_ms; });
-        for (const auto* c : checkerboardConfigs(points, cost, choices)) {
-            EqualCost e;
-            e.config = c->config;
-            e.shading_cost = cost;
-            e.cbr_ms = *c->gpu_ms;
-            e.cbr_psnr = c->psnr_db;
-            e.cbr_ssim = c->ssim;
-            e.cbr_eci = c->eci;
-            const std::string who = c->variant == "cbr-cso" ? "cbr-cso (tolerance " + fmtShort(*c->number("cso_tolerance")) + ")"
-                                                            : c->variant;
-            if (drr.empty()) {
-                e.verdict = who + ": no drr configuration ran" + costSuffix(points, cost) + ", so there is nothing to "
-                            "match its cost with (add --param drr-scale=LO:HI:lin:N).";
-                out.push_back(e);
-                continue;
-            }
-            const SweepPoint* lo = nullptr;
-            const SweepPoint* hi = nullptr;
-            for (size_t i = 0; i + 1 < drr.size(); ++i)
-                if (*drr[i]->gpu_ms <= e.cbr_ms && e.cbr_ms <= *drr[i + 1]->gpu_ms) lo = drr[i], hi = drr[i + 1];
-            if (drr.size() == 1 && *drr[0]->gpu_ms == e.cbr_ms) lo = hi = drr[0];
-            if (lo) {
-                double span = *hi->gpu_ms - *lo->gpu_ms;
-                double f = span > 0 ? (e.cbr_ms - *lo->gpu_ms) / span : 0.0;
-                e.matched = true;
-                e.drr_ms = e.cbr_ms;
-                e.drr_scale = lerp(lo->number("drr_scale"), hi->number("drr_scale"), f);
-                e.drr_psnr = lerp(lo->psnr_db, hi->psnr_db, f);
-                e.drr_ssim = lerp(lo->ssim, hi->ssim, f);
-                e.drr_eci = lerp(lo->eci, hi->eci, f);
-            } else {
-                const SweepPoint* near = e.cbr_ms < *drr.front()->gpu_ms ? drr.front() : drr.back();
-                e.drr_scale = near->number("drr_scale");
-                e.drr_ms = near->gpu_ms;
-                e.drr_psnr = near->psnr_db;
-                e.drr_ssim = near->ssim;
-                e.drr_eci = near->eci;
-            }
-            std::string s = who + " at " + fmtMs(e.cbr_ms) + costSuffix(points, cost) + ": ";
-            if (e.matched) {
-                s += "drr at the same cost renders at scale " + fmt(e.drr_scale, 3) + " with PSNR " + fmtDb(e.drr_psnr) +
-                     ", SSIM " + fmt(e.drr_ssim, 4) + ", ECI " + fmt(e.drr_eci, 4) + ", against " + fmtDb(e.cbr_psnr) +
-                     ", " + fmt(e.cbr_ssim, 4) + ", " + fmt(e.cbr_eci, 4);
-                if (e.drr_psnr && e.cbr_psnr) {
-                    double d = *e.cbr_psnr - *e.drr_psnr;
-                    s += std::abs(d) < 0.05 ? ": the same PSNR at equal cost"
-                                            : std::string(c->variant == "taau" ? ": taau is " : ": checkerboard is ") +
-                                                  (d > 0 ? "better" : "worse") + " by " +
-                                                  fmt(std::abs(d), 2) + " dB at equal cost";
-                }
-            } else if (e.cbr_ms < *e.drr_ms) {
-                s += "cheaper than every drr scale swept (the cheapest, scale " + fmt(e.drr_scale, 3) + ", takes " +
-                     fmtMs(*e.drr_ms) + " with PSNR " + fmtDb(e.drr_psnr) + " against " + fmtDb(e.cbr_psnr) +
-                     "); no equal-cost drr scale in the range";
-            } else {
-                s += "dearer than every drr scale swept (the dearest, scale " + fmt(e.drr_scale, 3) + ", takes " +
-                     fmtMs(*e.drr_ms) + " with PSNR " + fmtDb(e.drr_psnr) + " against " + fmtDb(e.cbr_psnr) +
-                     "); at its cost drr renders at scale " + fmt(e.drr_scale, 3) + " or more";
-            }
-            e.verdict = s + ".";
-            out.push_back(e);
+namespace {
+
+// A configuration as the sentences name it: cbr-cso (tolerance 0.01), taau.
+std::string configName(const SweepPoint& c) {
+    return c.number("cso_tolerance") ? c.variant + " (tolerance " + fmtShort(*c.number("cso_tolerance")) + ")"
+                                     : c.variant;
+}
+
+// The peer's side of an equal-cost comparison.
+EqualCost peerSide(const SweepPoint& c) {
+    EqualCost e;
+    e.config = c.config;
+    e.shading_cost = c.shading_cost;
+    e.cbr_ms = *c.gpu_ms;
+    e.cbr_psnr = c.psnr_db;
+    e.cbr_ssim = c.ssim;
+    e.cbr_eci = c.eci;
+    return e;
+}
+
+// The sentence of one equal-cost comparison, e filled in.
+std::string equalCostSentence(const EqualCost& e, const SweepPoint& c, const VariantRoles& roles,
+                              const std::string& scaled, const std::string& suffix) {
+    const VariantRole* role = roles.find(c.variant);
+    const std::string kind = role && role->checkerboard ? "checkerboard" : c.variant;
+    std::string s = configName(c) + " at " + fmtMs(e.cbr_ms) + suffix + ": ";
+    if (e.matched) {
+        s += scaled + " at the same cost renders at scale " + fmt(e.drr_scale, 3) + " with PSNR " + fmtDb(e.drr_psnr) +
+             ", SSIM " + fmt(e.drr_ssim, 4) + ", ECI " + fmt(e.drr_eci, 4) + ", against " + fmtDb(e.cbr_psnr) + ", " +
+             fmt(e.cbr_ssim, 4) + ", " + fmt(e.cbr_eci, 4);
+        if (e.drr_psnr && e.cbr_psnr) {
+            double d = *e.cbr_psnr - *e.drr_psnr;
+            s += std::abs(d) < 0.05 ? ": the same PSNR at equal cost"
+                                    : ": " + kind + " is " + (d > 0 ? "better" : "worse") + " by " +
+                                          fmt(std::abs(d), 2) + " dB at equal cost";
         }
+    } else if (e.cbr_ms < *e.drr_ms) {
+        s += "cheaper than every " + scaled + " scale swept (the cheapest, scale " + fmt(e.drr_scale, 3) + ", takes " +
+             fmtMs(*e.drr_ms) + " with PSNR " + fmtDb(e.drr_psnr) + " against " + fmtDb(e.cbr_psnr) +
+             "); no equal-cost " + scaled + " scale in the range";
+    } else {
+        s += "dearer than every " + scaled + " scale swept (the dearest, scale " + fmt(e.drr_scale, 3) + ", takes " +
+             fmtMs(*e.drr_ms) + " with PSNR " + fmtDb(e.drr_psnr) + " against " + fmtDb(e.cbr_psnr) +
+             "); at its cost " + scaled + " renders at scale " + fmt(e.drr_scale, 3) + " or more";
     }
+    return s + ".";
+}
+
+// One peer configuration against the scaled variant's configurations at its cost (sorted by
+// time): the scale whose time matches, interpolated, or the nearest end of the range.
+EqualCost matchAtEqualCost(const SweepPoint& c, const std::vector<const SweepPoint*>& by_time) {
+    EqualCost e = peerSide(c);
+    const SweepPoint* lo = nullptr;
+    const SweepPoint* hi = nullptr;
+    for (size_t i = 0; i + 1 < by_time.size(); ++i)
+        if (*by_time[i]->gpu_ms <= e.cbr_ms && e.cbr_ms <= *by_time[i + 1]->gpu_ms) lo = by_time[i], hi = by_time[i + 1];
+    if (by_time.size() == 1 && *by_time[0]->gpu_ms == e.cbr_ms) lo = hi = by_time[0];
+    if (lo) {
+        double span = *hi->gpu_ms - *lo->gpu_ms;
+        double f = span > 0 ? (e.cbr_ms - *lo->gpu_ms) / span : 0.0;
+        e.matched = true;
+        e.drr_ms = e.cbr_ms;
+        e.drr_scale = lerp(lo->number("drr_scale"), hi->number("drr_scale"), f);
+        e.drr_psnr = lerp(lo->psnr_db, hi->psnr_db, f);
+        e.drr_ssim = lerp(lo->ssim, hi->ssim, f);
+        e.drr_eci = lerp(lo->eci, hi->eci, f);
+    } else {
+        const SweepPoint* near = e.cbr_ms < *by_time.front()->gpu_ms ? by_time.front() : by_time.back();
+        e.drr_scale = near->number("drr_scale");
+        e.drr_ms = near->gpu_ms;
+        e.drr_psnr = near->psnr_db;
+        e.drr_ssim = near->ssim;
+        e.drr_eci = near->eci;
+    }
+    return e;
+}
+
+void equalCostAt(const std::vector<SweepPoint>& points, const std::vector<ToleranceChoice>& choices,
+                 const VariantRoles& roles, const std::string& scaled, double cost, std::vector<EqualCost>& out) {
+    std::vector<const SweepPoint*> by_time;
+    for (const auto& p : points)
+        if (p.variant == scaled && p.shading_cost == cost && p.status == "ok" && p.gpu_ms) by_time.push_back(&p);
+    std::sort(by_time.begin(), by_time.end(), [](auto* a, auto* b) { return *a->gpu_ms < *b->gpu_ms; });
+    const std::string suffix = costSuffix(points, cost);
+    for (const auto* c : peerConfigs(points, cost, choices, roles, scaled)) {
+        if (by_time.empty()) {
+            EqualCost e = peerSide(*c);
+            e.verdict = configName(*c) + ": no " + scaled + " configuration ran" + suffix +
+                        ", so there is nothing to match its cost with (add --param drr-scale=LO:HI:lin:N).";
+            out.push_back(e);
+            continue;
+        }
+        EqualCost e = matchAtEqualCost(*c, by_time);
+        e.verdict = equalCostSentence(e, *c, roles, scaled, suffix);
+        out.push_back(e);
+    }
+}
+
+}  // namespace
+
+std::vector<EqualCost> equalCost(const std::vector<SweepPoint>& points, const std::vector<ToleranceChoice>& choices,
+                                 const VariantRoles& roles) {
+    std::vector<EqualCost> out;
+    for (double cost : shadingCosts(points))
+        for (const std::string& scaled : roles.equalCostBaselines()) equalCostAt(points, choices, roles, scaled, cost, out);
     return out;
 }
 
-const char* const kSettingRule =
-    "for each swept setting, per path, reference and shading cost, take the configurations it applies to that ran, "
+std::string settingRule(const VariantRoles& roles) {
+    const VariantRole* bounded = roles.bounded();
+    const std::string bound = bounded ? bounded->cost_bound : std::string("its cost bound");
+    return "for each swept setting, per path, reference and shading cost, take the configurations it applies to that ran, "
     "keep their Pareto front of median GPU time against sequence PSNR, and of the front's configurations not "
     "measurably slower than its fastest one (median within 5%, or 95% intervals of the median overlapping) "
     "recommend the value of the one with the highest PSNR, a PSNR within 0.02 dB counting "
     "as a tie broken by the higher SSIM (within 1e-4), then the lower ECI (within 1e-4), then the lower time "
-    "(cso-tolerance keeps its own rule: the edge of the quality plateau within 5% of cbr-aso's time)";
+    "(cso-tolerance keeps its own rule: the edge of the quality plateau within 5% of " +
+           bound + "'s time)";
+}
 
 namespace {
 
@@ -268,7 +318,7 @@ std::optional<SettingChoice> chooseSetting(const Group& g, double cost, const Sw
         for (const auto& t : tolerances)
             if (t.shading_cost == cost && t.tolerance)
                 for (const auto* p : ran)
-                    if (p->variant == "cbr-cso" && !best && fmtShort(*p->number("cso_tolerance")) == fmtShort(*t.tolerance))
+                    if (p->number("cso_tolerance") && !best && fmtShort(*p->number("cso_tolerance")) == fmtShort(*t.tolerance))
                         best = p, c.sentence = t.sentence;
     }
     if (!best) {
@@ -284,10 +334,11 @@ std::optional<SettingChoice> chooseSetting(const Group& g, double cost, const Sw
 
 }  // namespace
 
-std::vector<SettingChoice> recommendSettings(const std::vector<SweepPoint>& points, double margin) {
+std::vector<SettingChoice> recommendSettings(const std::vector<SweepPoint>& points, const VariantRoles& roles,
+                                             double margin) {
     std::vector<SettingChoice> out;
     for (const auto& g : groups(points)) {
-        const auto tolerances = recommendTolerance(g.points, margin);
+        const auto tolerances = recommendTolerance(g.points, roles, margin);
         for (double cost : shadingCosts(g.points))
             for (const auto& f : sweepSettingFields())
                 if (auto c = chooseSetting(g, cost, f, tolerances, margin)) out.push_back(std::move(*c));
@@ -322,21 +373,21 @@ std::vector<std::string> pathDisagreements(const std::vector<SettingChoice>& cho
     return out;
 }
 
-std::vector<std::string> sweepSummaryLines(const std::vector<SweepPoint>& points) {
+std::vector<std::string> sweepSummaryLines(const std::vector<SweepPoint>& points, const VariantRoles& roles) {
     std::vector<std::string> lines;
     const auto gs = groups(points);
     const bool paths_vary = pathsVary(gs), refs_vary = referencesVary(gs);
-    const auto choices = recommendSettings(points);
+    const auto choices = recommendSettings(points, roles);
     for (const auto& c : choices) {
         Group g{c.path, c.reference, {}};
         std::string where = groupName(g, paths_vary, refs_vary);
         lines.push_back("recommended " + (where.empty() ? "" : "[" + where + "] ") + c.sentence);
     }
-    if (!choices.empty()) lines.push_back(std::string("rule: ") + kSettingRule + ".");
+    if (!choices.empty()) lines.push_back("rule: " + settingRule(roles) + ".");
     for (const auto& w : pathDisagreements(choices)) lines.push_back("warning: " + w + ".");
     for (const auto& g : gs) {
         std::string where = groupName(g, paths_vary, refs_vary);
-        for (const auto& e : equalCost(g.points, recommendTolerance(g.points)))
+        for (const auto& e : equalCost(g.points, recommendTolerance(g.points, roles), roles))
             lines.push_back("equal cost: " + (where.empty() ? "" : "[" + where + "] ") + e.verdict);
     }
     return lines;

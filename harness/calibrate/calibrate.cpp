@@ -26,12 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Slowdown {
-    std::string pass;
-    double pct = 0;
-    std::string spec() const { return pass + "=" + reports::Cell(pct).text(); }
-};
-
 struct Plan {
     CalibrateOptions o;
     std::vector<Slowdown> slowdowns;
@@ -86,7 +80,7 @@ Plan plan(const CalibrateOptions& o) {
     RunOptions check = r;
     check.repeat = p.repeats.back();
     check.out = (p.out / "check").string();
-    if (!p.slowdowns.empty()) check.debug_slowdown = p.slowdowns.front().spec();
+    if (!p.slowdowns.empty()) check.debug_slowdown = p.slowdowns.front();
     checkRunOptions(check);
     return p;
 }
@@ -122,14 +116,14 @@ PairVerdicts judgePair(const reports::RunData& base, const reports::RunData& cur
     return out;
 }
 
-reports::RunData runOnce(const Plan& p, const std::string& name, const std::string& slowdown) {
+reports::RunData runOnce(const Plan& p, const std::string& name, const Slowdown& slowdown) {
     RunOptions r = p.o.run;
     r.repeat = p.repeats.back();
     r.debug_slowdown = slowdown;
     r.control.silent = true;
     r.control.sweep = false;
     r.out = (p.out / "runs" / name).string();
-    std::printf("calibrate: %s%s\n", name.c_str(), slowdown.empty() ? "" : (" (" + slowdown + ")").c_str());
+    std::printf("calibrate: %s%s\n", name.c_str(), slowdown.empty() ? "" : (" (" + slowdown.spec() + ")").c_str());
     std::fflush(stdout);
     int code = runBenchmark(r);
     if (code != 0) throw std::runtime_error("calibrate: run " + name + " exited " + std::to_string(code));
@@ -194,20 +188,20 @@ Judged renderPairs(const Plan& p, const fs::path& dir) {
     Judged j;
     const int pairs = std::max(p.o.pairs, p.slowdowns.empty() ? 0 : p.o.slow_pairs);
     ProgressBar bar("runs", pairs + p.o.pairs + p.o.slow_pairs * int(p.slowdowns.size()));
-    auto run = [&](const std::string& name, const std::string& slowdown) {
+    auto run = [&](const std::string& name, const Slowdown& slowdown) {
         bar.step("calibrate " + name, 0);
         auto data = runOnce(in_dir, name, slowdown);
         bar.step("calibrate " + name);
         return data;
     };
     for (int i = 0; i < pairs; ++i) {
-        auto base = run("base-" + pairId(i), "");
+        auto base = run("base-" + pairId(i), {});
         if (i == 0) checkSlowdownPasses(p, base), j.describe(base);
-        if (i < p.o.pairs) j.add(base, run("aa-" + pairId(i), ""), "aa", i, p);
+        if (i < p.o.pairs) j.add(base, run("aa-" + pairId(i), {}), "aa", i, p);
         if (i < p.o.slow_pairs)
             for (const auto& s : p.slowdowns) {
                 j.injected[s.spec()] = s.pct;
-                j.add(base, run("slow-" + s.pass + "-" + reports::Cell(s.pct).text() + "-" + pairId(i), s.spec()),
+                j.add(base, run("slow-" + s.pass + "-" + reports::Cell(s.pct).text() + "-" + pairId(i), s),
                       s.spec(), i, p);
             }
     }

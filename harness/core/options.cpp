@@ -2,6 +2,7 @@
 #include "harness/core/options.h"
 
 #include "camera_paths/text.h"
+#include "reports/csv.h"
 #include "settings/table.h"
 
 #include <charconv>
@@ -62,6 +63,22 @@ std::string timestampForName() {
     char buf[32];
     std::strftime(buf, sizeof buf, "%Y%m%d-%H%M%S", std::localtime(&now));
     return buf;
+}
+
+std::string Slowdown::spec() const { return empty() ? std::string() : pass + "=" + reports::Cell(pct).text(); }
+
+Slowdown parseSlowdown(const std::string& text, const std::string& flag) {
+    if (text.empty()) return {};
+    const size_t eq = text.find('=');
+    std::string pass = eq == std::string::npos ? "" : text.substr(0, eq);
+    std::string pct = eq == std::string::npos ? "" : text.substr(eq + 1);
+    if (!pct.empty() && pct.back() == '%') pct.pop_back();
+    char* end = nullptr;
+    const double value = pct.empty() ? -1 : std::strtod(pct.c_str(), &end);
+    if (pass.empty() || !end || *end != '\0' || !(value >= 0 && value <= 1000))
+        throw std::invalid_argument(flag + " " + text +
+                                    ": expected PASS=PCT with a pass name (e.g. opaque) and 0 <= PCT <= 1000");
+    return {pass, value};
 }
 
 }  // namespace cbr::harness

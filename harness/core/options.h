@@ -23,6 +23,18 @@ struct RunControl {
     double device_memory_limit_mib = 0;
 };
 
+// --debug-slowdown PASS=PCT, parsed where the option is read: one pass made PCT percent
+// slower by calibrated extra GPU work.
+struct Slowdown {
+    std::string pass;  // "": none
+    double pct = 0;
+    bool empty() const { return pass.empty(); }
+    std::string spec() const;  // "opaque=10" ("" for none): the plan hash and messages write it so
+};
+// "PASS=PCT" (PCT may end in %, 0 <= PCT <= 1000) into a Slowdown; "" is none. Throws
+// std::invalid_argument naming `flag`, the text and what it accepts.
+Slowdown parseSlowdown(const std::string& text, const std::string& flag = "--debug-slowdown");
+
 struct RunOptions {
     std::string scene = "atrium";     // procedural name or .gltf/.glb path
     std::string path = "flythrough";  // built-in name or .json path
@@ -38,7 +50,7 @@ struct RunOptions {
     bool validate = false;
     bool save_frames = false;
     std::string out;                  // "" -> out/<scene>-<path>-<date-time>
-    std::string debug_slowdown;          // PASS=PCT: a known slowdown for testing regression detection
+    Slowdown debug_slowdown;             // a known slowdown for testing regression detection
     std::string exports;                 // --export: comma list of formats (harness/core/exports.h)
     std::string pipeline = "forward";    // forward | deferred, or a comma list of them (a job matrix)
     settings::Tunables tune;             // every row of the settings table, typed (settings/table.h)

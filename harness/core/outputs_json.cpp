@@ -14,6 +14,7 @@
 #include "harness/core/stats.h"
 #include "metrics/image_encode.h"
 #include "metrics/image_io.h"
+#include "renderer/variants/variants.h"
 #include "renderer/vk/context.h"
 #include "reports/csv.h"
 #include "settings/table.h"
@@ -350,6 +351,7 @@ void writeRunJson(const std::filesystem::path& file, const RunContext& rc, const
     j["scene"] = sceneJson(rc);
     j["path"] = pathJson(rc);
     j["metrics"] = metricsJson(rc);
+    j["reference_variant"] = std::string(variants::referenceVariant().name);  // what the others are timed and scored against
     json variants = json::array();
     for (size_t i = 0; i < r.variants.size(); ++i) variants.push_back(variantJson(rc, r.variants[i], summaries[i]));
     j["variants"] = variants;

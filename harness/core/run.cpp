@@ -9,6 +9,7 @@
 #include "harness/core/outputs.h"
 #include "harness/core/run_internal.h"
 #include "harness/core/memory_check.h"
+#include "harness/core/variant_roles.h"
 #include "renderer/vk/bandwidth.h"
 #include "reports/output_dir.h"
 #include "reports/report.h"
@@ -94,7 +95,7 @@ void writeFiles(RunState& s, reports::OutputDir& out) {
     {
         WallAccount::Scope scope(s.wall, WallPart::Report);
         if (!options.control.silent) reports::writeReport(out.path());
-        if (options.control.sweep) reports::writeSweepReport(out.path());
+        if (options.control.sweep) reports::writeSweepReport(out.path(), variantRoles());
     }
     noteMemory(s.ctx, "report", s.results.memory, s.wall);
     s.wall.close();
@@ -105,7 +106,7 @@ void writeFiles(RunState& s, reports::OutputDir& out) {
     const std::filesystem::path shown = options.control.shown_out.empty() ? out.finalPath() : std::filesystem::path(options.control.shown_out);
     if (!options.control.silent) printSummary(std::cout, shown, rc);
     if (options.control.sweep) {
-        for (const auto& line : reports::sweepSummaryLines(reports::loadSweep(out.finalPath()).points))
+        for (const auto& line : reports::sweepSummaryLines(reports::loadSweep(out.finalPath()).points, variantRoles()))
             std::cout << line << "\n";
         std::cout << "sweep: " << (shown / "sweep.csv").string() << ", " << (shown / "sweep.html").string() << "\n";
     }
@@ -143,9 +144,9 @@ int runBenchmark(const RunOptions& options) {
     makeSsaaReference(s);
     chooseScorer(s);
     checkMemory(memoryPlan(s), ctx, s.results.memory);
-    // Once the run is known to fit: a refused run says one line, and nothing else.
+    calibrateSlowdown(s);  // refuses a --debug-slowdown pass that no variant has
+    // Once the run is known to fit and its slowdown to apply: a refused run says one line, and nothing else.
     if (!options.control.silent) std::fprintf(stderr, "cbrbench: %s\n", sceneLoadLine(p.scene, p.load).c_str());
-    calibrateSlowdown(s);
     renderQualityFrames(s);
     noteMemory(s.ctx, "quality_pass", s.results.memory, s.wall);
     renderRepetitions(s);

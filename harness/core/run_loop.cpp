@@ -449,14 +449,24 @@ void chooseScorer(RunState& s) {
 // A debug slowdown calibrates on its first warm-up frames: give each renderer enough
 // of them before the first repetition, so every repetition applies the same amount.
 void calibrateSlowdown(RunState& s) {
-    if (s.p.settings.debug_slowdown_pass.empty() || !(s.p.settings.debug_slowdown_pct > 0)) return;
+    const std::string& pass = s.p.settings.debug_slowdown_pass;
+    if (pass.empty() || !(s.p.settings.debug_slowdown_pct > 0)) return;
     WallAccount::Scope scope(s.wall, WallPart::WarmUp);
+    std::vector<std::string> names;  // every variant's passes, in first-seen order
     for (auto& r : s.renderers)
         if (r) try {
                 untimedFrames(s.p, *r, 12, false);
+                for (const auto& n : r->warmUpPasses())
+                    if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
             } catch (const vk::Error&) {
                 // The repetitions meet the same error and record the variant as failed.
             }
+    std::erase_if(names, [](const std::string& n) { return n.starts_with("debug_spin"); });
+    if (!names.empty() && std::find(names.begin(), names.end(), pass) == names.end()) {
+        std::string list;
+        for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+        throw std::invalid_argument("--debug-slowdown " + s.options.debug_slowdown.spec() + ": no variant of this run has a pass '" + pass + "'; its passes: " + list);
+    }
 }
 
 // Every configuration's frames once, untimed, read back and scored, frame by frame: frame i

@@ -23,22 +23,14 @@ void checkOptions(const RunOptions& o) {
     settings::check(o.tune);  // the command line checked them; options made in code are checked here
 }
 
-// --debug-slowdown PASS=PCT into the settings.
-void parseDebugSlowdown(const RunOptions& o, render::Settings& settings) {
+// --debug-slowdown (parsed with the options) into the settings.
+void applyDebugSlowdown(const RunOptions& o, render::Settings& settings) {
     if (o.debug_slowdown.empty()) return;
-    size_t eq = o.debug_slowdown.find('=');
-    std::string pass = eq == std::string::npos ? "" : o.debug_slowdown.substr(0, eq);
-    std::string pct = eq == std::string::npos ? "" : o.debug_slowdown.substr(eq + 1);
-    if (!pct.empty() && pct.back() == '%') pct.pop_back();
-    char* end = nullptr;
-    double value = pct.empty() ? -1 : std::strtod(pct.c_str(), &end);
-    if (pass.empty() || !end || *end != '\0' || !(value >= 0 && value <= 1000))
-        throw std::invalid_argument("--debug-slowdown " + o.debug_slowdown +
-                                    ": expected PASS=PCT with a pass name (e.g. opaque) and 0 <= PCT <= 1000");
-    if (value > 0 && o.warmup < 2)
+    parseSlowdown(o.debug_slowdown.spec());  // options made in code are checked as the command line's
+    if (o.debug_slowdown.pct > 0 && o.warmup < 2)
         throw std::invalid_argument("--debug-slowdown needs --warmup 2 or more (the warm-up calibrates it)");
-    settings.debug_slowdown_pass = pass;
-    settings.debug_slowdown_pct = value;
+    settings.debug_slowdown_pass = o.debug_slowdown.pass;
+    settings.debug_slowdown_pct = o.debug_slowdown.pct;
 }
 
 // The render settings every configuration starts from: the table's tunables as parsed,
@@ -48,7 +40,7 @@ render::Settings settingsFromOptions(const RunOptions& o) {
     parseResolution(o.resolution, s.width, s.height);
     checkOptions(o);
     static_cast<settings::Tunables&>(s) = o.tune;
-    parseDebugSlowdown(o, s);
+    applyDebugSlowdown(o, s);
     if (o.pipeline != "forward" && o.pipeline != "deferred")
         throw std::invalid_argument("--pipeline " + o.pipeline + ": expected forward or deferred");
     s.deferred = o.pipeline == "deferred";

@@ -169,7 +169,7 @@ std::string planHash(const RunOptions& o) {
     json j = {{"variants", o.variants},        {"frames", o.frames},
               {"repeat", o.repeat},            {"warmup", o.warmup},
               {"device", o.device},            {"validate", o.validate},
-              {"debug_slowdown", o.debug_slowdown}, {"scene_offset", o.scene_offset},
+              {"debug_slowdown", o.debug_slowdown.spec()}, {"scene_offset", o.scene_offset},
               {"scene_scale", o.scene_scale},  {"near", o.near ? json(*o.near) : json()},
               {"far", o.far ? json(*o.far) : json()}};
     // The table's rows as each says: settings added after plans were first hashed enter only

@@ -20,6 +20,7 @@
 #include "harness/score/sequence_files.h"
 #include "metrics/image_io.h"
 #include "metrics/temporal.h"
+#include "renderer/variants/variants.h"
 #include "reports/csv.h"
 #include "reports/output_dir.h"
 #include "reports/report.h"
@@ -77,7 +78,7 @@ std::string defaultName(const std::string& spec, bool pattern) {
         const fs::path dir = fs::absolute(pattern ? t.parent_path() : t).lexically_normal();
         name = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
     }
-    if (name.empty() || name == reports::kReference || name.find_first_of("/\\,\"") != std::string::npos) name = "test";
+    if (name.empty() || name == variants::referenceVariant().name || name.find_first_of("/\\,\"") != std::string::npos) name = "test";
     return name;
 }
 
@@ -93,8 +94,9 @@ SeqInputs planInputs(const ScoreSeqOptions& o) {
         throw SequenceError(kSeqBadOption, "--motion-scale without --motion: it scales the motion files' vectors");
     }
     in.name = o.name.empty() ? defaultName(o.test, in.test.pattern) : o.name;
-    if (in.name.find_first_of("/\\,\"") != std::string::npos || in.name == reports::kReference)
-        throw SequenceError(kSeqBadOption, "--name " + in.name + ": accepted: a label without / \\ , \" (and not full)");
+    if (in.name.find_first_of("/\\,\"") != std::string::npos || in.name == variants::referenceVariant().name)
+        throw SequenceError(kSeqBadOption, "--name " + in.name + ": accepted: a label without / \\ , \" (and not " +
+                                               std::string(variants::referenceVariant().name) + ")");
     return in;
 }
 

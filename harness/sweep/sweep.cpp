@@ -9,6 +9,7 @@
 
 #include "harness/core/run.h"
 #include "harness/core/sweep_configs.h"
+#include "harness/core/variant_roles.h"
 #include "reports/output_dir.h"
 #include "settings/table.h"
 #include "reports/sweep.h"
@@ -49,10 +50,10 @@ int runOuterSweeps(const RunOptions& options, const std::vector<OuterSweep>& out
         dirs.push_back(o.dir);
     }
     reports::combineSweeps(out.path(), dirs);
-    reports::writeSweepReport(out.path());
+    reports::writeSweepReport(out.path(), variantRoles());
     out.commit();
     std::cout << "\nsweep over " << outer.size() << " runs:\n";
-    for (const auto& line : reports::sweepSummaryLines(reports::loadSweep(out.finalPath()).points))
+    for (const auto& line : reports::sweepSummaryLines(reports::loadSweep(out.finalPath()).points, variantRoles()))
         std::cout << line << "\n";
     std::cout << "sweep: " << (out.finalPath() / "sweep.csv").string() << ", "
               << (out.finalPath() / "sweep.html").string() << " (each run in its own subdirectory)\n";

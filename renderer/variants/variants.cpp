@@ -10,13 +10,19 @@ namespace cbr::variants {
 namespace {
 
 constexpr Variant kVariants[] = {
-    {"full", "native resolution, one sample per pixel (the reference)", buildFull},
-    {"drr", "dynamic resolution: scaled render, upscaled to output size", buildDynamicResolution},
-    {"cbr-aso", "checkerboard, assume shading occluded on quarter-res motion", buildCheckerboardAso, true},
-    {"cbr-cso", "checkerboard, check shading occlusion with a view-space depth test", buildCheckerboardCso, true},
-    {"cbr-clip", "checkerboard with the full-res history, reused wherever on screen, the colour clip its only "
-                 "rejection (TAA's rule)", buildCheckerboardClip, true, true},
-    {"taau", "temporal upsampling: jittered scaled render accumulated into a full-res history", buildTaau},
+    {.name = "full", .description = "native resolution, one sample per pixel (the reference)", .build = buildFull},
+    {.name = "drr", .description = "dynamic resolution: scaled render, upscaled to output size",
+     .build = buildDynamicResolution},
+    {.name = "cbr-aso", .description = "checkerboard, assume shading occluded on quarter-res motion",
+     .build = buildCheckerboardAso, .checkerboard = true, .equal_cost_with = "drr"},
+    {.name = "cbr-cso", .description = "checkerboard, check shading occlusion with a view-space depth test",
+     .build = buildCheckerboardCso, .checkerboard = true, .equal_cost_with = "drr", .cost_bound = "cbr-aso"},
+    {.name = "cbr-clip",
+     .description = "checkerboard with the full-res history, reused wherever on screen, the colour clip its only "
+                    "rejection (TAA's rule)",
+     .build = buildCheckerboardClip, .checkerboard = true, .full_history = true},
+    {.name = "taau", .description = "temporal upsampling: jittered scaled render accumulated into a full-res history",
+     .build = buildTaau, .equal_cost_with = "drr"},
 };
 
 }  // namespace

@@ -69,6 +69,9 @@ struct Variant {
     BuildFn build;
     bool checkerboard = false;     // takes the checkerboard settings (route, LOD bias, history)
     bool full_history = false;     // keeps the full-res history whatever --cbr-history asks
+    // A sweep's rules (reports/sweep_recommend.cpp):
+    std::string_view equal_cost_with;  // the scaled variant it is matched with at equal GPU time
+    std::string_view cost_bound;       // the variant whose GPU time bounds the choice of its own setting
 };
 
 std::span<const Variant> allVariants();

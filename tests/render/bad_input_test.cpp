@@ -123,6 +123,10 @@ std::vector<Case> cases() {
         {"bad_target_clear", {"--target-clear", "memset"}, {"--target-clear memset", "load-op", "compute"}},
         {"bad_history_format", {"--history-format", "rgb9e5"}, {"--history-format rgb9e5", "b10g11r11", "rgba16f"}},
         {"nan_flip_ppd", {"--flip-ppd", "nan"}, {"--flip-ppd"}},
+        // --debug-slowdown is parsed with the options: a bad one never reaches the run.
+        {"bad_debug_slowdown", {"--debug-slowdown", "opaque"}, {"--debug-slowdown opaque", "PASS=PCT"}},
+        {"debug_slowdown_range", {"--debug-slowdown", "opaque=2000", "--warmup", "2"}, {"--debug-slowdown opaque=2000", "1000"}},
+        {"debug_slowdown_unknown_pass", {"--debug-slowdown", "nosuchpass=10", "--warmup", "2"}, {"nosuchpass"}},
         {"unknown_option", {"--frobnicate"}, {"--frobnicate"}},
     };
 }

@@ -87,18 +87,26 @@ TEST(RenderVariants, AtriumEveryVariantValidatesCleanly) {
     }
 }
 
-// The table's reference row is the one the reports (which read no renderer header) name.
-TEST(VariantTable, ReferenceRowIsTheReportsReference) {
+// The reference is the table's first row, and every variant a row names for a sweep's rules
+// (equal_cost_with, cost_bound) is a row of the table: reports take these from it and name none.
+TEST(VariantTable, ReferenceAndRolesAreRowsOfTheTable) {
     const variants::Variant& ref = variants::referenceVariant();
-    EXPECT_EQ(ref.name, reports::kReference);
     EXPECT_EQ(&ref, &variants::allVariants().front());
-    EXPECT_EQ(&ref, &variants::findVariant(reports::kReference));
     EXPECT_FALSE(ref.checkerboard);
+    for (const auto& v : variants::allVariants()) {
+        if (!v.equal_cost_with.empty()) EXPECT_NO_THROW(variants::findVariant(v.equal_cost_with)) << v.name;
+        if (!v.cost_bound.empty()) EXPECT_NO_THROW(variants::findVariant(v.cost_bound)) << v.name;
+        EXPECT_NE(v.equal_cost_with, v.name);
+        EXPECT_NE(v.cost_bound, v.name);
+    }
 }
 
 TEST(RenderVariants, QualityIsScoredAgainstFull) {
     auto r = runSmall("quality", "atrium", "orbit");
     ASSERT_EQ(r.result.exit_code, 0) << r.result.err;
+    // run.json names the reference for the report, which reads no renderer header.
+    EXPECT_EQ(r.run.value("reference_variant", ""), variants::referenceVariant().name);
+    EXPECT_EQ(reports::loadRun(r.dir).reference, variants::referenceVariant().name);
     for (size_t i = 0; i < r.summary.rows.size(); ++i) {
         std::string v = r.summary.at(i, "variant");
         if (v == "full") {

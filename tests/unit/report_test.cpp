@@ -175,17 +175,17 @@ TEST(ReportColours, EveryVariantOfARunGetsItsOwnColour) {
     const std::vector<std::string> variants = {"full", "drr", "cbr-aso", "cbr-cso", "cbr-clip", "taau"};
     std::set<std::string> seen;
     for (const auto& v : variants) {
-        const std::string c = variantColor(variants, v);
+        const std::string c = variantColor(variants, v, "full");
         EXPECT_EQ(c.size(), 7u) << v;
         EXPECT_TRUE(seen.insert(c).second) << v << " shares " << c;
     }
-    EXPECT_EQ(variantColor(variants, "full"), "#404040");
-    EXPECT_EQ(variantColor(std::vector<std::string>{"full", "taau"}, "taau"), variantColor(variants, "drr"));
+    EXPECT_EQ(variantColor(variants, "full", "full"), "#404040");
+    EXPECT_EQ(variantColor(std::vector<std::string>{"full", "taau"}, "taau", "full"), variantColor(variants, "drr", "full"));
 }
 
 TEST(ReportSentence, NoVariantFasterThanFull) {
     std::string s = paretoSentence(std::vector<CostQuality>{{"full", 10.0, INFINITY, 1.0, 1.0, 1.0, 1.0},
-                                                            {"drr", 12.0, 30.0, 0.95, 0.8, 0.7, 0.9}});
+                                                            {"drr", 12.0, 30.0, 0.95, 0.8, 0.7, 0.9}}, "full");
     EXPECT_NE(s.find("No variant is both on the Pareto front and measurably faster than full"), std::string::npos)
         << s;
     EXPECT_NE(s.find("drr runs at 0.83x the speed of full (paired speedup 0.80x [0.70, 0.90])"), std::string::npos)
@@ -196,7 +196,7 @@ TEST(ReportSentence, NoVariantFasterThanFull) {
 TEST(ReportSentence, InsignificantSpeedupIsNotBest) {
     std::string s = paretoSentence(std::vector<CostQuality>{{"full", 40.0, INFINITY, 1.0, 1.0, 1.0, 1.0},
                                                             {"drr", 20.0, 25.3, 0.9, 2.0, 1.9, 2.1},
-                                                            {"cbr-cso", 25.0, 26.1, 0.93, 1.6, 0.9, 1.7}});
+                                                            {"cbr-cso", 25.0, 26.1, 0.93, 1.6, 0.9, 1.7}}, "full");
     EXPECT_EQ(s.rfind("drr gives the best quality for its cost: it is on the Pareto front with PSNR 25.30 dB "
                       "(SSIM 0.9000) at 2.00x the speed of full; cbr-cso is not measurably faster than full "
                       "(paired speedup 1.60x [0.90, 1.70]) at PSNR 26.10 dB",

@@ -5,12 +5,18 @@
 #include <gtest/gtest.h>
 
 #include "harness/core/sweep_configs.h"
+#include "harness/core/variant_roles.h"
 #include "reports/sweep.h"
 
 using cbr::harness::expandSweep;
 using cbr::harness::outerSweeps;
 using cbr::harness::parseSweepParam;
 using cbr::reports::SweepPoint;
+
+namespace {
+// The roles the variant table gives: the rules below are the table's.
+const cbr::reports::VariantRoles kRoles = cbr::harness::variantRoles();
+}  // namespace
 
 TEST(SweepParam, LogRangeHitsBothEndsExactly) {
     auto p = parseSweepParam("cso-tolerance=0.001:1:log:12");
@@ -100,7 +106,7 @@ TEST(SweepRecommend, BestPsnrWithinTheCostMarginOfAso) {
     std::vector<SweepPoint> pts{point("full", 10, INFINITY, 0), point("cbr-aso", 6, 30, 0.02),
                                 point("cbr-cso", 6.1, 30.2, 0.02, 0.01), point("cbr-cso", 6.2, 30.5, 0.02, 0.1),
                                 point("cbr-cso", 7.0, 31.0, 0.02, 1)};  // best PSNR but 17% dearer
-    auto choices = cbr::reports::recommendTolerance(pts);
+    auto choices = cbr::reports::recommendTolerance(pts, kRoles);
     ASSERT_EQ(choices.size(), 1u);
     EXPECT_DOUBLE_EQ(*choices[0].tolerance, 0.1);
     EXPECT_NE(choices[0].sentence.find("within 5% of cbr-aso"), std::string::npos) << choices[0].sentence;
@@ -110,7 +116,7 @@ TEST(SweepRecommend, BestPsnrWithinTheCostMarginOfAso) {
 TEST(SweepRecommend, PsnrTiesGoToLowerEciThenLargerTolerance) {
     std::vector<SweepPoint> pts{point("cbr-aso", 6, 30, 0.02), point("cbr-cso", 6, 30.01, 0.030, 0.01),
                                 point("cbr-cso", 6, 30.00, 0.025, 0.1), point("cbr-cso", 6, 30.00, 0.025, 0.3)};
-    auto choices = cbr::reports::recommendTolerance(pts);
+    auto choices = cbr::reports::recommendTolerance(pts, kRoles);
     ASSERT_EQ(choices.size(), 1u);
     EXPECT_DOUBLE_EQ(*choices[0].tolerance, 0.3);
 }
@@ -118,7 +124,7 @@ TEST(SweepRecommend, PsnrTiesGoToLowerEciThenLargerTolerance) {
 TEST(SweepEqualCost, InterpolatesTheDrrScaleAtTheCheckerboardTime) {
     std::vector<SweepPoint> pts{point("drr", 4, 26, 0.05, {}, 0.5), point("drr", 8, 30, 0.03, {}, 1.0),
                                 point("cbr-aso", 6, 29, 0.02)};
-    auto eq = cbr::reports::equalCost(pts, {});
+    auto eq = cbr::reports::equalCost(pts, {}, kRoles);
     ASSERT_EQ(eq.size(), 1u);
     EXPECT_TRUE(eq[0].matched);
     EXPECT_NEAR(*eq[0].drr_scale, 0.75, 1e-12);
@@ -129,7 +135,7 @@ TEST(SweepEqualCost, InterpolatesTheDrrScaleAtTheCheckerboardTime) {
 TEST(SweepEqualCost, OutsideTheDrrRangeMakesNoClaim) {
     std::vector<SweepPoint> pts{point("drr", 4, 26, 0.05, {}, 0.5), point("drr", 8, 30, 0.03, {}, 1.0),
                                 point("cbr-aso", 12, 29, 0.02)};
-    auto eq = cbr::reports::equalCost(pts, {});
+    auto eq = cbr::reports::equalCost(pts, {}, kRoles);
     ASSERT_EQ(eq.size(), 1u);
     EXPECT_FALSE(eq[0].matched);
     EXPECT_NEAR(*eq[0].drr_scale, 1.0, 1e-12);
@@ -275,7 +281,7 @@ TEST(SweepRecommendSettings, HighestPsnrOnTheFrontWithinTheMarginOfItsFastest) {
     std::vector<SweepPoint> pts{lodPoint("a", -1.5, 5.0, 30.0), lodPoint("a", -1, 5.1, 30.6),
                                 lodPoint("a", -0.5, 5.6, 31.0),  // best PSNR, but 12% dearer than the fastest
                                 lodPoint("a", 0, 5.2, 30.5)};    // dominated by -1
-    auto choices = cbr::reports::recommendSettings(pts);
+    auto choices = cbr::reports::recommendSettings(pts, kRoles);
     ASSERT_EQ(choices.size(), 1u);  // cbr-route has one value: not swept
     EXPECT_EQ(choices[0].setting, "cbr-lod-bias");
     EXPECT_EQ(choices[0].value, "-1");
@@ -289,20 +295,20 @@ TEST(SweepRecommendSettings, OverlappingTimeIntervalsCountAsNotSlower) {
     std::vector<SweepPoint> pts{lodPoint("a", -0.25, 5.0, 30.0), lodPoint("a", -1, 5.4, 31.0)};
     pts[0].gpu_ms_low = 4.6, pts[0].gpu_ms_high = 5.5;
     pts[1].gpu_ms_low = 5.3, pts[1].gpu_ms_high = 6.0;
-    EXPECT_EQ(cbr::reports::recommendSettings(pts)[0].value, "-1");
+    EXPECT_EQ(cbr::reports::recommendSettings(pts, kRoles)[0].value, "-1");
     pts[1].gpu_ms_low = 5.6;  // measurably slower now
-    EXPECT_EQ(cbr::reports::recommendSettings(pts)[0].value, "-0.25");
+    EXPECT_EQ(cbr::reports::recommendSettings(pts, kRoles)[0].value, "-0.25");
 }
 
 TEST(SweepRecommendSettings, PsnrTiesGoToHigherSsimThenLowerEciThenLowerTime) {
     std::vector<SweepPoint> ssim{lodPoint("a", -1, 5.0, 30.00, 0.90), lodPoint("a", 0, 5.1, 30.01, 0.95)};
-    EXPECT_EQ(cbr::reports::recommendSettings(ssim)[0].value, "0");
+    EXPECT_EQ(cbr::reports::recommendSettings(ssim, kRoles)[0].value, "0");
     std::vector<SweepPoint> eci{lodPoint("a", -1, 5.0, 30.00, 0.9, 0.030), lodPoint("a", 0, 5.1, 30.01, 0.9, 0.020)};
-    EXPECT_EQ(cbr::reports::recommendSettings(eci)[0].value, "0");
+    EXPECT_EQ(cbr::reports::recommendSettings(eci, kRoles)[0].value, "0");
     // Routes give the same image: the faster wins.
     std::vector<SweepPoint> routes{lodPoint("a", -1, 5.0, 30.0), lodPoint("a", -1, 4.9, 30.0)};
     routes[0].words["cbr_route"] = "multiview", routes[1].words["cbr_route"] = "msaa-locations";
-    auto c = cbr::reports::recommendSettings(routes);
+    auto c = cbr::reports::recommendSettings(routes, kRoles);
     ASSERT_EQ(c.size(), 1u);
     EXPECT_EQ(c[0].setting, "cbr-route");
     EXPECT_EQ(c[0].value, "msaa-locations");
@@ -312,11 +318,11 @@ TEST(SweepRecommendSettings, ASettingWhoseConfigurationsAllSkippedGetsNoValue) {
     std::vector<SweepPoint> pts{lodPoint("a", -1, 5.0, 30.0), lodPoint("a", -1, 5.0, 30.0)};
     pts[0].words["cbr_route"] = "msaa-jitter", pts[0].status = "skipped", pts[0].gpu_ms.reset();
     pts[1].words["cbr_route"] = "multiview";
-    auto c = cbr::reports::recommendSettings(pts);
+    auto c = cbr::reports::recommendSettings(pts, kRoles);
     ASSERT_EQ(c.size(), 1u);
     EXPECT_EQ(c[0].value, "multiview");  // the skipped route is no candidate
     pts[1].status = "failed", pts[1].gpu_ms.reset();
-    c = cbr::reports::recommendSettings(pts);
+    c = cbr::reports::recommendSettings(pts, kRoles);
     ASSERT_EQ(c.size(), 1u);
     EXPECT_EQ(c[0].value, "");
     EXPECT_NE(c[0].sentence.find("none of its configurations ran"), std::string::npos) << c[0].sentence;
@@ -325,24 +331,24 @@ TEST(SweepRecommendSettings, ASettingWhoseConfigurationsAllSkippedGetsNoValue) {
 TEST(SweepRecommendSettings, WarnsWhenPathsDisagree) {
     std::vector<SweepPoint> pts{lodPoint("flythrough", -1, 5.0, 30.5), lodPoint("flythrough", 0, 5.0, 30.0),
                                 lodPoint("orbit", -1, 5.0, 28.0), lodPoint("orbit", 0, 5.0, 28.4)};
-    auto choices = cbr::reports::recommendSettings(pts);
+    auto choices = cbr::reports::recommendSettings(pts, kRoles);
     ASSERT_EQ(choices.size(), 2u);
     auto warnings = cbr::reports::pathDisagreements(choices);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_EQ(warnings[0].rfind("the recommended cbr-lod-bias differs between paths: -1 on flythrough, 0 on orbit", 0), 0u)
         << warnings[0];
     bool printed = false;
-    for (const auto& line : cbr::reports::sweepSummaryLines(pts))
+    for (const auto& line : cbr::reports::sweepSummaryLines(pts, kRoles))
         printed = printed || line.rfind("warning: the recommended cbr-lod-bias differs", 0) == 0;
     EXPECT_TRUE(printed);
     pts[3].psnr_db = 27.0;  // orbit now agrees: -1
-    EXPECT_TRUE(cbr::reports::pathDisagreements(cbr::reports::recommendSettings(pts)).empty());
+    EXPECT_TRUE(cbr::reports::pathDisagreements(cbr::reports::recommendSettings(pts, kRoles)).empty());
 }
 
 TEST(SweepRecommendSettings, ToleranceKeepsItsOwnRule) {
     std::vector<SweepPoint> pts{point("cbr-aso", 6, 30, 0.02), point("cbr-cso", 6, 30.01, 0.030, 0.01),
                                 point("cbr-cso", 6, 30.00, 0.025, 0.1), point("cbr-cso", 6, 30.00, 0.025, 0.3)};
-    auto c = cbr::reports::recommendSettings(pts);
+    auto c = cbr::reports::recommendSettings(pts, kRoles);
     ASSERT_EQ(c.size(), 1u);
     EXPECT_EQ(c[0].setting, "cso-tolerance");
     EXPECT_EQ(c[0].value, "0.3");  // the plateau's edge, as recommendTolerance
@@ -352,7 +358,7 @@ TEST(SweepEqualCost, OneConfigurationPerCheckerboardVariantItsBestPsnr) {
     std::vector<SweepPoint> pts{point("drr", 4, 26, 0.05, {}, 0.5), point("drr", 8, 30, 0.03, {}, 1.0),
                                 lodPoint("a", 0, 6, 28), lodPoint("a", -1, 6, 29)};
     for (auto& p : pts) p.path = "a";
-    auto eq = cbr::reports::equalCost(pts, {});
+    auto eq = cbr::reports::equalCost(pts, {}, kRoles);
     ASSERT_EQ(eq.size(), 1u);
     EXPECT_EQ(eq[0].config, "cbr-aso_lod=-1");
 }
