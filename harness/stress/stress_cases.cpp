@@ -31,6 +31,8 @@ const std::vector<std::string> kCbr = variantsWhere([](const variants::Variant& 
 // default quarter history for the others): it has no pixels missing by parity, and a
 // still camera converges to its storage's rounding (B10G11R11), not to full's image.
 bool fullHistory(const std::string& name) { return variants::findVariant(name).full_history; }
+// The scaled variant the checkerboard ones are matched with at equal cost (drr).
+std::string scaledBaseline() { return std::string(variants::findVariant(kCbr.front()).equal_cost_with); }
 
 
 // Quality of the run's variants against full, as sequence PSNR.
@@ -358,14 +360,15 @@ void addImageCases(std::vector<Case>& cases, const Inputs& in) {
                          Verdict v = base(c);
                          if (!v.finite) return v;
                          const Child& r = *c.at("base");
-                         auto drr = summaryValue(r, "drr", "eci");
+                         const std::string scaled = scaledBaseline();
+                         auto drr = summaryValue(r, scaled, "eci");
                          v.held = bool(drr);
                          for (const auto& var : kCbr) {
                              auto e = summaryValue(r, var, "eci");
                              v.detail += var + " ECI " + num(e, 4) + "; ";
                              if (!e || !drr || *e > *drr) v.held = false;
                          }
-                         v.detail += "drr ECI " + num(drr, 4);
+                         v.detail += scaled + " ECI " + num(drr, 4);
                          v.quality = qualityLine(r);
                          return v;
                      }});
@@ -384,7 +387,8 @@ void addImageCases(std::vector<Case>& cases, const Inputs& in) {
                          v.held = v.finite;
                          if (!v.finite) return v;
                          // The 1e4 emitter's pixels: pure white in full's saved frame.
-                         auto img = metrics::readPng(c.at("emit-high")->dir / "frames" / "full_0000.png");
+                         auto img = metrics::readPng(c.at("emit-high")->dir / "frames" /
+                                                   (std::string(variants::referenceVariant().name) + "_0000.png"));
                          size_t white = 0;
                          for (size_t i = 0; i + 3 < img.pixels.size(); i += 4)
                              white += img.pixels[i] == 255 && img.pixels[i + 1] == 255 && img.pixels[i + 2] == 255;
