@@ -1,6 +1,7 @@
 // CSV tables with one schema each: columns fixed up front, values formatted one way.
 #pragma once
 
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -48,6 +49,30 @@ public:
 private:
     std::vector<std::string> columns_;
     std::vector<std::vector<std::string>> rows_;
+    size_t nan_cells_ = 0;
+    std::vector<std::string> nan_where_;
+};
+
+// A CsvTable written as it grows: the header when made, each row when added, into
+// FILE.tmp, renamed to FILE by commit() (never a half-written FILE). The same bytes and NaN
+// counts as a CsvTable given the same rows, without holding them: for tables as long as a run.
+class CsvStream {
+public:
+    CsvStream(std::filesystem::path file, std::vector<std::string> columns);
+    ~CsvStream();  // without commit(): FILE.tmp removed
+    CsvStream(const CsvStream&) = delete;
+    CsvStream& operator=(const CsvStream&) = delete;
+    void addRow(const std::map<std::string, Cell>& row);
+    void commit();
+    size_t rows() const { return rows_; }
+    size_t nanCells() const { return nan_cells_; }
+    const std::vector<std::string>& nanWhere() const { return nan_where_; }
+
+private:
+    std::filesystem::path file_, tmp_;
+    std::vector<std::string> columns_;
+    std::FILE* out_ = nullptr;
+    size_t rows_ = 0;
     size_t nan_cells_ = 0;
     std::vector<std::string> nan_where_;
 };

@@ -45,10 +45,12 @@ Growth growth(const MemoryPlan& plan) {
     Growth g;
     // A quality frame read back: RGBA8, the class map, the motion analysis (RGBA32F).
     const double readback = px * (4 + 1 + (analysis ? 16 : 0));
-    // The frame rows: a timed row per repetition and a quality row, per configuration and frame
-    // (about 3 KB each with what goes with them: lavapipe, 320x180, 60 -> 1,200 frames x 3
-    // configurations x 2 rows added 19 MB).
-    const double rows = frames * configs * double(plan.repeat + 1) * 3072;
+    // The frame rows: the timed ones go to the spill as they are made, their numbers kept
+    // (FrameDigest: about 0.25 KB a row); the quality pass's scores are kept per configuration
+    // and frame (about 0.5 KB) until repetition 0 has them. The report then reads frames.csv
+    // whole (about 2 KB a row), after the worst images.
+    const double rows = frames * configs * (512 + double(plan.repeat) * 256);
+    const double report = frames * configs * double(plan.repeat) * 2048;
     // The alignment check's images, kept to the end: every configuration's middle frame and
     // the reference's three around it.
     const double alignment = (configs + 3) * px * 4;
@@ -71,7 +73,7 @@ Growth growth(const MemoryPlan& plan) {
     // The CPU scorer's scratch on each worker (FLIP's and SSIM's planes: about 48 bytes a pixel).
     if (!device) scoring += double(std::thread::hardware_concurrency()) * px * 48;
     // The rest (thread stacks, the allocator's slack): a tenth more.
-    g.host = 1.1 * (rows + alignment + std::max(scoring, writing));
+    g.host = 1.1 * (rows + alignment + std::max({scoring, writing, report}));
     return g;
 }
 

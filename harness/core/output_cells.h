@@ -20,6 +20,7 @@ inline reports::Cell optional(const std::optional<double>& v) { return v ? repor
 
 // Reports NaNs that reached a table (written as empty cells) instead of hiding them.
 size_t reportNaNs(const reports::CsvTable& table, const char* file);
+size_t reportNaNs(size_t count, const std::vector<std::string>& where, const char* file);
 
 // summary.csv's sequence quality cells (psnr_db_mean ... flicker_ratio_mean) of a summary.
 void summaryQualityCells(std::map<std::string, reports::Cell>& m, const VariantSummary& s);

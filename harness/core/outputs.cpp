@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <map>
 
+#include "harness/core/frame_rows.h"
 #include "harness/core/outputs_internal.h"
 #include "harness/core/stats.h"
 #include "metrics/metrics.h"
@@ -14,61 +15,28 @@
 namespace cbr::harness {
 namespace {
 
-// One variant's ok frames, gathered for its summary row.
-struct Samples {
-    std::vector<double> ms, psnr, ssim, ssim_luma, mse, fs, eci, flicker, flip;
-    double crawl_num = 0, crawl_den = 0;
-    std::vector<std::vector<double>> per_rep, ratios;  // per repetition: times, baseline / time
-    std::map<std::string, std::vector<double>> pass_ms, stat_values;
-    std::vector<std::string> pass_order, stat_order;
-    std::vector<double> widths, heights;
+// One configuration's times per repetition, and its paired ratios baseline / time per
+// repetition, in row order (the bootstrap draws whole repetitions).
+struct Repetitions {
+    std::vector<std::vector<double>> per_rep, ratios;
 };
 
-// `full_ms`: the variant's baseline's time per (repeat, frame), for paired ratios.
-Samples collect(const RunResults& r, const VariantRun& vr, const std::map<std::pair<int, int>, double>& full_ms) {
-    Samples c;
-    c.per_rep.resize(size_t(r.repeats));
-    c.ratios.resize(size_t(r.repeats));
-    for (const auto& row : r.rows) {
-        if (row.variant != vr.name || row.status != "ok") continue;
-        c.ms.push_back(row.gpu_ms);
-        c.per_rep[size_t(row.repeat)].push_back(row.gpu_ms);
-        c.widths.push_back(row.render_width);
-        c.heights.push_back(row.render_height);
-        auto f = full_ms.find({row.repeat, row.frame});
-        if (f != full_ms.end() && row.gpu_ms > 0) c.ratios[size_t(row.repeat)].push_back(f->second / row.gpu_ms);
-        for (const auto& [name, value] : row.stats) {
-            if (!c.stat_values.count(name)) c.stat_order.push_back(name);
-            c.stat_values[name].push_back(value);
-        }
-        double frame_fs = 0;
-        bool any_fs = false;
-        for (const auto& pt : row.passes) {
-            if (!c.pass_ms.count(pt.name)) c.pass_order.push_back(pt.name);
-            c.pass_ms[pt.name].push_back(pt.gpu_ms);
-            if (pt.fs_invocations >= 0) {
-                frame_fs += double(pt.fs_invocations);
-                any_fs = true;
-            }
-        }
-        if (any_fs) c.fs.push_back(frame_fs);
-        if (row.quality.mse) c.mse.push_back(*row.quality.mse);
-        if (row.quality.psnr_db) c.psnr.push_back(*row.quality.psnr_db);
-        if (row.quality.ssim) c.ssim.push_back(*row.quality.ssim);
-        if (row.quality.ssim_luma) c.ssim_luma.push_back(*row.quality.ssim_luma);
-        if (row.quality.flip_mean) c.flip.push_back(*row.quality.flip_mean);
-        if (row.quality.eci) {
-            c.eci.push_back(*row.quality.eci);
-            c.crawl_num += row.quality.crawl_numerator;
-            c.crawl_den += row.quality.crawl_denominator;
-        }
-        if (row.quality.flicker_ratio) c.flicker.push_back(*row.quality.flicker_ratio);
+// `baseline_ms`: the configuration's baseline's time per (repeat, frame), for paired ratios.
+Repetitions repetitions(const VariantSamples& c, int repeats, const std::map<std::pair<int, int>, double>& baseline_ms) {
+    Repetitions r;
+    r.per_rep.resize(size_t(repeats));
+    r.ratios.resize(size_t(repeats));
+    for (size_t i = 0; i < c.ms.size(); ++i) {
+        const size_t rep = size_t(c.repeat[i]);
+        r.per_rep[rep].push_back(c.ms[i]);
+        auto f = baseline_ms.find({c.repeat[i], c.frame[i]});
+        if (f != baseline_ms.end() && c.ms[i] > 0) r.ratios[rep].push_back(f->second / c.ms[i]);
     }
-    return c;
+    return r;
 }
 
 // Times: percentiles, noise across repetitions, and the speedup with its interval.
-void timeStats(VariantSummary& s, const Samples& c, int repeats) {
+void timeStats(VariantSummary& s, const VariantSamples& c, const Repetitions& r, int repeats) {
     const auto& ms = c.ms;
     s.frames = int(ms.size()) / std::max(1, repeats);
     s.gpu_ms_median = median(ms);
@@ -77,12 +45,12 @@ void timeStats(VariantSummary& s, const Samples& c, int repeats) {
     s.gpu_ms_p99 = percentile(ms, 99);
     s.gpu_ms_mean = mean(ms);
     std::vector<double> rep_medians;
-    for (const auto& rep : c.per_rep)
+    for (const auto& rep : r.per_rep)
         if (!rep.empty()) rep_medians.push_back(median(rep));
     s.noise_cv = coefficientOfVariation(rep_medians);
     {
         std::vector<std::vector<double>> rep_ms;
-        for (const auto& rep : c.per_rep)
+        for (const auto& rep : r.per_rep)
             if (!rep.empty()) rep_ms.push_back(rep);
         if (rep_ms.size() >= 2) {
             Interval ci = bootstrapMedianOverRuns(rep_ms);
@@ -92,7 +60,7 @@ void timeStats(VariantSummary& s, const Samples& c, int repeats) {
     }
     std::vector<double> pooled;
     std::vector<std::vector<double>> runs;
-    for (const auto& rr : c.ratios)
+    for (const auto& rr : r.ratios)
         if (!rr.empty()) {
             pooled.insert(pooled.end(), rr.begin(), rr.end());
             runs.push_back(rr);
@@ -108,7 +76,7 @@ void timeStats(VariantSummary& s, const Samples& c, int repeats) {
 }
 
 // Quality over the sequence, render size, per-pass times and per-frame statistics.
-void qualityStats(VariantSummary& s, Samples& c) {
+void qualityStats(VariantSummary& s, const VariantSamples& c) {
     const auto& psnr = c.psnr;
     const auto& ssim = c.ssim;
     const auto& eci = c.eci;
@@ -135,8 +103,8 @@ void qualityStats(VariantSummary& s, Samples& c) {
     if (!c.fs.empty()) s.fs_invocations_median = median(c.fs);
     s.render_width = uint32_t(median(c.widths));
     s.render_height = uint32_t(median(c.heights));
-    for (const auto& name : c.pass_order) s.pass_ms_median.push_back({name, median(c.pass_ms[name])});
-    for (const auto& name : c.stat_order) s.stats_mean.push_back({name, mean(c.stat_values[name])});
+    for (const auto& name : c.pass_order) s.pass_ms_median.push_back({name, median(c.pass_ms.at(name))});
+    for (const auto& name : c.stat_order) s.stats_mean.push_back({name, mean(c.stat_values.at(name))});
 }
 
 }  // namespace
@@ -147,22 +115,24 @@ std::vector<VariantSummary> summarize(const RunResults& r) {
     // each configuration with the full configuration at its shading cost.
     std::map<std::string, std::map<std::pair<int, int>, double>> baseline_ms;
     for (const auto& vr : r.variants) baseline_ms[vr.baseline];
-    for (const auto& row : r.rows)
-        if (row.status == "ok" && baseline_ms.count(row.variant))
-            baseline_ms[row.variant][{row.repeat, row.frame}] = row.gpu_ms;
+    for (auto& [name, times] : baseline_ms)
+        if (const VariantSamples* b = r.digest.find(name))
+            for (size_t i = 0; i < b->ms.size(); ++i) times[{b->repeat[i], b->frame[i]}] = b->ms[i];
+    static const VariantSamples kNoRows;
 
     for (const auto& vr : r.variants) {
         VariantSummary s;
         s.variant = vr.name;
         s.status = vr.status;
         s.note = vr.note;
-        Samples c = collect(r, vr, baseline_ms[vr.baseline]);
+        const VariantSamples* found = r.digest.find(vr.name);
+        const VariantSamples& c = found ? *found : kNoRows;
         if (c.ms.empty()) {
             if (s.status == "ok") s.status = "failed", s.note = "no frame completed";
             out.push_back(s);
             continue;
         }
-        timeStats(s, c, r.repeats);
+        timeStats(s, c, repetitions(c, r.repeats, baseline_ms[vr.baseline]), r.repeats);
         qualityStats(s, c);
         out.push_back(s);
     }
@@ -171,7 +141,8 @@ std::vector<VariantSummary> summarize(const RunResults& r) {
 
 // frames.csv, summary.csv, run.json; the NaN cells of both tables are counted in run.json.
 void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
-    size_t nan_cells = writeFramesCsv(dir / "frames.csv", rc.results, rc.settings.width, rc.settings.height);
+    const NanCells frames_nan = writeFramesCsv(dir / "frames.csv", dir / kFramesSpill, rc.results.digest.columns);
+    size_t nan_cells = reportNaNs(frames_nan.count, frames_nan.where, "frames.csv");
     auto summaries = summarize(rc.results);
     nan_cells += writeSummaryCsv(dir / "summary.csv", rc.results, summaries);
     writeRunJson(dir / "run.json", rc, summaries, nan_cells);

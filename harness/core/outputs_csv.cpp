@@ -13,99 +13,17 @@ namespace cbr::harness {
 
 using reports::Cell;
 
-std::vector<std::string> statColumns(const RunResults& r) {
-    std::vector<std::string> names;
-    for (const auto& row : r.rows)
-        for (const auto& [name, value] : row.stats)
-            if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
-    return names;
-}
-
-std::vector<std::string> passColumns(const RunResults& r) {
-    std::vector<std::string> names;
-    for (const auto& row : r.rows)
-        for (const auto& p : row.passes)
-            if (std::find(names.begin(), names.end(), p.name) == names.end()) names.push_back(p.name);
-    return names;
+size_t reportNaNs(size_t count, const std::vector<std::string>& where, const char* file) {
+    if (count == 0) return 0;
+    std::string list;
+    for (const auto& w : where) list += (list.empty() ? "" : ", ") + w;
+    std::fprintf(stderr, "cbrbench: warning: %zu non-finite value(s) written as empty cells in %s (%s)\n", count, file,
+                 list.c_str());
+    return count;
 }
 
 size_t reportNaNs(const reports::CsvTable& table, const char* file) {
-    if (table.nanCells() == 0) return 0;
-    std::string where;
-    for (const auto& w : table.nanWhere()) where += (where.empty() ? "" : ", ") + w;
-    std::fprintf(stderr, "cbrbench: warning: %zu non-finite value(s) written as empty cells in %s (%s)\n",
-                 table.nanCells(), file, where.c_str());
-    return table.nanCells();
-}
-
-size_t writeFramesCsv(const std::filesystem::path& file, const RunResults& r, uint32_t width, uint32_t height) {
-    std::vector<std::string> passes = passColumns(r);
-    std::vector<std::string> cols = {"variant",      "repeat",        "frame",        "time_s",
-                                     "width",        "height",        "render_width", "render_height",
-                                     "render_scale", "gpu_ms",        "timing_ok",    "psnr_db",
-                                     "ssim",         "ssim_luma",     "mse",          "eci",
-                                     "flicker_ratio", "crawl_valid_fraction", "flip_mean",
-                                     "flip_q1",      "flip_median",   "flip_q3",      "fs_invocations",
-                                     "status",       "note"};
-    std::vector<std::string> stats = statColumns(r);
-    cols.insert(cols.end(), stats.begin(), stats.end());
-    for (const auto& p : passes) cols.push_back("gpu_ms_" + p);
-    // Invocation columns only for passes that report them (graphics passes, where the
-    // device has pipeline statistics).
-    for (const auto& p : passes) {
-        bool reported = std::any_of(r.rows.begin(), r.rows.end(), [&](const FrameRow& row) {
-            return std::any_of(row.passes.begin(), row.passes.end(),
-                               [&](const auto& pt) { return pt.name == p && pt.fs_invocations >= 0; });
-        });
-        if (reported) cols.push_back("fs_invocations_" + p);
-    }
-    reports::CsvTable table(cols);
-    for (const auto& row : r.rows) {
-        std::map<std::string, Cell> m;
-        m["variant"] = row.variant;
-        m["repeat"] = row.repeat;
-        m["frame"] = row.frame;
-        m["time_s"] = row.time_s;
-        m["width"] = unsigned(width);
-        m["height"] = unsigned(height);
-        m["status"] = row.status;
-        std::string note = row.note;
-        if (!row.quality.note.empty()) note += (note.empty() ? "" : "; ") + row.quality.note;
-        m["note"] = note;
-        if (row.status == "ok") {
-            m["render_width"] = unsigned(row.render_width);
-            m["render_height"] = unsigned(row.render_height);
-            m["render_scale"] = row.render_scale;
-            m["gpu_ms"] = row.gpu_ms;
-            m["timing_ok"] = row.timing_ok;
-            m["psnr_db"] = optional(row.quality.psnr_db);
-            m["ssim"] = optional(row.quality.ssim);
-            m["ssim_luma"] = optional(row.quality.ssim_luma);
-            m["mse"] = optional(row.quality.mse);
-            m["eci"] = optional(row.quality.eci);
-            m["flicker_ratio"] = optional(row.quality.flicker_ratio);
-            m["crawl_valid_fraction"] = optional(row.quality.crawl_valid_fraction);
-            m["flip_mean"] = optional(row.quality.flip_mean);
-            m["flip_q1"] = optional(row.quality.flip_q1);
-            m["flip_median"] = optional(row.quality.flip_median);
-            m["flip_q3"] = optional(row.quality.flip_q3);
-            for (const auto& [name, value] : row.stats) m[name] = value;
-            long long fs = 0;
-            bool any = false;
-            for (const auto& pt : row.passes) {
-                m["gpu_ms_" + pt.name] = pt.gpu_ms;
-                if (pt.fs_invocations >= 0) {
-                    m["fs_invocations_" + pt.name] = (long long)pt.fs_invocations;
-                    fs += pt.fs_invocations;
-                    any = true;
-                }
-            }
-            if (any) m["fs_invocations"] = fs;
-        }
-        table.addRow(m);
-    }
-    reports::writeTextAtomically(file, table.str());
-    return reportNaNs(table, "frames.csv");
+    return reportNaNs(table.nanCells(), table.nanWhere(), file);
 }
 
 void summaryQualityCells(std::map<std::string, reports::Cell>& m, const VariantSummary& s) {
@@ -124,7 +42,7 @@ void summaryQualityCells(std::map<std::string, reports::Cell>& m, const VariantS
 
 size_t writeSummaryCsv(const std::filesystem::path& file, const RunResults& r,
                        const std::vector<VariantSummary>& summaries) {
-    std::vector<std::string> passes = passColumns(r);
+    const std::vector<std::string>& passes = r.digest.columns.passes;
     std::vector<std::string> cols = {"variant",        "status",         "frames",          "repeats",
                                      "render_width",   "render_height",  "gpu_ms_median",   "gpu_ms_p5",
                                      "gpu_ms_p95",     "gpu_ms_p99",     "gpu_ms_mean",     "gpu_ms_cv",
@@ -134,7 +52,7 @@ size_t writeSummaryCsv(const std::filesystem::path& file, const RunResults& r,
                                      "eci_max",
                                      "flicker_ratio_mean", "fs_invocations_median", "note"};
     for (const auto& p : passes) cols.push_back("gpu_ms_" + p + "_median");
-    for (const auto& st : statColumns(r)) cols.push_back(st + "_mean");
+    for (const auto& st : r.digest.columns.stats) cols.push_back(st + "_mean");
     reports::CsvTable table(cols);
     for (const auto& s : summaries) {
         std::map<std::string, Cell> m;

@@ -16,13 +16,8 @@
 
 namespace cbr::harness {
 
-// Per-frame statistic names (checkerboard pixel classes) in order of first appearance.
-std::vector<std::string> statColumns(const RunResults& r);
-// Pass names in order of first appearance across variants: the per-pass columns.
-std::vector<std::string> passColumns(const RunResults& r);
-
-// Each returns the non-finite cells it wrote as empty (run.json non_finite_cells).
-size_t writeFramesCsv(const std::filesystem::path& file, const RunResults& r, uint32_t width, uint32_t height);
+// Each returns the non-finite cells it wrote as empty (run.json non_finite_cells); frames.csv
+// is written from the run's spill (frame_rows.h).
 size_t writeSummaryCsv(const std::filesystem::path& file, const RunResults& r,
                        const std::vector<VariantSummary>& summaries);
 void writeRunJson(const std::filesystem::path& file, const RunContext& rc, const std::vector<VariantSummary>& summaries,

@@ -1,9 +1,10 @@
-// What a run measured: one row per variant x repetition x frame, plus per-variant facts.
+// What a run measured: one row per variant x repetition x frame (written to frames.csv as it
+// is made, its numbers kept as a FrameDigest), plus per-variant facts.
 #pragma once
 
 #include "renderer/vk/bandwidth.h"
-#include <deque>
 #include <map>
+#include <set>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,6 +44,35 @@ struct FrameRow {
     Quality quality;                // rep 0 only: rendering is deterministic
     std::string status = "ok";      // ok | failed | skipped
     std::string note;
+};
+
+// What is kept of the frame rows once each is written out (frame_rows.cpp): the numbers the
+// summaries need, per configuration in row order (about 0.2 KB a row, against the row's few
+// KB), and the columns frames.csv and summary.csv take from the rows.
+struct VariantSamples {  // one configuration's ok rows
+    std::vector<double> ms;
+    std::vector<int> repeat, frame;  // parallel to ms: pairs a time with its baseline's
+    std::vector<double> widths, heights;
+    std::vector<double> psnr, ssim, ssim_luma, mse, fs, eci, flicker, flip;
+    double crawl_num = 0, crawl_den = 0;
+    std::map<std::string, std::vector<double>> pass_ms, stat_values;
+    std::vector<std::string> pass_order, stat_order;
+    void add(const FrameRow& row);
+};
+struct FrameColumns {  // over every row, ok or not, in first-seen order
+    std::vector<std::string> stats, passes;
+    std::set<std::string> fs_reported;  // passes with a fragment-invocation count in some row
+    void add(const FrameRow& row);
+};
+struct FrameDigest {
+    FrameColumns columns;
+    std::map<std::string, VariantSamples> samples;  // by configuration (FrameRow::variant): ok rows
+    size_t rows = 0;
+    void add(const FrameRow& row);
+    const VariantSamples* find(const std::string& config) const {
+        auto it = samples.find(config);
+        return it == samples.end() ? nullptr : &it->second;
+    }
 };
 
 // metrics.md: once per sequence, PSNR(R_t, V_t) must beat PSNR(R_t, V_t-1) and
@@ -99,7 +129,7 @@ struct MemoryFigures {
 };
 
 struct RunResults {
-    std::deque<FrameRow> rows;  // deque: rows keep their address while metrics fill them in
+    FrameDigest digest;  // the frame rows' numbers (the rows themselves are in frames.csv)
     std::vector<VariantRun> variants;
     std::vector<std::string> order;  // variant order within each repetition
     int frames = 0;

@@ -8,6 +8,7 @@
 
 #include "camera_paths/path.h"
 #include "harness/core/builtin_context.h"
+#include "harness/core/frame_rows.h"
 #include "harness/core/options.h"
 #include "harness/core/progress.h"
 #include "harness/core/quality.h"
@@ -66,6 +67,13 @@ struct RunState {
     WallAccount& wall;  // started before the scene loaded
     const int w, h;
     RunResults results;
+    // The timed frame rows, written out as each is made (frame_rows.h); append() also keeps
+    // a row's numbers in results.digest.
+    FramesSpill spill;
+    void append(const FrameRow& row) {
+        spill.append(row);
+        results.digest.add(row);
+    }
     WorkerPool workers;
     QualityScorer scorer;
     // The alignment check looks at the middle frame of a path of at least 3 frames.

@@ -45,6 +45,7 @@ RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene
       w(int(prepared.settings.width)),
       h(int(prepared.settings.height)),
       results(startResults(prepared)),
+      spill(out_dir / kFramesSpill, prepared.settings.width, prepared.settings.height),
       workers(std::max(1u, std::thread::hardware_concurrency() / 2)),
       scorer(w, h, prepared.options.tune.flip_ppd, workers, &account),
       mid(prepared.poses.size() / 2),
@@ -255,13 +256,14 @@ private:
         }
         for (size_t i = 0; i < s_.p.poses.size(); ++i) {
             if (done_[i]) continue;
-            FrameRow& row = s_.results.rows.emplace_back();
+            FrameRow row;
             row.variant = vr_.name;
             row.repeat = rep_;
             row.frame = int(i);
             row.time_s = s_.p.times[i];
             row.status = vr_.status;
             row.note = vr_.note;
+            s_.append(row);
         }
     }
 
@@ -271,7 +273,7 @@ private:
         readback_s_ += fr.readback_ms * 1e-3;
         done_[size_t(fr.index)] = true;
         if (!timed()) return keepQuality(std::move(fr));
-        FrameRow& row = results.rows.emplace_back();
+        FrameRow row;
         row.variant = vr_.name;
         row.repeat = rep_;
         row.frame = fr.index;
@@ -282,16 +284,17 @@ private:
         row.gpu_ms = fr.gpu_ms;
         row.timing_ok = fr.timing_consistent;
         if (!fr.timing_consistent) row.note = "pass times do not sum to the frame time";
-        row.passes = fr.passes;
-        row.stats = fr.stats;
+        row.passes = std::move(fr.passes);
+        row.stats = std::move(fr.stats);
         if (rep_ == 0) {
             // Rendering is deterministic: the quality pass's scores are this frame's.
             row.quality = s_.qualityRow(vi_, size_t(fr.index)).quality;
             if (fr.index == 0) {
-                for (const auto& pt : fr.passes) vr_.passes_ran.push_back(pt.name);
+                for (const auto& pt : row.passes) vr_.passes_ran.push_back(pt.name);
                 vr_.left_out = fr.left_out;
             }
         }
+        s_.append(row);
         s_.progress.step("repeat " + std::to_string(rep_ + 1) + "/" + std::to_string(s_.options.repeat) + " " + vr_.name);
     }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <cstdio>
 #include <set>
 #include <thread>
@@ -157,7 +158,10 @@ struct Scored {
     std::vector<std::string> conversions;  // how inputs were made display images (once per kind)
 };
 
-Scored scoreFrames(const ScoreSeqOptions& o, const SeqInputs& in, RunResults& results, std::vector<SeqFrameInfo>& infos,
+// `rows`: a deque, so each row keeps its address while the scorer's workers fill it in.
+using SeqRows = std::deque<FrameRow>;
+
+Scored scoreFrames(const ScoreSeqOptions& o, const SeqInputs& in, SeqRows& rows, std::vector<SeqFrameInfo>& infos,
                    std::unique_ptr<QualityScorer>& scorer, WorkerPool& workers) {
     Scored s;
     const size_t n = in.reference.frames.size();
@@ -201,7 +205,7 @@ Scored scoreFrames(const ScoreSeqOptions& o, const SeqInputs& in, RunResults& re
             analysis = uniformAnalysis(s.width, s.height, info.shift_dx, info.shift_dy);
             previous_reference = std::move(cur);
         }
-        FrameRow& row = results.rows.emplace_back();
+        FrameRow& row = rows.emplace_back();
         row.variant = in.name;
         row.frame = int(i);
         row.render_width = uint32_t(s.width);
@@ -257,14 +261,14 @@ SeqThreshold parseSeqThreshold(const std::string& spec, const std::string& optio
 namespace {
 
 // frames.csv of a sequence: the run's quality columns plus where each frame came from.
-void writeSeqFramesCsv(const fs::path& file, const RunResults& r, const std::vector<SeqFrameInfo>& infos,
+void writeSeqFramesCsv(const fs::path& file, const SeqRows& rows, const std::vector<SeqFrameInfo>& infos,
                        bool motion_files) {
     reports::CsvTable t({"variant", "repeat", "frame", "frame_number", "reference_file", "test_file", "psnr_db", "mse",
                          "ssim", "ssim_luma", "flip_mean", "flip_q1", "flip_median", "flip_q3", "eci",
                          "flicker_ratio", "crawl_valid_fraction", "motion", "shift_dx", "shift_dy",
                          "shift_response", "global_shift_rejected", "cut", "note"});
-    for (size_t i = 0; i < r.rows.size(); ++i) {
-        const auto& row = r.rows[i];
+    for (size_t i = 0; i < rows.size(); ++i) {
+        const auto& row = rows[i];
         const auto& q = row.quality;
         const auto& info = infos[i];
         std::map<std::string, reports::Cell> m;
@@ -330,7 +334,7 @@ struct Crossing {
 };
 
 std::vector<Crossing> judge(const std::vector<SeqThreshold>& warn, const std::vector<SeqThreshold>& fail,
-                            const RunResults& r, const std::vector<SeqFrameInfo>& infos) {
+                            const SeqRows& rows, const std::vector<SeqFrameInfo>& infos) {
     std::vector<Crossing> out;
     auto value = [](const Quality& q, const std::string& column) -> std::optional<double> {
         if (column == "psnr_db") return q.psnr_db;
@@ -342,8 +346,8 @@ std::vector<Crossing> judge(const std::vector<SeqThreshold>& warn, const std::ve
     for (bool is_fail : {true, false})
         for (const auto& t : is_fail ? fail : warn) {
             std::optional<Crossing> worst;
-            for (size_t i = 0; i < r.rows.size(); ++i) {
-                auto v = value(r.rows[i].quality, t.column);
+            for (size_t i = 0; i < rows.size(); ++i) {
+                auto v = value(rows[i].quality, t.column);
                 if (!v || std::isnan(*v)) continue;
                 const bool crossed = t.higher_is_worse ? *v > t.value : *v < t.value;
                 const bool worse = !worst || (t.higher_is_worse ? *v > worst->value : *v < worst->value);
@@ -431,27 +435,29 @@ int runScoreSeq(const ScoreSeqOptions& o) {
     std::vector<SeqFrameInfo> infos;
     WorkerPool workers(std::max(1u, std::thread::hardware_concurrency()));
     std::unique_ptr<QualityScorer> scorer;
-    const Scored s = scoreFrames(o, in, results, infos, scorer, workers);
+    SeqRows rows;
+    const Scored s = scoreFrames(o, in, rows, infos, scorer, workers);
     results.worst = scorer->finish(out.path());
     results.worst_files = worstFiles(results.worst);
-    results.frames = int(results.rows.size());
+    results.frames = int(rows.size());
+    for (const auto& row : rows) results.digest.add(row);
     results.repeats = 1;
     VariantRun vr;
     vr.name = vr.variant = in.name;
     results.variants.push_back(vr);
     results.order = {in.name};
     const VariantSummary sum = summarize(results).at(0);
-    const auto crossings = judge(warn, fail, results, infos);
+    const auto crossings = judge(warn, fail, rows, infos);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    writeSeqFramesCsv(out.path() / "frames.csv", results, infos, !in.motion_files.empty());
+    writeSeqFramesCsv(out.path() / "frames.csv", rows, infos, !in.motion_files.empty());
     writeSeqSummaryCsv(out.path() / "summary.csv", sum, s.width, s.height);
     reports::writeTextAtomically(out.path() / "run.json",
                                  runJson(o, in, s, sum, crossings, warn, fail, seconds, results.worst).dump(2) + "\n");
     reports::writeReport(out.path());
     out.commit();
 
-    std::printf("score-seq: %zu frames of %dx%d, %s against %s\n", results.rows.size(), s.width, s.height,
+    std::printf("score-seq: %zu frames of %dx%d, %s against %s\n", rows.size(), s.width, s.height,
                 in.name.c_str(), o.reference.c_str());
     std::printf("psnr_db %s (min %s)\nssim %s (min %s)\nflip_mean %s\neci %s (p95 %s, max %s)\nflicker_ratio %s\n",
                 fmtValue(sum.psnr_db, 3).c_str(), fmtValue(sum.psnr_db_min, 3).c_str(),

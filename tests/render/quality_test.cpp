@@ -150,6 +150,15 @@ TEST(Quality, StaticPathGivesFiniteCrawlAndReferenceIsExact) {
     auto summary = readCsv(out / "summary.csv");
     for (size_t i = 0; i < summary.rows.size(); ++i)
         EXPECT_EQ(std::stod(summary.at(i, "flip_mean")) == 0.0, summary.at(i, "variant") == "full") << i;
+    // The frame rows went through the run's spill: frames.csv has every row, and the
+    // directory holds what run.json lists and nothing else (no spill, no .tmp).
+    EXPECT_EQ(frames.rows.size(), 2u * 5u);
+    for (const auto& entry : std::filesystem::directory_iterator(out)) {
+        const std::string name = entry.path().filename().string();
+        EXPECT_TRUE(name == "frames.csv" || name == "summary.csv" || name == "run.json" || name == "report.html" ||
+                    name == "worst")
+            << name;
+    }
     auto run = readJson(out / "run.json");
     EXPECT_NEAR(run["metrics"]["flip_ppd"].get<double>(), 67.0206, 1e-4);
     EXPECT_TRUE(std::filesystem::exists(out / worstFile(run, "cbr-cso", "ssim", "flip_map")));
