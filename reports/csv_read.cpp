@@ -3,8 +3,8 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
+#include <cstdio>
+#include <memory>
 #include <stdexcept>
 
 namespace cbr::reports {
@@ -30,19 +30,46 @@ int CsvData::col(const std::string& name) const {
     return -1;
 }
 
-const std::string& CsvData::text(size_t row, const std::string& name) const {
+std::string_view CsvData::cell(size_t row, size_t col) const {
+    const size_t i = row * header.size() + col;
+    const size_t begin = i == 0 ? 0 : ends_[i - 1];
+    return std::string_view(cells_).substr(begin, ends_[i] - begin);
+}
+
+std::vector<std::string> CsvData::row(size_t r) const {
+    std::vector<std::string> out;
+    for (size_t c = 0; c < header.size(); ++c) out.emplace_back(cell(r, c));
+    return out;
+}
+
+std::string CsvData::text(size_t row, const std::string& name) const {
     int c = col(name);
-    if (c < 0 || row >= rows.size()) return kEmpty;
-    return rows[row][size_t(c)];
+    if (c < 0 || row >= size()) return {};
+    return std::string(cell(row, size_t(c)));
 }
 
 std::optional<double> CsvData::num(size_t row, const std::string& name) const {
+    int c = col(name);
+    if (c < 0 || row >= size()) return std::nullopt;
     bool ok = true;
-    auto v = parseNumberCell(text(row, name), ok);
+    auto v = parseNumberCell(cell(row, size_t(c)), ok);
     return ok ? v : std::nullopt;
 }
 
-std::optional<double> parseNumberCell(const std::string& cell, bool& ok) {
+void CsvData::addCell(std::string_view text) {
+    cells_.append(text);
+    if (cells_.size() > UINT32_MAX) throw std::invalid_argument(file.string() + ": above 4 GiB; accepted: smaller files");
+    ends_.push_back(uint32_t(cells_.size()));
+    ++pending_;
+}
+
+void CsvData::endRow(int line) {
+    if (pending_ != header.size()) throw std::logic_error("CsvData: a row of the wrong size");
+    pending_ = 0;
+    row_lines.push_back(line);
+}
+
+std::optional<double> parseNumberCell(std::string_view cell, bool& ok) {
     ok = true;
     if (cell.empty()) return std::nullopt;
     if (cell == "inf" || cell == "+inf") return INFINITY;
@@ -67,18 +94,81 @@ bool isReportNumericColumn(const std::string& name) {
     return name == "frames" || name == "repeats" || name == "repeat" || name == "frame" || name == "frame_number";
 }
 
+namespace {
+
+// The file through a buffer, a character at a time with one of look-ahead.
+class Chars {
+public:
+    explicit Chars(std::FILE* f) : f_(f), buffer_(1 << 16) {}
+    int get() {
+        if (pos_ == len_ && !fill()) return EOF;
+        return static_cast<unsigned char>(buffer_[pos_++]);
+    }
+    int peek() {
+        if (pos_ == len_ && !fill()) return EOF;
+        return static_cast<unsigned char>(buffer_[pos_]);
+    }
+
+private:
+    bool fill() {
+        len_ = std::fread(buffer_.data(), 1, buffer_.size(), f_);
+        pos_ = 0;
+        return len_ > 0;
+    }
+    std::FILE* f_;
+    std::vector<char> buffer_;
+    size_t pos_ = 0, len_ = 0;
+};
+
+// One row as read, checked against the header (its cell count, its numeric cells) and added.
+struct RowChecker {
+    CsvData& csv;
+    const NumericColumn& numeric;
+    const std::vector<std::string>& required_columns;
+    std::vector<bool> is_numeric;
+
+    void add(const std::vector<std::string>& cells, int line) {
+        if (csv.header.empty()) return setHeader(cells);
+        if (cells.size() != csv.header.size())
+            fail(csv.file, line,
+                 std::to_string(cells.size()) + " cells, the header has " + std::to_string(csv.header.size()) +
+                     "; accepted: exactly one cell per header column");
+        for (size_t c = 0; c < cells.size(); ++c) {
+            if (!is_numeric[c]) continue;
+            bool ok = true;
+            parseNumberCell(cells[c], ok);
+            if (!ok)
+                fail(csv.file, line,
+                     "column '" + csv.header[c] + "' holds " + quoted(cells[c]) +
+                         "; accepted: a number, 'inf', '-inf' or an empty cell");
+        }
+        for (const auto& c : cells) csv.addCell(c);
+        csv.endRow(line);
+    }
+    void setHeader(const std::vector<std::string>& cells) {
+        csv.header = cells;
+        for (const auto& name : required_columns)
+            if (!csv.has(name))
+                fail(csv.file, 1, "the header has no column '" + name + "'; accepted: the columns cbrbench writes (docs/reference/outputs.md)");
+        is_numeric.resize(cells.size());
+        for (size_t c = 0; c < cells.size(); ++c) is_numeric[c] = numeric && numeric(cells[c]);
+    }
+};
+
+}  // namespace
+
 CsvData readCsv(const std::filesystem::path& file, const NumericColumn& numeric,
                 const std::vector<std::string>& required_columns) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in)
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "rb"), &std::fclose);
+    if (!f || std::filesystem::is_directory(file))
         throw std::invalid_argument(file.string() + ": missing or unreadable; the report needs the run's " +
                                     file.filename().string() + " as cbrbench writes it");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    const std::string text = ss.str();
-
     CsvData csv;
     csv.file = file;
+    std::error_code ec;
+    if (const auto bytes = std::filesystem::file_size(file, ec); !ec) csv.cells_.reserve(size_t(bytes));
+    RowChecker rows{csv, numeric, required_columns, {}};
+    Chars in(f.get());
     std::vector<std::string> cells;
     std::string cur;
     bool quoted_cell = false, row_has_content = false;
@@ -87,30 +177,22 @@ CsvData readCsv(const std::filesystem::path& file, const NumericColumn& numeric,
     auto endRow = [&] {
         cells.push_back(cur);
         cur.clear();
-        bool blank = !row_has_content && cells.size() == 1 && cells[0].empty();
-        if (!blank) {
-            if (csv.header.empty() && csv.rows.empty()) {
-                csv.header = cells;
-            } else {
-                csv.rows.push_back(cells);
-                csv.row_lines.push_back(row_line);
-            }
-        }
+        const bool blank = !row_has_content && cells.size() == 1 && cells[0].empty();
+        if (!blank) rows.add(cells, row_line);
         cells.clear();
         row_has_content = false;
     };
 
-    for (size_t i = 0; i < text.size(); ++i) {
-        char c = text[i];
+    for (int c = in.get(); c != EOF; c = in.get()) {
         if (quoted_cell) {
-            if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+            if (c == '"' && in.peek() == '"') {
                 cur += '"';
-                ++i;
+                in.get();
             } else if (c == '"') {
                 quoted_cell = false;
             } else {
                 if (c == '\n') ++line;
-                cur += c;
+                cur += char(c);
             }
             continue;
         }
@@ -124,12 +206,12 @@ CsvData readCsv(const std::filesystem::path& file, const NumericColumn& numeric,
             cur.clear();
             row_has_content = true;
         } else if (c == '\n' || c == '\r') {
-            if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+            if (c == '\r' && in.peek() == '\n') in.get();
             endRow();
             ++line;
             row_line = line;
         } else {
-            cur += c;
+            cur += char(c);
             row_has_content = true;
         }
     }
@@ -138,29 +220,6 @@ CsvData readCsv(const std::filesystem::path& file, const NumericColumn& numeric,
 
     if (csv.header.empty())
         throw std::invalid_argument(file.string() + ":1: empty file; accepted: a header row, then one row per record");
-    for (const auto& name : required_columns)
-        if (!csv.has(name))
-            fail(file, 1, "the header has no column '" + name + "'; accepted: the columns cbrbench writes (docs/reference/outputs.md)");
-
-    std::vector<bool> is_numeric(csv.header.size());
-    for (size_t c = 0; c < csv.header.size(); ++c) is_numeric[c] = numeric && numeric(csv.header[c]);
-
-    for (size_t r = 0; r < csv.rows.size(); ++r) {
-        const auto& row = csv.rows[r];
-        if (row.size() != csv.header.size())
-            fail(file, csv.row_lines[r],
-                 std::to_string(row.size()) + " cells, the header has " + std::to_string(csv.header.size()) +
-                     "; accepted: exactly one cell per header column");
-        for (size_t c = 0; c < row.size(); ++c) {
-            if (!is_numeric[c]) continue;
-            bool ok = true;
-            parseNumberCell(row[c], ok);
-            if (!ok)
-                fail(file, csv.row_lines[r],
-                     "column '" + csv.header[c] + "' holds " + quoted(row[c]) +
-                         "; accepted: a number, 'inf', '-inf' or an empty cell");
-        }
-    }
     return csv;
 }
 

@@ -98,7 +98,7 @@ RunData loadRun(const std::filesystem::path& dir) {
     d.frames = readCsv(dir / "frames.csv", isReportNumericColumn, {"variant", "repeat", "frame"});
     d.run = readRunJson(dir / "run.json");
 
-    for (size_t r = 0; r < d.summary.rows.size(); ++r) {
+    for (size_t r = 0; r < d.summary.size(); ++r) {
         const std::string& v = d.summary.text(r, "variant");
         if (v.empty())
             throw std::invalid_argument(d.summary.file.string() + ":" + std::to_string(d.summary.row_lines[r]) +
@@ -107,7 +107,7 @@ RunData loadRun(const std::filesystem::path& dir) {
     }
     std::set<double> frames;
     std::set<double> repeats;
-    for (size_t r = 0; r < d.frames.rows.size(); ++r) {
+    for (size_t r = 0; r < d.frames.size(); ++r) {
         auto f = d.frames.num(r, "frame");
         auto rep = d.frames.num(r, "repeat");
         if (!f || !rep || !std::isfinite(*f) || !std::isfinite(*rep))
@@ -130,7 +130,7 @@ RunData loadRun(const std::filesystem::path& dir) {
 }
 
 std::optional<size_t> summaryRow(const RunData& d, const std::string& variant) {
-    for (size_t r = 0; r < d.summary.rows.size(); ++r)
+    for (size_t r = 0; r < d.summary.size(); ++r)
         if (d.summary.text(r, "variant") == variant) return r;
     return std::nullopt;
 }
@@ -159,7 +159,7 @@ bool isCheckerboard(const RunData& d, const std::string& variant) {
     if (summaryNum(d, variant, "px_shaded_mean")) return true;
     const auto* vj = variantJson(d, variant);
     if (vj && vj->contains("route")) return true;
-    for (size_t r = 0; r < d.frames.rows.size(); ++r)
+    for (size_t r = 0; r < d.frames.size(); ++r)
         if (d.frames.text(r, "variant") == variant && d.frames.num(r, "px_shaded")) return true;
     return false;
 }
@@ -167,7 +167,7 @@ bool isCheckerboard(const RunData& d, const std::string& variant) {
 std::map<int, std::vector<double>> gpuMsByRepetition(const RunData& d, const std::string& variant, int max_repeats) {
     std::map<int, std::vector<double>> reps;
     const auto& f = d.frames;
-    for (size_t i = 0; i < f.rows.size(); ++i) {
+    for (size_t i = 0; i < f.size(); ++i) {
         if (f.text(i, "variant") != variant || f.text(i, "status") != "ok") continue;
         auto ms = f.num(i, "gpu_ms");
         auto rep = f.num(i, "repeat");
@@ -180,7 +180,7 @@ std::vector<std::optional<double>> perFrame(const RunData& d, const std::string&
                                             int repeat) {
     std::vector<std::vector<double>> values(d.frame_ids.size());
     if (d.frames.has(column)) {
-        for (size_t r = 0; r < d.frames.rows.size(); ++r) {
+        for (size_t r = 0; r < d.frames.size(); ++r) {
             if (d.frames.text(r, "variant") != variant) continue;
             if (repeat >= 0 && d.frames.num(r, "repeat") != double(repeat)) continue;
             auto v = d.frames.num(r, column);

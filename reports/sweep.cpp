@@ -135,7 +135,7 @@ SweepData loadSweep(const std::filesystem::path& dir) {
     d.dir = dir;
     CsvData csv = readCsv(dir / "sweep.csv", isSweepNumeric,
                           {"config", "variant", "status", "shading_cost", "gpu_ms_median", "psnr_db", "ssim", "eci"});
-    for (size_t r = 0; r < csv.rows.size(); ++r) {
+    for (size_t r = 0; r < csv.size(); ++r) {
         SweepPoint p;
         p.config = csv.text(r, "config");
         p.variant = csv.text(r, "variant");
@@ -193,7 +193,7 @@ void combineSweeps(const std::filesystem::path& dir, const std::vector<std::stri
             return out + "\n";
         };
         if (text.empty()) text = line(csv.header);
-        for (const auto& row : csv.rows) text += line(row);
+        for (size_t r = 0; r < csv.size(); ++r) text += line(csv.row(r));
     }
     writeTextAtomically(dir / "sweep.csv", text);
 }

@@ -90,11 +90,11 @@ void writeCombinedSummary(const std::filesystem::path& dir, const std::vector<st
     reports::CsvTable out(columns);
     for (size_t k = 0; k < jobs.size(); ++k) {
         const json& meta = jobs[k].first;
-        for (size_t r = 0; r < tables[k].rows.size(); ++r) {
+        for (size_t r = 0; r < tables[k].size(); ++r) {
             std::map<std::string, reports::Cell> row;
             for (const char* key : {"job", "scene", "path", "pipeline", "resolution"})
                 row[key] = meta.value(key, std::string());
-            for (size_t c = 0; c < tables[k].header.size(); ++c) row[tables[k].header[c]] = tables[k].rows[r][c];
+            for (size_t c = 0; c < tables[k].header.size(); ++c) row[tables[k].header[c]] = std::string(tables[k].cell(r, c));
             out.addRow(row);
         }
     }
@@ -340,7 +340,7 @@ int mergeRuns(const std::vector<std::string>& dirs, const std::string& out_dir) 
         for (const auto& s : m.value("shards", json::array())) shards.push_back(s);
         for (const auto& pj : m.value("plan_jobs", json::array())) plan_jobs[pj.value("job", "")] = pj;
         auto table = reports::readCsv(dir / "jobs.csv", [](const std::string&) { return false; }, {"job", "status"});
-        for (size_t r = 0; r < table.rows.size(); ++r) {
+        for (size_t r = 0; r < table.size(); ++r) {
             std::string id = table.text(r, "job");
             if (jobs.count(id))
                 throw std::invalid_argument(d + "/jobs.csv: line " + std::to_string(table.row_lines[r]) + ": job " + id +

@@ -338,7 +338,7 @@ std::function<Verdict(Children&)> constantImageCheck(const char* key) {
             if (!p || !std::isinf(*p) || !s || *s != 1.0 || !e || *e != 0.0) v.held = false;
             v.detail += var + " PSNR " + db(p) + ", SSIM " + num(s) + ", ECI " + num(e) + "; ";
         }
-        for (size_t i = 0; i < r.frames.rows.size(); ++i)
+        for (size_t i = 0; i < r.frames.size(); ++i)
             if (r.frames.num(i, "frame").value_or(0) > 0 && r.frames.text(i, "variant") != variants::referenceVariant().name) {
                 ++frames;
                 flagged += r.frames.text(i, "note").find("no reference edges") != std::string::npos;

@@ -68,13 +68,13 @@ void runChild(const fs::path& self, Child& c, const std::vector<std::string>& co
 }
 
 std::optional<double> summaryValue(const Child& c, const std::string& variant, const std::string& col) {
-    for (size_t r = 0; r < c.summary.rows.size(); ++r)
+    for (size_t r = 0; r < c.summary.size(); ++r)
         if (c.summary.text(r, "variant") == variant) return c.summary.num(r, col);
     return std::nullopt;
 }
 
 std::optional<double> frameValue(const Child& c, const std::string& variant, int frame, const std::string& col) {
-    for (size_t r = 0; r < c.frames.rows.size(); ++r)
+    for (size_t r = 0; r < c.frames.size(); ++r)
         if (c.frames.text(r, "variant") == variant && c.frames.num(r, "frame") == frame &&
             c.frames.num(r, "repeat").value_or(0) == 0)
             return c.frames.num(r, col);
@@ -83,7 +83,7 @@ std::optional<double> frameValue(const Child& c, const std::string& variant, int
 
 std::vector<double> frameSeries(const Child& c, const std::string& variant, const std::string& col) {
     std::map<int, double> by_frame;
-    for (size_t r = 0; r < c.frames.rows.size(); ++r)
+    for (size_t r = 0; r < c.frames.size(); ++r)
         if (c.frames.text(r, "variant") == variant && c.frames.num(r, "repeat").value_or(0) == 0)
             if (auto v = c.frames.num(r, col)) by_frame[int(*c.frames.num(r, "frame"))] = *v;
     std::vector<double> out;
@@ -99,7 +99,7 @@ bool finiteAndOk(const Child& c, std::string& why) {
     if (c.run.value("non_finite_cells", 0) != 0)
         return why = std::to_string(c.run.value("non_finite_cells", 0)) + " non-finite cells", false;
     for (const auto* t : {&c.frames, &c.summary})
-        for (size_t r = 0; r < t->rows.size(); ++r) {
+        for (size_t r = 0; r < t->size(); ++r) {
             if (t->text(r, "status") != "ok") return why = t->text(r, "variant") + " " + t->text(r, "status"), false;
             for (const auto& h : t->header) {
                 if (!reports::isReportNumericColumn(h)) continue;
