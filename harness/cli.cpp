@@ -11,7 +11,7 @@
 #include "harness/compare/compare.h"
 #include "harness/core/options.h"
 #include "harness/core/run.h"
-#include "harness/core/variant_roles.h"
+#include "harness/core/table_roles.h"
 #include "harness/core/sweep_configs.h"
 #include "harness/export/export.h"
 #include "harness/help_markdown.h"

@@ -9,7 +9,7 @@
 #include "harness/core/outputs.h"
 #include "harness/core/run_internal.h"
 #include "harness/core/memory_check.h"
-#include "harness/core/variant_roles.h"
+#include "harness/core/table_roles.h"
 #include "renderer/vk/bandwidth.h"
 #include "reports/output_dir.h"
 #include "reports/report.h"

@@ -9,7 +9,7 @@
 
 #include "harness/core/run.h"
 #include "harness/core/sweep_configs.h"
-#include "harness/core/variant_roles.h"
+#include "harness/core/table_roles.h"
 #include "reports/output_dir.h"
 #include "settings/table.h"
 #include "reports/sweep.h"

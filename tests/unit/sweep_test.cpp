@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "harness/core/sweep_configs.h"
-#include "harness/core/variant_roles.h"
+#include "harness/core/table_roles.h"
 #include "reports/sweep.h"
 
 using cbr::harness::expandSweep;

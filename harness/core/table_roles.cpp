@@ -1,4 +1,4 @@
-#include "harness/core/variant_roles.h"
+#include "harness/core/table_roles.h"
 
 #include "renderer/variants/variants.h"
 
