@@ -27,14 +27,13 @@ Field field() {
             }};
 }
 
-// A local, not a namespace-scope constant: compare.cpp reads the table while statics are
-// initialised, in an order no file controls.
-std::vector<Row> makeTable() {
+// The order of the rows is the help's, sweep's labels' and sweep.csv's (its columns are held
+// by a test). Numbers: name, column, help, type, {}, min, max, min_open, max_open.
+
+// The rows that tune the workload and the variants.
+void addVariantRows(std::vector<Row>& rows) {
     const std::vector<const char*> kCheckerboard = {"cbr-aso", "cbr-cso", "cbr-clip"};
-    std::vector<Row> rows;
     auto add = [&](Row r) { rows.push_back(std::move(r)); };
-    // The order is the help's, sweep's labels' and sweep.csv's (its columns are held by a test).
-    // Numbers: name, column, help, type, {}, min, max, min_open, max_open.
     add({"shading-cost", "shading_cost", "fragment shading about K times more expensive, same image", Type::Int, {}, 1,
          1024, false, false, {}, {}, "cost", false, 1, Hash::Always, true, false, field<&Tunables::shading_cost>()});
     add({"exposure", "exposure", "exposure multiplier before tone mapping", Type::Real, {}, 0, kNoMax, true, true, {},
@@ -84,6 +83,11 @@ std::vector<Row> makeTable() {
          "store it) or rgba16f (8 bytes, exact on a still camera)",
          Type::Word, {"b10g11r11", "rgba16f"}, 0, 0, false, false, {}, kCheckerboard, nullptr, false, 12,
          Hash::UnlessDefault, true, false, field<&Tunables::history_format>()});
+}
+
+// The rows of how every variant is drawn and scored.
+void addRunRows(std::vector<Row>& rows) {
+    auto add = [&](Row r) { rows.push_back(std::move(r)); };
     add({"resolve-impl", "resolve_impl",
          "fused (resolve/upscale write the display image), separate (then a tonemap pass), or reference (the "
          "untiled passes the tiled resolve replaced, for image and time comparisons)",
@@ -111,6 +115,14 @@ std::vector<Row> makeTable() {
          "GPUs, cpu on lavapipe, where it is faster)",
          Type::Word, {"auto", "device", "cpu"}, 0, 0, false, false, {}, {}, nullptr, false, 0, Hash::Never, false,
          false, field<&Tunables::scorer>()});
+}
+
+// A local, not a namespace-scope constant: compare.cpp reads the table while statics are
+// initialised, in an order no file controls.
+std::vector<Row> makeTable() {
+    std::vector<Row> rows;
+    addVariantRows(rows);
+    addRunRows(rows);
     return rows;
 }
 
