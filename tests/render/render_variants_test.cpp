@@ -9,6 +9,7 @@
 #include "metrics/metrics.h"
 #include "renderer/variants/variants.h"
 #include "reports/report_data.h"
+#include "settings/table.h"
 #include "tests/render/bench_runner.h"
 
 namespace cbr::test {
@@ -99,6 +100,16 @@ TEST(VariantTable, ReferenceAndRolesAreRowsOfTheTable) {
         EXPECT_NE(v.equal_cost_with, v.name);
         EXPECT_NE(v.cost_bound, v.name);
     }
+}
+
+// The settings table sits below the renderer and names the variants its rows change: each is
+// a row of the variant table, and a row for the checkerboard settings names checkerboard rows.
+TEST(VariantTable, SettingsRowsNameVariantsOfTheTable) {
+    for (const auto& row : settings::table())
+        for (const char* v : row.variants) {
+            EXPECT_NO_THROW(variants::findVariant(v)) << row.name << " names " << v;
+            if (std::string(row.name).starts_with("cbr-")) EXPECT_TRUE(variants::isCheckerboardVariant(v)) << row.name << ": " << v;
+        }
 }
 
 TEST(RenderVariants, QualityIsScoredAgainstFull) {
