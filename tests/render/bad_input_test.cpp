@@ -124,6 +124,8 @@ std::vector<Case> cases() {
         {"bad_history_format", {"--history-format", "rgb9e5"}, {"--history-format rgb9e5", "b10g11r11", "rgba16f"}},
         {"nan_flip_ppd", {"--flip-ppd", "nan"}, {"--flip-ppd"}},
         // --debug-slowdown is parsed with the options: a bad one never reaches the run.
+        {"unknown_pipeline", {"--pipeline", "fwd"}, {"--pipeline fwd", "forward or deferred"}},
+        {"unknown_pipeline_in_list", {"--pipeline", "forward,fwd"}, {"--pipeline fwd", "forward or deferred"}},
         {"bad_debug_slowdown", {"--debug-slowdown", "opaque"}, {"--debug-slowdown opaque", "PASS=PCT"}},
         {"debug_slowdown_range", {"--debug-slowdown", "opaque=2000", "--warmup", "2"}, {"--debug-slowdown opaque=2000", "1000"}},
         {"debug_slowdown_unknown_pass", {"--debug-slowdown", "nosuchpass=10", "--warmup", "2"}, {"nosuchpass"}},
