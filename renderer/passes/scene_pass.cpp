@@ -2,8 +2,6 @@
 #include "renderer/passes/scene_pass.h"
 
 #include <algorithm>
-#include <exception>
-#include <future>
 
 #include "renderer/passes/target_clear.h"
 #include "renderer/vk/check.h"
@@ -302,38 +300,18 @@ ScenePipelines createScenePipelines(vk::Context& ctx, const gpu::GpuScene& scene
     // Without a split every draw uses the first set, writing motion when the target has it.
     Draws first = p.moving_only_motion ? Draws::Static : Draws::All;
     bool first_writes = desc.motion && !p.moving_only_motion;
-    struct Job {
-        VkPipeline* out;
-        AlphaMode mode;
-        bool double_sided, writes_motion;
-    };
-    std::vector<Job> jobs;
     for (int two = 0; two < 2; ++two) {
-        if (wanted(scene.opaque, two, first)) jobs.push_back({&p.opaque[two], AlphaMode::Opaque, bool(two), first_writes});
-        if (wanted(scene.masked, two, first)) jobs.push_back({&p.masked[two], AlphaMode::Mask, bool(two), first_writes});
+        if (wanted(scene.opaque, two, first))
+            p.opaque[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Opaque, two, first_writes);
+        if (wanted(scene.masked, two, first))
+            p.masked[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Mask, two, first_writes);
         if (wanted(scene.blend, two, Draws::All) && !desc.analysis && !desc.gbuffer)
-            jobs.push_back({&p.blend[two], AlphaMode::Blend, bool(two), false});
+            p.blend[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Blend, two, false);
         if (!p.moving_only_motion) continue;
-        if (wanted(scene.opaque, two, Draws::Moving)) jobs.push_back({&p.opaque_moving[two], AlphaMode::Opaque, bool(two), true});
-        if (wanted(scene.masked, two, Draws::Moving)) jobs.push_back({&p.masked_moving[two], AlphaMode::Mask, bool(two), true});
-    }
-    // Compiled side by side: a driver compiles each pipeline on the calling thread, and a
-    // machine whose shader cache is empty (a CI container) spent seconds here one by one.
-    // The pipelines are the same whatever the order (the cache is internally synchronised).
-    std::vector<std::future<VkPipeline>> compiled;
-    for (const Job& j : jobs)
-        compiled.push_back(std::async(std::launch::async, [&ctx, &p, &desc, j] {
-            return createScenePipeline(ctx, p.layout, desc, j.mode, j.double_sided, j.writes_motion);
-        }));
-    std::exception_ptr failed;
-    for (size_t i = 0; i < jobs.size(); ++i) try {
-            *jobs[i].out = compiled[i].get();
-        } catch (...) {
-            if (!failed) failed = std::current_exception();  // the others are still waited for
-        }
-    if (failed) {
-        destroyScenePipelines(ctx, p);
-        std::rethrow_exception(failed);
+        if (wanted(scene.opaque, two, Draws::Moving))
+            p.opaque_moving[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Opaque, two, true);
+        if (wanted(scene.masked, two, Draws::Moving))
+            p.masked_moving[two] = createScenePipeline(ctx, p.layout, desc, AlphaMode::Mask, two, true);
     }
     return p;
 }
