@@ -12,6 +12,9 @@
 
 namespace cbr::reports {
 
+// Which columns hold numbers (and are therefore checked): a predicate on the name.
+using NumericColumn = std::function<bool(const std::string&)>;
+
 // A parsed CSV with a header row. Rows keep the file line they started on for messages.
 // The cells live in one buffer (a frames.csv of a long run is hundreds of thousands of rows:
 // a string per cell would be a few times the file).
@@ -36,15 +39,11 @@ struct CsvData {
     void endRow(int line);
 
 private:
-    friend CsvData readCsv(const std::filesystem::path&, const std::function<bool(const std::string&)>&,
-                           const std::vector<std::string>&);
+    friend CsvData readCsv(const std::filesystem::path&, const NumericColumn&, const std::vector<std::string>&);
     std::string cells_;          // every cell's text, one after another (reserved to the file's size)
     std::deque<uint32_t> ends_;  // where each cell ends in cells_, header.size() per row (no regrowth copies)
     size_t pending_ = 0;          // cells of the row being added
 };
-
-// Which columns hold numbers (and are therefore checked): a predicate on the name.
-using NumericColumn = std::function<bool(const std::string&)>;
 
 // The columns the report reads as numbers: gpu_ms*, psnr*, ssim*, eci*, px_*, ...
 bool isReportNumericColumn(const std::string& name);
