@@ -73,7 +73,7 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
         ->each([&o](const std::string&) { o.frames_set = true; });
     cmd->add_option("--repeat", o.repeat, "repetitions of the whole flythrough, variants interleaved")
         ->capture_default_str();
-    cmd->add_option("--warmup", o.warmup, "untimed warm-up frames per variant and repetition")->capture_default_str();
+    cmd->add_option("--warmup", o.warmup, "untimed warm-up frames per variant and repetition, at least; more until the frame time is steady (0: none)")->capture_default_str();
     cmd->add_option("--device", o.device, "device index or name substring (default: lavapipe, else the first)");
     cmd->add_flag("--validate", o.validate, "enable the Khronos validation layer and count its messages");
     cmd->add_flag("--save-frames", o.save_frames, "save display images as PNG (the scored quality pass)");

@@ -295,8 +295,9 @@ std::string healthTable(const RunData& d) {
     const auto* line = jsonAt(*health, "/line");
     Rows rows = {{"verdict", line && line->is_string() && !line->get<std::string>().empty() ? line->get<std::string>()
                                                                                             : std::string("quiet: nothing disturbed the timed frames")}};
-    if (const auto* variants = jsonAt(*health, "/variants"); variants && variants->is_object())
-        for (const auto& [name, v] : variants->items()) {
+    if (const auto* variants = jsonAt(*health, "/variants"); variants && variants->is_array())
+        for (const auto& v : *variants) {
+            const std::string name = v.value("name", std::string());
             std::string warm;
             if (const auto* frames = jsonAt(v, "/warm_up_frames"); frames && frames->is_array())
                 for (const auto& f : *frames) warm += (warm.empty() ? "" : ", ") + jsonText(&f);

@@ -29,8 +29,8 @@ struct HealthRule {
     // (the repetition level), and a run of `drift_span` frames (at least 3, a tenth of the
     // path) against the same poses in the others. Unsteady beyond the larger of the floor
     // and `drift_noise_k` times the frame-level noise (the residuals' robust spread).
-    double level_floor = 0.04;
-    double span_floor = 0.10;
+    double level_floor = 0.02;
+    double span_floor = 0.05;
     double drift_noise_k = 4.0;
     // The machine: other processes' CPU load in cores during a timed pass, on a CPU device
     // (lavapipe), beyond which the pass ran on a busy machine.

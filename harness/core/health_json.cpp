@@ -24,11 +24,13 @@ json ruleJson(const HealthRule& r) {
 }
 
 json driftJson(const DriftResult& d) {
-    json j = {{"tested", d.tested}, {"unsteady", d.unsteady}};
-    if (!d.tested) {
-        j["why_not"] = d.why_not;
-        return j;
-    }
+    // Every key always, null where not tested (one repetition), so the schema is one.
+    json j = {{"tested", d.tested}, {"unsteady", d.unsteady}, {"why_not", d.tested ? json(nullptr) : json(d.why_not)},
+              {"noise", nullptr}, {"repetition_ratios", json::array()}, {"level_limit", nullptr},
+              {"span_limit", nullptr},
+              {"largest", {{"repetition", nullptr}, {"first_frame", nullptr}, {"last_frame", nullptr}, {"ratio", nullptr},
+                           {"whole_repetition", nullptr}}}};
+    if (!d.tested) return j;
     j["noise"] = d.noise;
     j["repetition_ratios"] = d.levels;
     j["level_limit"] = d.level_limit;
@@ -50,18 +52,22 @@ json machineJson(const MachineHealth& m) {
                 {"mhz_min", optionalNumber(m.cpu_mhz_min)},
                 {"mhz_max", optionalNumber(m.cpu_mhz_max)},
                 {"mhz_after", optionalNumber(m.cpu_mhz_after)}};
-    json gpu = {{"nvml", m.nvml}, {"note", m.nvml_note}};
-    if (m.nvml) {
-        gpu["sm_mhz"] = {{"before", optionalNumber(m.sm_mhz_before)}, {"min", optionalNumber(m.sm_mhz_min)},
-                         {"median", optionalNumber(m.sm_mhz_median)}, {"max", optionalNumber(m.sm_mhz_max)},
-                         {"after", optionalNumber(m.sm_mhz_after)},   {"max_rated", optionalNumber(m.sm_mhz_max_rated)}};
-        gpu["mem_mhz"] = {{"min", optionalNumber(m.mem_mhz_min)}, {"max", optionalNumber(m.mem_mhz_max)}};
-        gpu["temperature_c_max"] = optionalNumber(m.temperature_c_max);
-        gpu["power_w_max"] = optionalNumber(m.power_w_max);
-        gpu["throttle_reasons"] = m.throttle_reasons;
-        gpu["throttled"] = m.throttled;
-        gpu["clock_left_band"] = m.clock_left_band;
-    }
+    // Every key always, null without NVML.
+    json gpu = {{"nvml", m.nvml},
+                {"note", m.nvml_note},
+                {"sm_mhz",
+                 {{"before", optionalNumber(m.sm_mhz_before)},
+                  {"min", optionalNumber(m.sm_mhz_min)},
+                  {"median", optionalNumber(m.sm_mhz_median)},
+                  {"max", optionalNumber(m.sm_mhz_max)},
+                  {"after", optionalNumber(m.sm_mhz_after)},
+                  {"max_rated", optionalNumber(m.sm_mhz_max_rated)}}},
+                {"mem_mhz", {{"min", optionalNumber(m.mem_mhz_min)}, {"max", optionalNumber(m.mem_mhz_max)}}},
+                {"temperature_c_max", optionalNumber(m.temperature_c_max)},
+                {"power_w_max", optionalNumber(m.power_w_max)},
+                {"throttle_reasons", m.throttle_reasons},
+                {"throttled", m.throttled},
+                {"clock_left_band", m.clock_left_band}};
     return {{"cpu", cpu},
             {"gpu", gpu},
             {"timestamp_deviation_ns", optionalNumber(m.timestamp_deviation_ns)},
@@ -73,16 +79,17 @@ json machineJson(const MachineHealth& m) {
 
 json healthJson(const RunResults& r) {
     const RunHealth& h = r.health;
-    json configs = json::object();
+    json configs = json::array();  // in run order, as run.json variants (a sweep's labels hold '=')
     for (size_t i = 0; i < h.configs.size() && i < r.variants.size(); ++i) {
         const ConfigHealth& c = h.configs[i];
         std::vector<bool> capped(c.warm_up_capped.begin(), c.warm_up_capped.end());
-        configs[r.variants[i].name] = {{"warm_up_frames", c.warm_up_frames},
+        configs.push_back({{"name", r.variants[i].name},
+                                       {"warm_up_frames", c.warm_up_frames},
                                        {"warm_up_capped", capped},
                                        {"drift", driftJson(c.drift)},
                                        {"other_cores_max", c.max_other_cores},
                                        {"unsteady", c.unsteady},
-                                       {"note", c.note}};
+                                       {"note", c.note}});
     }
     return {{"quiet", h.line.empty()},
             {"busy", h.busy},

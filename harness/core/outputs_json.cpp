@@ -122,7 +122,7 @@ json settingsJson(const RunContext& rc) {
             {"frames", r.frames},
             {"repeat", r.repeats},
             {"warmup_frames", rc.options.warmup},
-            {"warmup_rule", "fixed count of the path's first frames per variant per repetition"},
+            {"warmup_rule", "at least warmup_frames of the path's first pose per variant and timed repetition, then until steady (health.rule; frames used: health.variants)"},
             {"variant_order", r.order},
             {"drr_control",
              {{"min_scale", s.drr_control.min_scale},

@@ -23,6 +23,12 @@ struct BenchResult {
     std::string err;
 };
 
+// A variant's summary status when it rendered every frame: `ok`, or `unsteady` when the
+// machine disturbed its timing (ctest runs tests side by side on the same cores, which a run
+// on lavapipe sees as a busy machine). A test of rendering asks this; a test of health
+// asks the status itself.
+inline bool rendered(const std::string& status) { return status == "ok" || status == "unsteady"; }
+
 inline std::string slurp(const std::filesystem::path& p) {
     std::ifstream in(p, std::ios::binary);
     std::stringstream ss;

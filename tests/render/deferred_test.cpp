@@ -55,7 +55,7 @@ TEST(Deferred, EveryVariantValidatesAndAtriumRunsItsTransparentPasses) {
                                 "--variants", allVariants(), "--pipeline", "deferred", "--save-frames"});
     ASSERT_EQ(r.result.exit_code, 0) << r.result.err;
     for (const auto& v : r.run["variants"]) {
-        EXPECT_EQ(v["status"], "ok") << v.dump();
+        EXPECT_TRUE(rendered(v["status"].get<std::string>())) << v.dump();
         EXPECT_EQ(v["pipeline"], "deferred");
         EXPECT_TRUE(ran(v, "gbuffer")) << v["name"];
         EXPECT_TRUE(ran(v, "lighting")) << v["name"];
