@@ -130,6 +130,7 @@ WindowLoad windowLoad(const std::vector<MachineSample>& samples, const TimedWind
         load.own_cores = (samples[b].own_cpu_s - samples[a].own_cpu_s) / dt;
         const double busy = (samples[b].cpu_busy_s - samples[a].cpu_busy_s) / dt;
         load.other_cores = std::max(0.0, busy - load.own_cores);
+        load.steal_cores = std::max(0.0, (samples[b].cpu_steal_s - samples[a].cpu_steal_s) / dt);
     }
     for (size_t i = a; i <= b; ++i) {
         const GpuReading& g = samples[i].gpu;

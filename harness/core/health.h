@@ -68,7 +68,8 @@ DriftResult analyseDrift(const VariantSamples& c, const HealthRule& rule = healt
 // A reading of the machine, `t` seconds after the sampler started.
 struct MachineSample {
     double t = 0;
-    double cpu_busy_s = 0, cpu_total_s = 0;  // the whole machine, cumulative (all cores)
+    double cpu_busy_s = 0, cpu_total_s = 0;  // the whole machine, cumulative (all cores), steal left out
+    double cpu_steal_s = 0;                  // time the hypervisor ran other machines on these cores
     double own_cpu_s = 0;                    // this process, cumulative
     std::optional<double> cpu_mhz;           // mean over the cores, where the kernel says
     GpuReading gpu;
@@ -82,7 +83,7 @@ struct TimedWindow {
 };
 
 struct WindowLoad {
-    double own_cores = 0, other_cores = 0;
+    double own_cores = 0, other_cores = 0, steal_cores = 0;
     std::optional<double> sm_min_mhz, sm_max_mhz;
     bool slowdown = false;  // a throttle reason that slows a busy GPU
 };
@@ -109,6 +110,7 @@ struct MachineHealth {
     int cores = 0;
     double own_cores = 0, other_cores = 0, other_cores_max = 0;  // over the timed passes
     double own_share = 0;                                        // own_cores / cores
+    double steal_cores = 0;  // the hypervisor's other machines on these cores (/proc/stat steal)
     std::optional<double> cpu_mhz_before, cpu_mhz_min, cpu_mhz_max, cpu_mhz_after;
     bool nvml = false;
     std::string nvml_note;  // why not, or the GPU's NVML name

@@ -48,6 +48,7 @@ json machineJson(const MachineHealth& m) {
                 {"own_share", m.own_share},
                 {"other_cores", m.other_cores},
                 {"other_cores_max", m.other_cores_max},
+                {"steal_cores", m.steal_cores},
                 {"mhz_before", optionalNumber(m.cpu_mhz_before)},
                 {"mhz_min", optionalNumber(m.cpu_mhz_min)},
                 {"mhz_max", optionalNumber(m.cpu_mhz_max)},

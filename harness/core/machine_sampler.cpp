@@ -12,13 +12,14 @@ namespace cbr::harness {
 namespace {
 
 // The machine's busy and total CPU seconds over all cores (/proc/stat's first line).
-bool machineCpu(double tick_s, double& busy, double& total) {
+bool machineCpu(double tick_s, double& busy, double& total, double& steal_s) {
     std::ifstream f("/proc/stat");
     std::string cpu;
     unsigned long long user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0, steal = 0;
     if (!(f >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal) || cpu != "cpu") return false;
-    busy = double(user + nice + system + irq + softirq + steal) * tick_s;
-    total = busy + double(idle + iowait) * tick_s;
+    busy = double(user + nice + system + irq + softirq) * tick_s;
+    steal_s = double(steal) * tick_s;
+    total = busy + steal_s + double(idle + iowait) * tick_s;
     return true;
 }
 
@@ -83,7 +84,7 @@ double MachineSampler::now() const {
 MachineSample MachineSampler::read() const {
     MachineSample s;
     s.t = now();
-    machineCpu(tick_s_, s.cpu_busy_s, s.cpu_total_s);
+    machineCpu(tick_s_, s.cpu_busy_s, s.cpu_total_s, s.cpu_steal_s);
     s.own_cpu_s = ownCpu(tick_s_);
     s.cpu_mhz = cpuMhz(cores_);
     if (nvml_ && nvml_->available()) s.gpu = nvml_->read();

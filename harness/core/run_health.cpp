@@ -75,6 +75,7 @@ void machineState(RunState& s, const std::vector<MachineSample>& samples, const 
     const WindowLoad load = windowLoad(samples, all);
     m.own_cores = load.own_cores;
     m.other_cores = load.other_cores;
+    m.steal_cores = load.steal_cores;
     m.own_share = load.own_cores / m.cores;
     m.cpu_mhz_before = samples.front().cpu_mhz;
     m.cpu_mhz_after = samples.back().cpu_mhz;
@@ -94,7 +95,8 @@ void configHealth(RunState& s, const std::vector<MachineSample>& samples, const 
         if (const VariantSamples* samples_of = s.results.digest.find(vr.name)) c.drift = analyseDrift(*samples_of, rule);
         for (const auto& w : h.windows) {
             if (w.config != vr.name) continue;
-            const double other = windowLoad(samples, w).other_cores;
+            const WindowLoad wl = windowLoad(samples, w);
+            const double other = wl.other_cores + wl.steal_cores;  // both take the renderer's cores
             c.max_other_cores = std::max(c.max_other_cores, other);
             if (cpu_device && other > rule.busy_other_cores && c.busy_repeat < 0) c.busy_repeat = w.repeat;
         }
