@@ -249,6 +249,10 @@ std::string reportHtml(const std::filesystem::path& run_dir) {
             " repetitions</div>";
     if (const auto* note = jsonAt(d.run, "/device/timing_note"); note && note->is_string())
         html += "<p class=\"callout\"><b>Timing note:</b> " + esc(note->get<std::string>()) + "</p>";
+    // A disturbed run says so before any figure (run.json health.line; a quiet run: nothing).
+    if (const auto* line = jsonAt(d.run, "/health/line"); line && line->is_string() && !line->get<std::string>().empty())
+        html += "<p class=\"callout\"><b>Measurement:</b> " + esc(line->get<std::string>()) +
+                " (<a href=\"#provenance\">measurement health</a>)</p>";
     html += "<nav><a href=\"#summary\">summary</a><a href=\"#pareto\">error vs time</a><a href=\"#time\">GPU time</a>"
             "<a href=\"#quality\">quality</a><a href=\"#classes\">pixel classes</a><a href=\"#images\">worst frames</a>"
             "<a href=\"#passes\">passes</a><a href=\"#provenance\">provenance</a></nav>";

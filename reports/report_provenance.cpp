@@ -287,11 +287,63 @@ std::string memoryTable(const RunData& d) {
     return kvTable("Memory (MiB)", rows);
 }
 
+// Whether the machine held still while frames were timed (run.json health): warm-up frames
+// per variant, drift against the same poses, other processes' load, the GPU's clocks.
+std::string healthTable(const RunData& d) {
+    const auto* health = jsonAt(d.run, "/health");
+    if (!health || !health->is_object()) return {};
+    const auto* line = jsonAt(*health, "/line");
+    Rows rows = {{"verdict", line && line->is_string() && !line->get<std::string>().empty() ? line->get<std::string>()
+                                                                                            : std::string("quiet: nothing disturbed the timed frames")}};
+    if (const auto* variants = jsonAt(*health, "/variants"); variants && variants->is_object())
+        for (const auto& [name, v] : variants->items()) {
+            std::string warm;
+            if (const auto* frames = jsonAt(v, "/warm_up_frames"); frames && frames->is_array())
+                for (const auto& f : *frames) warm += (warm.empty() ? "" : ", ") + jsonText(&f);
+            const auto* noise = jsonAt(v, "/drift/noise");
+            std::string text = "warm-up frames " + (warm.empty() ? std::string(kDash) : warm);
+            if (noise && noise->is_number()) text += "; frame noise " + fmt(noise->get<double>() * 100, 2) + "%";
+            const auto* note = jsonAt(v, "/note");
+            if (note && note->is_string() && !note->get<std::string>().empty()) text += "; " + note->get<std::string>();
+            rows.push_back({name, text});
+        }
+    const std::string cpu = "/machine/cpu/";
+    rows.push_back({"CPU: cores used by cbrbench / others",
+                    numberAt(d, "/health" + cpu + "own_cores", 1, 2) + " / " + numberAt(d, "/health" + cpu + "other_cores", 1, 2) +
+                        " of " + at(d, "/health" + cpu + "cores") + " (others at most " +
+                        numberAt(d, "/health" + cpu + "other_cores_max", 1, 2) + ")"});
+    rows.push_back({"CPU: MHz before / during / after", numberAt(d, "/health" + cpu + "mhz_before", 1, 0) + " / " +
+                                                            numberAt(d, "/health" + cpu + "mhz_min", 1, 0) + "-" +
+                                                            numberAt(d, "/health" + cpu + "mhz_max", 1, 0) + " / " +
+                                                            numberAt(d, "/health" + cpu + "mhz_after", 1, 0)});
+    const std::string gpu = "/health/machine/gpu/";
+    const auto* nvml = jsonAt(d.run, gpu + "nvml");
+    if (nvml && nvml->is_boolean() && nvml->get<bool>()) {
+        rows.push_back({"GPU: SM MHz before / during / after",
+                        numberAt(d, gpu + "sm_mhz/before", 1, 0) + " / " + numberAt(d, gpu + "sm_mhz/min", 1, 0) + "-" +
+                            numberAt(d, gpu + "sm_mhz/max", 1, 0) + " (median " + numberAt(d, gpu + "sm_mhz/median", 1, 0) +
+                            ") / " + numberAt(d, gpu + "sm_mhz/after", 1, 0)});
+        rows.push_back({"GPU: memory MHz, temperature, power", numberAt(d, gpu + "mem_mhz/max", 1, 0) + " MHz, at most " +
+                                                                   numberAt(d, gpu + "temperature_c_max", 1, 0) + " C, " +
+                                                                   numberAt(d, gpu + "power_w_max", 1, 0) + " W"});
+        std::string reasons;
+        if (const auto* r = jsonAt(d.run, gpu + "throttle_reasons"); r && r->is_array())
+            for (const auto& x : *r) reasons += (reasons.empty() ? "" : ", ") + jsonText(&x);
+        rows.push_back({"GPU: throttle reasons while timed", reasons.empty() ? std::string("none") : reasons});
+    } else {
+        rows.push_back({"GPU (NVML)", "not available: " + at(d, gpu + "note")});
+    }
+    const auto* dev = jsonAt(d.run, "/health/machine/timestamp_deviation_ns");
+    rows.push_back({"calibrated timestamps: max deviation",
+                    dev && dev->is_number() ? fmt(dev->get<double>(), 0) + " ns" : std::string("not available on this device")});
+    return kvTable("Measurement health", rows);
+}
+
 }  // namespace
 
 std::string provenanceSection(const RunData& d) {
     return "<section id=\"provenance\"><h2>Provenance and settings</h2><div class=\"kv-grid\">" + runTables(d) +
-           contentTables(d) + wallTable(d) + memoryTable(d) + "</div>" + validationMessages(d) +
+           contentTables(d) + healthTable(d) + wallTable(d) + memoryTable(d) + "</div>" + validationMessages(d) +
            checkerboardTables(d) + alignmentTable(d) + metricConventions(d) + "</section>";
 }
 

@@ -182,6 +182,8 @@ void printSummary(std::ostream& out, const std::filesystem::path& dir, const Run
     if (rc.ctx.validation_enabled)
         out << "validation messages: " << val.errors.load() + val.warnings.load() << " (" << val.errors.load()
             << " errors, " << val.warnings.load() << " warnings)\n";
+    // A quiet run says nothing extra; a disturbed one says so in one line (run.json health).
+    if (!rc.results.health.line.empty()) out << "cbrbench: " << rc.results.health.line << "\n";
     out << "report:  " << (dir / "report.html").string() << "\n";
     out << "results: " << dir.string() << "/ (summary.csv, frames.csv, run.json"
         << (rc.options.save_frames ? ", frames/" : "") << ")\n";

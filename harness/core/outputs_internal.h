@@ -20,6 +20,8 @@ namespace cbr::harness {
 // is written from the run's spill (frame_rows.h).
 size_t writeSummaryCsv(const std::filesystem::path& file, const RunResults& r,
                        const std::vector<VariantSummary>& summaries);
+// run.json `health` (health_json.cpp).
+nlohmann::json healthJson(const RunResults& r);
 void writeRunJson(const std::filesystem::path& file, const RunContext& rc, const std::vector<VariantSummary>& summaries,
                   size_t nan_cells);
 

@@ -361,6 +361,7 @@ void writeRunJson(const std::filesystem::path& file, const RunContext& rc, const
     j["validation"] = validationJson(rc.ctx);
     j["files"] = fileList(rc);
     j["worst"] = worstJson(r.worst);
+    j["health"] = healthJson(r);
     if (rc.wall) j["wall"] = wallJson(*rc.wall);
     if (!r.memory.after.empty()) j["memory"] = memoryJson(r.memory);
     reports::writeTextAtomically(file, j.dump(2) + "\n");

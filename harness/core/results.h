@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/core/health.h"
 #include "harness/core/scene_load.h"
 #include "harness/core/sweep_configs.h"
 #include "renderer/settings.h"
@@ -102,7 +103,7 @@ struct VariantRun {
     std::string baseline;  // the reference configuration its speedups are paired with (run_loop sets it)
     std::vector<SweepSetting> settings;  // swept settings (sweep only)
     std::optional<AlignmentCheck> alignment;
-    std::string status = "ok";
+    std::string status = "ok";  // ok | unsteady | failed | skipped
     std::string note;
     std::vector<std::string> passes_ran;
     std::vector<std::pair<std::string, std::string>> left_out;  // (pass, reason)
@@ -144,6 +145,7 @@ struct RunResults {
     std::string scorer = "cpu";  // where the quality frames were scored: device | cpu
     std::string scorer_note;     // why, when --scorer auto chose, or the device could not
     MemoryFigures memory;
+    RunHealth health;  // warm-up, drift and the machine while frames were timed (run.json health)
 };
 
 }  // namespace cbr::harness

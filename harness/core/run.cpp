@@ -150,6 +150,7 @@ int runBenchmark(const RunOptions& options) {
     renderQualityFrames(s);
     noteMemory(s.ctx, "quality_pass", s.results.memory, s.wall);
     renderRepetitions(s);
+    assessHealth(s);
     s.spill.close();  // every timed row is in it: frames.csv is written from it
     noteMemory(s.ctx, "timed_frames", s.results.memory, s.wall);
     scoreFrames(s);

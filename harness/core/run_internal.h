@@ -9,6 +9,7 @@
 #include "camera_paths/path.h"
 #include "harness/core/builtin_context.h"
 #include "harness/core/frame_rows.h"
+#include "harness/core/machine_sampler.h"
 #include "harness/core/options.h"
 #include "harness/core/progress.h"
 #include "harness/core/quality.h"
@@ -91,6 +92,9 @@ struct RunState {
     // One renderer per variant for the whole run: pipelines and targets are built once.
     std::vector<std::unique_ptr<render::Renderer>> renderers;
     std::unique_ptr<render::Renderer> ssaa_reference;  // --reference ssaa, during the quality pass
+    // The machine while frames are timed (CPU load, NVML on NVIDIA): started and stopped
+    // around the repetitions.
+    MachineSampler sampler;
 };
 
 // The `rep` of a ConfigPass that renders the untimed, scored quality frames.
@@ -104,6 +108,9 @@ void chooseScorer(RunState& s);
 void calibrateSlowdown(RunState& s);
 void renderQualityFrames(RunState& s);
 void renderRepetitions(RunState& s);
+// Drift, warm-up and the machine's state into results.health; unsteady configurations get
+// that status (run_health.cpp).
+void assessHealth(RunState& s);
 void scoreFrames(RunState& s);
 
 }  // namespace cbr::harness

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <thread>
 
 #include "harness/core/interrupt.h"
@@ -56,7 +57,9 @@ RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene
                int(prepared.configs.size() * prepared.poses.size()) * (prepared.options.repeat + 1) +
                    (prepared.options.tune.reference == settings::Reference::Ssaa ? int(prepared.poses.size()) : 0),
                !prepared.options.control.silent),
-      renderers(prepared.configs.size()) {}
+      renderers(prepared.configs.size()),
+      sampler(context.description.is_lavapipe ? std::string() : nvmlUuid(context.description.uuid),
+              context.description.is_lavapipe ? 0.1 : 0.05) {}
 
 namespace {
 
@@ -94,10 +97,45 @@ void untimedFrames(const Prepared& p, render::Renderer& renderer, int count, boo
     renderer.finish();
 }
 
-// Warm-up: the path's first frames, untimed, excluded (timing.md).
+// Warm-up of the quality pass: the path's first frames, untimed (nothing is timed there).
 void warmUp(RunState& s, render::Renderer& renderer) {
     WallAccount::Scope scope(s.wall, WallPart::WarmUp);
     untimedFrames(s.p, renderer, s.options.warmup, true);
+}
+
+// Warm-up before a timed repetition, until steady (health.h): at least --warmup frames of
+// the path's first pose (each the same work, its history reset), then more until the frame
+// time stops changing or the cap is reached. A GPU that idled while the CPU scored ramps
+// its clocks up here instead of in the first timed frames. --warmup 0: none.
+void steadyWarmUp(RunState& s, render::Renderer& renderer, ConfigHealth& health) {
+    WallAccount::Scope scope(s.wall, WallPart::WarmUp);
+    const HealthRule& rule = healthRule();
+    const int minimum = s.options.warmup;
+    std::vector<double> times;
+    auto take = [&](std::vector<render::FrameResult> done) {
+        for (const auto& fr : done) times.push_back(fr.gpu_ms);
+    };
+    int frames = 0;
+    bool capped = false;
+    std::optional<Stopwatch> beyond;  // time spent beyond the minimum
+    while (frames < minimum || (minimum > 0 && !warmUpSteady(times, rule))) {
+        if (frames >= minimum) {
+            if (!beyond) beyond.emplace();
+            if (frames - minimum >= rule.warm_cap_frames || beyond->seconds() > rule.warm_cap_seconds) {
+                capped = true;
+                break;
+            }
+        }
+        render::FrameRequest req = request(s.p, 0, false);
+        req.index = -1;
+        req.history_reset = true;
+        throwIfInterrupted();
+        take(renderer.submit(req));
+        ++frames;
+    }
+    take(renderer.finish());
+    health.warm_up_frames.push_back(frames);
+    health.warm_up_capped.push_back(capped);
 }
 
 // Saves a display image (and a class map) as frames/<name>_<frame>.png on a worker.
@@ -192,12 +230,15 @@ public:
     ConfigPass(RunState& s, int rep, size_t vi)
         : s_(s), rep_(rep), vi_(vi), vr_(s.results.variants[vi]), done_(s.p.poses.size(), false) {}
 
-    // A timed repetition: warm-up, then the path's frames in order.
+    // A timed repetition: warm-up until steady, then the path's frames in order; the
+    // window they took, for the machine's state (health.h).
     void run() {
         begin();
         Stopwatch watch;
+        const double t0 = s_.sampler.now();
         for (size_t i = 0; i < s_.p.poses.size(); ++i) frame(i);
         end();
+        s_.results.health.windows.push_back({vr_.name, rep_, t0, s_.sampler.now()});
         if (timed()) s_.wall.add(WallPart::TimedFrames, watch.seconds());
     }
 
@@ -205,7 +246,10 @@ public:
     // on its own, a failure ending this configuration's pass only.
     void begin() {
         if (vr_.status != "ok") return failRemaining();
-        guarded([&] { warmUp(s_, *s_.renderers[vi_]); });
+        guarded([&] {
+            if (timed()) steadyWarmUp(s_, *s_.renderers[vi_], s_.results.health.configs[vi_]);
+            else warmUp(s_, *s_.renderers[vi_]);
+        });
     }
     void frame(size_t i) {
         if (vr_.status != "ok") return;
@@ -509,10 +553,14 @@ void renderQualityFrames(RunState& s) {
     s.workers.wait();
 }
 
-// The repetitions, variants interleaved within each so drift touches all alike.
+// The repetitions, variants interleaved within each so drift touches all alike; the
+// machine sampled throughout.
 void renderRepetitions(RunState& s) {
+    s.results.health.configs.resize(s.p.configs.size());
+    s.sampler.start();
     for (int rep = 0; rep < s.options.repeat; ++rep)
         for (size_t vi = 0; vi < s.p.configs.size(); ++vi) ConfigPass(s, rep, vi).run();
+    s.sampler.stop();
 }
 
 // Waits for the scores, writes the worst frames, and checks each variant's middle frame

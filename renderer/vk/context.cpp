@@ -102,7 +102,8 @@ std::string driverIdName(VkDriverId id) {
 }
 
 DeviceDescription describe(VkPhysicalDevice physical, int index) {
-    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceIDProperties ids{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES};
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, &ids};
     VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
     vkGetPhysicalDeviceProperties2(physical, &props);
     const auto& p = props.properties;
@@ -117,6 +118,7 @@ DeviceDescription describe(VkPhysicalDevice physical, int index) {
     d.device_type = deviceTypeName(p.deviceType);
     d.vendor_id = p.vendorID;
     d.device_id = p.deviceID;
+    std::memcpy(d.uuid, ids.deviceUUID, sizeof d.uuid);
     d.is_lavapipe = driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE || d.name.find("llvmpipe") != std::string::npos;
     return d;
 }
@@ -259,6 +261,20 @@ bool hasExtension(VkPhysicalDevice physical, const char* name) {
                        [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
+// The device's timestamps and CLOCK_MONOTONIC among its calibrateable time domains.
+bool calibratableDomains(VkInstance instance, VkPhysicalDevice physical) {
+    if (!hasExtension(physical, VK_EXT_CALIBRATED_TIMESTAMPS_EXTENSION_NAME)) return false;
+    auto get = reinterpret_cast<PFN_vkGetPhysicalDeviceCalibrateableTimeDomainsEXT>(
+        vkGetInstanceProcAddr(instance, "vkGetPhysicalDeviceCalibrateableTimeDomainsEXT"));
+    if (!get) return false;
+    uint32_t n = 0;
+    if (get(physical, &n, nullptr) != VK_SUCCESS) return false;
+    std::vector<VkTimeDomainEXT> domains(n);
+    if (get(physical, &n, domains.data()) != VK_SUCCESS) return false;
+    auto has = [&](VkTimeDomainEXT d) { return std::find(domains.begin(), domains.end(), d) != domains.end(); };
+    return has(VK_TIME_DOMAIN_DEVICE_EXT) && has(VK_TIME_DOMAIN_CLOCK_MONOTONIC_EXT);
+}
+
 // Enables a device extension when the device has it.
 bool enableIfPresent(VkPhysicalDevice physical, const char* name, std::vector<const char*>& extensions) {
     if (!hasExtension(physical, name)) return false;
@@ -350,6 +366,8 @@ Context::Context(const ContextOptions& options) {
     std::vector<const char*> extensions;
     caps.sample_locations_2x = enableSampleLocations2x(physical, extensions);
     caps.memory_budget = enableIfPresent(physical, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME, extensions);
+    caps.calibrated_timestamps = calibratableDomains(instance, physical) &&
+                                 enableIfPresent(physical, VK_EXT_CALIBRATED_TIMESTAMPS_EXTENSION_NAME, extensions);
 
     float priority = 1.0f;
     VkDeviceQueueCreateInfo qinfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -372,6 +390,22 @@ Context::Context(const ContextOptions& options) {
     // renderer per configuration), each compiled once.
     VkPipelineCacheCreateInfo cinfo{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
     VK_CHECK(vkCreatePipelineCache(device, &cinfo, nullptr, &pipeline_cache));
+}
+
+std::optional<double> timestampDeviationNs(const Context& ctx, int calls) {
+    if (!ctx.caps.calibrated_timestamps) return std::nullopt;
+    auto get = reinterpret_cast<PFN_vkGetCalibratedTimestampsEXT>(vkGetDeviceProcAddr(ctx.device, "vkGetCalibratedTimestampsEXT"));
+    if (!get) return std::nullopt;
+    VkCalibratedTimestampInfoEXT info[2] = {{VK_STRUCTURE_TYPE_CALIBRATED_TIMESTAMP_INFO_EXT, nullptr, VK_TIME_DOMAIN_DEVICE_EXT},
+                                            {VK_STRUCTURE_TYPE_CALIBRATED_TIMESTAMP_INFO_EXT, nullptr, VK_TIME_DOMAIN_CLOCK_MONOTONIC_EXT}};
+    double worst = -1;
+    for (int i = 0; i < calls; ++i) {
+        uint64_t stamps[2] = {}, deviation = 0;
+        if (get(ctx.device, 2, info, stamps, &deviation) != VK_SUCCESS) continue;
+        worst = std::max(worst, double(deviation));
+    }
+    if (worst < 0) return std::nullopt;
+    return worst;
 }
 
 Context::~Context() {

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@ struct DeviceDescription {
     uint32_t vendor_id = 0;
     uint32_t device_id = 0;
     bool is_lavapipe = false;
+    uint8_t uuid[16] = {};       // VkPhysicalDeviceIDProperties::deviceUUID (NVML names the same GPU by it)
 };
 
 struct ContextOptions {
@@ -47,6 +49,7 @@ struct DeviceCaps {
     // clear of colour targets needs (passes/target_clear.h).
     bool compute_clear = false;
     bool memory_budget = false;  // VK_EXT_memory_budget enabled: the driver's per-heap usage and budget
+    bool calibrated_timestamps = false;  // VK_EXT_calibrated_timestamps enabled, with device and monotonic clocks
 };
 
 struct ValidationCounts {
@@ -101,6 +104,11 @@ private:
     void endImmediate(VkCommandBuffer cmd);
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
 };
+
+// VK_EXT_calibrated_timestamps: the largest maxDeviation the driver reports over `calls`
+// calibrations of the device's timestamps against CLOCK_MONOTONIC, in nanoseconds; none
+// where the device lacks the extension.
+std::optional<double> timestampDeviationNs(const Context& ctx, int calls = 16);
 
 // Every physical device, in the loader's order (the index `--device` accepts).
 std::vector<DeviceDescription> listDevices();
