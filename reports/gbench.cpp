@@ -73,7 +73,8 @@ nlohmann::json gbenchJson(const RunData& d) {
         const std::string name = prefix + v;
         nlohmann::json counters = nlohmann::json::object();
         for (auto [counter, column] : {std::pair{"psnr_db", "psnr_db_mean"}, {"ssim", "ssim_mean"}, {"flip", "flip_mean"},
-                                       {"eci", "eci"}, {"speedup_vs_full", "speedup_vs_full"}}) {
+                                       {"eci", "eci"}, {"speedup_vs_full", "speedup_vs_full"},
+                                       {"speedup_ci_low", "speedup_ci_low"}, {"speedup_ci_high", "speedup_ci_high"}}) {
             auto x = summaryNum(d, v, column);
             if (x && std::isfinite(*x)) counters[counter] = *x;  // PSNR inf (full) has no JSON number
         }

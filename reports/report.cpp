@@ -111,13 +111,7 @@ std::string td(const std::string& text, bool num = true) {
     return std::string(num ? "<td class=\"num\">" : "<td>") + esc(text) + "</td>";
 }
 
-std::string speedupCell(const RunData& d, const std::string& v) {
-    auto s = summaryNum(d, v, "speedup_vs_full");
-    auto lo = summaryNum(d, v, "speedup_ci_low"), hi = summaryNum(d, v, "speedup_ci_high");
-    std::string text = fmt(s, 2);
-    if (s && lo && hi) text += " [" + fmt(lo, 2) + ", " + fmt(hi, 2) + "]";
-    return td(text);
-}
+std::string speedupCell(const RunData& d, const std::string& v) { return td(speedupText(summarySpeedup(d, v), kDash)); }
 
 }  // namespace
 
@@ -130,7 +124,7 @@ std::string summarySection(const RunData& d) {
 
     out += "<div class=\"scroll\"><table><tr><th>variant</th><th>status</th><th class=\"num\">render (px)</th>"
            "<th class=\"num\">GPU median (ms)</th><th class=\"num\">GPU p95 (ms)</th><th class=\"num\">noise CV</th>"
-           "<th class=\"num\">speedup vs full (x) [95% CI]</th><th class=\"num\">PSNR (dB)</th>"
+           "<th class=\"num\">speed-up vs full [95% CI]</th><th class=\"num\">PSNR (dB)</th>"
            "<th class=\"num\">PSNR min (dB)</th><th class=\"num\">SSIM mean</th><th class=\"num\">SSIM min</th>";
     if (flip) out += "<th class=\"num\">FLIP mean</th>";
     if (eci) out += "<th class=\"num\">ECI</th>";
@@ -164,7 +158,7 @@ std::string summarySection(const RunData& d) {
     if (!notes.empty()) out += "<ul class=\"notes\">" + notes + "</ul>";
     const auto repeats = d.repeats;
     out += "<p class=\"note\">GPU times over all frames of the " + std::to_string(repeats) +
-           " repetition" + (repeats == 1 ? "" : "s") + ". Speedup: median of paired per-frame ratios full/variant at the same camera pose; the 95% "
+           " repetition" + (repeats == 1 ? "" : "s") + ". Speed-up: median of paired per-frame ratios full/variant at the same camera pose; the 95% "
            "percentile-bootstrap interval resamples whole repetitions" +
            std::string(repeats < 2 ? " (none with one repetition)" : "") +
            ". PSNR: sequence PSNR from the mean per-frame MSE; \u221e means identical to the reference. FLIP: mean "

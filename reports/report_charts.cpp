@@ -196,6 +196,18 @@ std::string pixelClassSection(const RunData& d) {
     return out + "</div></section>";
 }
 
+namespace {
+
+// The Pareto front of speed-up (higher better) against PSNR (higher better), as indices into
+// `pts`; paretoFront minimises x, so x is the speed-up negated.
+std::vector<size_t> speedFront(const std::vector<const CostQuality*>& who, const std::vector<double>& psnr) {
+    std::vector<ScatterPoint> pts;
+    for (size_t i = 0; i < who.size(); ++i) pts.push_back({who[i]->name, "", -*who[i]->speedup.value, psnr[i]});
+    return paretoFront(pts, /*y_higher_is_better=*/true);
+}
+
+}  // namespace
+
 std::string paretoSentence(const std::vector<CostQuality>& all, const std::string& reference) {
     const CostQuality* ref = nullptr;
     for (const auto& v : all)
@@ -204,72 +216,63 @@ std::string paretoSentence(const std::vector<CostQuality>& all, const std::strin
     if (!ref || !ref->gpu_ms || !std::isfinite(*ref->gpu_ms) || *ref->gpu_ms <= 0)
         return "No timed reference (" + full + ") in this run, so no variant's cost can be compared with " + full + "'s.";
 
-    std::vector<ScatterPoint> pts;
+    // The variants with a paired speed-up and a PSNR (the reference's PSNR is infinite).
     std::vector<const CostQuality*> who;
+    std::vector<double> psnr;
     for (const auto& v : all) {
-        if (!v.gpu_ms || !std::isfinite(*v.gpu_ms) || *v.gpu_ms <= 0) continue;
         std::optional<double> y = v.name == reference ? std::optional<double>(INFINITY) : v.psnr_db;
-        if (!y || std::isnan(*y)) continue;
-        pts.push_back({v.name, "", *v.gpu_ms, y});
+        if (!v.speedup.value || !std::isfinite(*v.speedup.value) || !y || std::isnan(*y)) continue;
         who.push_back(&v);
+        psnr.push_back(*y);
     }
-    if (pts.size() <= 1)
-        return "Only the reference (" + full + ") has timing and quality here, so there is nothing to compare.";
-    auto front = paretoFront(pts, /*y_higher_is_better=*/true);
+    if (who.size() <= 1)
+        return "Only the reference (" + full + ") has a speed-up and quality here, so there is nothing to compare.";
+    const auto front = speedFront(who, psnr);
     auto onFront = [&](size_t i) { return std::find(front.begin(), front.end(), i) != front.end(); };
-    auto speed = [&](size_t i) { return *ref->gpu_ms / pts[i].x; };
+    auto speed = [&](size_t i) { return speedupText(who[i]->speedup, kDash); };
+    auto sp = [&](size_t i) { return *who[i]->speedup.value; };
     auto psnrText = [&](double p) { return std::isinf(p) ? "identical to " + full : fmt(p, 2) + " dB"; };
-    auto measurablyFaster = [&](size_t i) {
-        const CostQuality& v = *who[i];
-        return speed(i) > 1.0 && (!v.ci_low || *v.ci_low > 1.0);
-    };
-    auto paired = [&](size_t i) {
-        const CostQuality& v = *who[i];
-        std::string t = "paired speedup " + fmt(v.speedup, 2) + "x";
-        if (v.ci_low && v.ci_high) t += " [" + fmt(v.ci_low, 2) + ", " + fmt(v.ci_high, 2) + "]";
-        return t;
-    };
 
     std::optional<size_t> best;
-    for (size_t i = 0; i < pts.size(); ++i) {
-        if (who[i]->name == reference || !onFront(i) || !measurablyFaster(i)) continue;
-        if (!best || *pts[i].y > *pts[*best].y || (*pts[i].y == *pts[*best].y && pts[i].x < pts[*best].x)) best = i;
+    for (size_t i = 0; i < who.size(); ++i) {
+        if (who[i]->name == reference || !onFront(i) || !measurablyFaster(who[i]->speedup)) continue;
+        if (!best || psnr[i] > psnr[*best] || (psnr[i] == psnr[*best] && sp(i) > sp(*best))) best = i;
     }
     std::vector<size_t> others;
-    for (size_t i = 0; i < pts.size(); ++i)
+    for (size_t i = 0; i < who.size(); ++i)
         if (who[i]->name != reference && (!best || i != *best)) others.push_back(i);
-    std::sort(others.begin(), others.end(), [&](size_t a, size_t b) { return pts[a].x < pts[b].x; });
+    std::sort(others.begin(), others.end(), [&](size_t a, size_t b) { return sp(a) > sp(b); });
 
+    const std::string why = " (speed-ups: medians of the paired per-frame ratios " + full +
+                            "/variant, with 95% intervals).";
     std::string s;
     if (!best) {
         s = "No variant is both on the Pareto front and measurably faster than " + full + ", so " + full +
             " gives the best quality for its cost here";
         for (size_t i : others)
-            s += "; " + who[i]->name + " runs at " + fmt(speed(i), 2) + "x the speed of " + full + " (" + paired(i) +
-                 ") with PSNR " + psnrText(*pts[i].y);
-        return s + ".";
+            s += "; " + who[i]->name + " runs at " + speed(i) + " the speed of " + full + " with PSNR " + psnrText(psnr[i]);
+        return s + why;
     }
     s = who[*best]->name + " gives the best quality for its cost: it is on the Pareto front with PSNR " +
-        psnrText(*pts[*best].y);
+        psnrText(psnr[*best]);
     if (who[*best]->ssim) s += " (SSIM " + fmt(*who[*best]->ssim, 4) + ")";
-    s += " at " + fmt(speed(*best), 2) + "x the speed of " + full;
+    s += " at " + speed(*best) + " the speed of " + full;
     for (size_t i : others) {
-        const double sp = speed(i);
-        const bool faster = pts[i].x < pts[*best].x;
-        const bool better = *pts[i].y > *pts[*best].y;
+        const bool faster = sp(i) > sp(*best);
+        const bool better = psnr[i] > psnr[*best];
         s += "; " + who[i]->name;
-        if (!measurablyFaster(i))
-            s += " is not measurably faster than " + full + " (" + paired(i) + ") at PSNR " + psnrText(*pts[i].y);
+        if (!measurablyFaster(who[i]->speedup))
+            s += " is not measurably faster than " + full + " (" + speed(i) + ") at PSNR " + psnrText(psnr[i]);
         else if (faster && better)
-            s += " is faster (" + fmt(sp, 2) + "x) and higher quality (" + psnrText(*pts[i].y) + ")";
+            s += " is faster (" + speed(i) + ") and higher quality (" + psnrText(psnr[i]) + ")";
         else if (faster)
-            s += " is faster (" + fmt(sp, 2) + "x) but lower quality (" + psnrText(*pts[i].y) + ")";
+            s += " is faster (" + speed(i) + ") but lower quality (" + psnrText(psnr[i]) + ")";
         else if (better)
-            s += " is higher quality (" + psnrText(*pts[i].y) + ") but slower (" + fmt(sp, 2) + "x)";
+            s += " is higher quality (" + psnrText(psnr[i]) + ") but slower (" + speed(i) + ")";
         else
-            s += " is dominated: slower (" + fmt(sp, 2) + "x) and no better (" + psnrText(*pts[i].y) + ")";
+            s += " is dominated: slower (" + speed(i) + ") and no better (" + psnrText(psnr[i]) + ")";
     }
-    return s + " (speeds: ratios of median GPU frame time, as plotted).";
+    return s + why;
 }
 
 std::string paretoSentence(const RunData& d) {
@@ -277,8 +280,7 @@ std::string paretoSentence(const RunData& d) {
     for (const auto& v : d.variants) {
         if (!variantOk(d, v)) continue;
         cq.push_back({v, summaryNum(d, v, "gpu_ms_median"), summaryNum(d, v, "psnr_db_mean"),
-                      summaryNum(d, v, "ssim_mean"), summaryNum(d, v, "speedup_vs_full"),
-                      summaryNum(d, v, "speedup_ci_low"), summaryNum(d, v, "speedup_ci_high")});
+                      summaryNum(d, v, "ssim_mean"), summarySpeedup(d, v)});
     }
     return paretoSentence(cq, d.reference);
 }
@@ -287,7 +289,8 @@ std::string paretoSection(const RunData& d) {
     std::string out = "<section id=\"pareto\"><h2>Error against run time</h2>";
     out += "<p class=\"note\">One point per variant that ran: x is the median GPU frame time (summary.csv "
            "<code>gpu_ms_median</code>), y the sequence error. The dashed line joins the Pareto front (no other variant "
-           "is both faster and better); ringed points lie on it. The reference has no error: PSNR \u221e, 1\u2212SSIM 0"
+           "has both a higher paired speed-up and a lower error); ringed points lie on it. A point's tooltip gives its "
+           "paired speed-up, the one of the summary table. The reference has no error: PSNR \u221e, 1\u2212SSIM 0"
            ", ECI 0. The answer at the top of the page reads the PSNR panel.</p>";
     struct Axis {
         const char* column;
@@ -313,6 +316,7 @@ std::string paretoSection(const RunData& d) {
         c.x_label = "median GPU time (ms)";
         c.y_label = a.label;
         c.y_higher_is_better = a.higher;
+        bool all_paired = true;  // the front on the paired speed-up, as the answer takes it, where every point has one
         for (const auto& v : d.variants) {
             if (!variantOk(d, v)) continue;
             auto x = summaryNum(d, v, "gpu_ms_median");
@@ -320,8 +324,13 @@ std::string paretoSection(const RunData& d) {
             auto y = summaryNum(d, v, a.column);
             if (v == d.reference && !y) y = a.higher ? INFINITY : 0.0;
             if (y && a.one_minus) y = 1.0 - *y;
-            c.points.push_back({v, variantColor(d, v), *x, y});
+            const Speedup s = summarySpeedup(d, v);
+            all_paired = all_paired && s.value && std::isfinite(*s.value);
+            c.points.push_back({v, variantColor(d, v), *x, y, s.value ? std::optional(-*s.value) : std::nullopt,
+                                "speed-up " + speedupText(s, kDash)});
         }
+        if (!all_paired)
+            for (auto& p : c.points) p.front_x.reset();
         out += "<div class=\"chart-small\">" + scatterChartSvg(c) + "</div>";
     }
     return out + "</div></section>";

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "reports/html.h"
+#include "reports/status.h"
 
 namespace cbr::reports {
 
@@ -145,7 +146,12 @@ std::string summaryText(const RunData& d, const std::string& variant, const std:
     return r ? d.summary.text(*r, column) : std::string();
 }
 
-bool variantOk(const RunData& d, const std::string& variant) { return summaryText(d, variant, "status") == "ok"; }
+bool variantOk(const RunData& d, const std::string& variant) { return statusHasTimes(summaryText(d, variant, "status")); }
+
+Speedup summarySpeedup(const RunData& d, const std::string& variant) {
+    return {summaryNum(d, variant, "speedup_vs_full"), summaryNum(d, variant, "speedup_ci_low"),
+            summaryNum(d, variant, "speedup_ci_high")};
+}
 
 const nlohmann::json* variantJson(const RunData& d, const std::string& variant) {
     auto it = d.run.find("variants");

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "reports/csv_read.h"
+#include "reports/speedup.h"
 
 namespace cbr::reports {
 
@@ -36,7 +37,11 @@ RunData loadRun(const std::filesystem::path& dir);
 std::optional<size_t> summaryRow(const RunData& d, const std::string& variant);
 std::optional<double> summaryNum(const RunData& d, const std::string& variant, const std::string& column);
 std::string summaryText(const RunData& d, const std::string& variant, const std::string& column);
+// The variant ran and has times (summary.csv status ok or unsteady: reports/status.h).
 bool variantOk(const RunData& d, const std::string& variant);
+// A variant's speed-up against the reference with its 95% interval (summary.csv
+// speedup_vs_full, speedup_ci_low, speedup_ci_high), the one every page prints.
+Speedup summarySpeedup(const RunData& d, const std::string& variant);
 // A checkerboard variant: summary.csv has its pixel-class shares, or run.json a route.
 bool isCheckerboard(const RunData& d, const std::string& variant);
 // run.json's variants[] entry of a variant, or nullptr.

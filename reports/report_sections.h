@@ -40,12 +40,13 @@ struct CostQuality {
     std::optional<double> gpu_ms;   // median frame GPU time
     std::optional<double> psnr_db;  // sequence PSNR (+inf: identical to the reference)
     std::optional<double> ssim;
-    std::optional<double> speedup, ci_low, ci_high;  // paired speedup vs full and its 95% interval
+    Speedup speedup;  // paired speed-up vs the reference and its 95% interval (reports/speedup.h)
 };
-// ONE sentence: which variant gives the best quality (PSNR) for its cost. The front and
-// the speeds are those of the plot (median GPU ms; speed = full's median / the variant's);
-// a variant counts as faster than full only where the paired speedup's interval, when
-// there is one, lies above 1 (timing.md: report only significant differences).
+// ONE sentence: which variant gives the best quality (PSNR) for its cost. The front is that
+// of the paired speed-up against PSNR (the plot's ringed points), every speed printed is the
+// paired speed-up with its interval, and a variant counts as faster than the reference only
+// where that interval, when there is one, lies above 1 (measurablyFaster; timing.md: report
+// only significant differences).
 std::string paretoSentence(const std::vector<CostQuality>& variants, const std::string& reference);
 // The sentence for a loaded run.
 std::string paretoSentence(const RunData& d);

@@ -281,14 +281,16 @@ std::string stackedChartSvg(const StackedChart& c) {
 std::vector<size_t> paretoFront(const std::vector<ScatterPoint>& p, bool higher) {
     auto better_or_equal = [higher](double a, double b) { return higher ? a >= b : a <= b; };
     auto strictly_better = [higher](double a, double b) { return higher ? a > b : a < b; };
+    auto cost = [&p](size_t i) { return p[i].front_x.value_or(p[i].x); };
+    auto usable = [&](size_t i) { return p[i].y && !std::isnan(*p[i].y) && std::isfinite(p[i].x) && std::isfinite(cost(i)); };
     std::vector<size_t> front;
     for (size_t i = 0; i < p.size(); ++i) {
-        if (!p[i].y || std::isnan(*p[i].y) || !std::isfinite(p[i].x)) continue;
+        if (!usable(i)) continue;
         bool dominated = false;
         for (size_t j = 0; j < p.size() && !dominated; ++j) {
-            if (j == i || !p[j].y || std::isnan(*p[j].y) || !std::isfinite(p[j].x)) continue;
-            bool no_worse = p[j].x <= p[i].x && better_or_equal(*p[j].y, *p[i].y);
-            bool better = p[j].x < p[i].x || strictly_better(*p[j].y, *p[i].y);
+            if (j == i || !usable(j)) continue;
+            bool no_worse = cost(j) <= cost(i) && better_or_equal(*p[j].y, *p[i].y);
+            bool better = cost(j) < cost(i) || strictly_better(*p[j].y, *p[i].y);
             dominated = no_worse && better;
         }
         if (!dominated) front.push_back(i);
@@ -340,7 +342,8 @@ std::string scatterChartSvg(const ScatterChart& c) {
         if (!std::isfinite(p.x) || !p.y || std::isnan(*p.y)) continue;
         bool on_front = std::find(front.begin(), front.end(), i) != front.end();
         double x = xs(p.x), y = py(*p.y);
-        std::string tip = p.label + ": " + fmtShort(p.x) + " ms, " + c.y_label + " " + fmtShort(*p.y, 5) +
+        std::string tip = p.label + ": " + fmtShort(p.x) + " ms" + (p.note.empty() ? "" : ", " + p.note) + ", " +
+                          c.y_label + " " + fmtShort(*p.y, 5) +
                           (on_front ? " (Pareto front)" : " (dominated)");
         if (on_front)
             out += "<circle cx=\"" + n1(x) + "\" cy=\"" + n1(y) + "\" r=\"7\" fill=\"none\" stroke=\"" +

@@ -47,6 +47,10 @@ struct ScatterPoint {
     std::string color;
     double x = 0;
     std::optional<double> y;  // nullopt: not drawn; +-inf: on the infinity lane
+    // What the Pareto front is taken on, lower is better (the report: the paired speed-up,
+    // negated, while x stays the median time); x when unset.
+    std::optional<double> front_x;
+    std::string note;  // added to the point's tooltip (e.g. its paired speed-up)
 };
 struct ScatterChart {
     std::string title;
@@ -60,8 +64,9 @@ struct ScatterChart {
 };
 std::string scatterChartSvg(const ScatterChart& chart);
 
-// Indices of the Pareto-optimal points (x minimised; y maximised or minimised), points
-// without a y ignored. Infinite y counts as the best (or worst) possible value.
+// Indices of the Pareto-optimal points (front_x, else x, minimised; y maximised or
+// minimised), in order of x; points without a y ignored. Infinite y counts as the best (or
+// worst) possible value.
 std::vector<size_t> paretoFront(const std::vector<ScatterPoint>& points, bool y_higher_is_better);
 
 // Ticks at 1, 2 or 5 x 10^k covering [lo, hi], about `target` of them.

@@ -39,7 +39,7 @@ std::vector<double> shadingCosts(const std::vector<SweepPoint>& points) {
 
 const SweepPoint* findVariant(const std::vector<SweepPoint>& points, const std::string& variant, double cost) {
     for (const auto& p : points)
-        if (p.variant == variant && p.shading_cost == cost && p.status == "ok" && p.gpu_ms) return &p;
+        if (p.variant == variant && p.shading_cost == cost && p.hasTimes() && p.gpu_ms) return &p;
     return nullptr;
 }
 
@@ -156,9 +156,7 @@ SweepData loadSweep(const std::filesystem::path& dir) {
         p.gpu_ms = csv.num(r, "gpu_ms_median");
         p.gpu_ms_low = csv.num(r, "gpu_ms_ci_low");
         p.gpu_ms_high = csv.num(r, "gpu_ms_ci_high");
-        p.speedup = csv.num(r, "speedup_vs_full");
-        p.speedup_low = csv.num(r, "speedup_ci_low");
-        p.speedup_high = csv.num(r, "speedup_ci_high");
+        p.speedup = {csv.num(r, "speedup_vs_full"), csv.num(r, "speedup_ci_low"), csv.num(r, "speedup_ci_high")};
         p.psnr_db = csv.num(r, "psnr_db");
         p.ssim = csv.num(r, "ssim");
         p.eci = csv.num(r, "eci");

@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "reports/speedup.h"
+#include "reports/status.h"
 #include "reports/variant_roles.h"
 
 namespace cbr::reports {
@@ -18,7 +20,8 @@ namespace cbr::reports {
 struct SweepPoint {
     std::string config;   // label, e.g. cbr-cso_tol=0.01_cost=4
     std::string variant;  // a row of the variant table: full, drr, cbr-aso, cbr-cso, taau
-    std::string status;   // ok, failed, skipped
+    std::string status;   // ok, unsteady, failed, skipped
+    bool hasTimes() const { return statusHasTimes(status); }  // ran and has times (ok or unsteady)
     std::string path, reference;  // the outer dimensions: one sweep per (path, reference)
     double shading_cost = 1;
     // The settings of the variants they change, by sweep.csv column (absent on the others' rows):
@@ -29,7 +32,8 @@ struct SweepPoint {
         auto it = numbers.find(column);
         return it == numbers.end() ? std::nullopt : std::optional<double>(it->second);
     }
-    std::optional<double> gpu_ms, gpu_ms_low, gpu_ms_high, speedup, speedup_low, speedup_high;
+    std::optional<double> gpu_ms, gpu_ms_low, gpu_ms_high;
+    Speedup speedup;  // paired against the full configuration at its shading cost (reports/speedup.h)
     std::optional<double> psnr_db, ssim, eci, flicker;
     std::map<std::string, double> classes;  // px_* mean shares
 };

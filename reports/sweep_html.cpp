@@ -124,7 +124,7 @@ std::string paramCharts(const std::vector<SweepPoint>& points, const std::string
             for (double x : xs) {
                 std::optional<double> y;
                 for (const auto& p : points)
-                    if (p.variant == variant && p.number(f.column) == x && p.status == "ok" &&
+                    if (p.variant == variant && p.number(f.column) == x && p.hasTimes() &&
                         fam.of(p) == families[k])
                         y = m.value(p);
                 s.y.push_back(y);
@@ -264,14 +264,15 @@ std::string planeSection(const std::vector<SweepPoint>& points, const VariantRol
         sc.y_label = "sequence PSNR (dB)";
         sc.y_higher_is_better = true;
         for (const auto& p : points)
-            if (p.shading_cost == cost && p.status == "ok" && p.gpu_ms)
-                sc.points.push_back({p.config, variantColor(variants, p.variant, roles.reference), *p.gpu_ms, p.psnr_db});
+            if (p.shading_cost == cost && p.hasTimes() && p.gpu_ms)
+                sc.points.push_back({p.config, variantColor(variants, p.variant, roles.reference), *p.gpu_ms, p.psnr_db,
+                                     std::nullopt, "speed-up " + speedupText(p.speedup, kDash)});
         html += "<h3>Sequence PSNR against median GPU time" + esc(costSuffix(points, cost)) + "</h3>" +
                 legendHtml(legend) +
                 "<div class=\"chart-block\" style=\"max-width:900px\">" + scatterChartSvg(sc) + "</div>";
         std::string list;
         for (size_t i : paretoFront(sc.points, true)) list += (list.empty() ? "" : ", ") + sc.points[i].label;
-        html += "<p class=\"note\">Pareto front (no other configuration is both faster and better): " + esc(list) +
+        html += "<p class=\"note\">Pareto front (no other configuration has both a lower median GPU time and a higher PSNR): " + esc(list) +
                 ". Only the front is labelled (every point has a tooltip). " + esc(roles.reference) +
                 "'s PSNR is infinite (it is the reference); it and anything above 50 dB sit on the lane above the plot.</p>";
     }
@@ -280,7 +281,7 @@ std::string planeSection(const std::vector<SweepPoint>& points, const VariantRol
 
 std::string tableSection(const std::vector<SweepPoint>& points, const VariantRoles& roles) {
     std::string html = "<section id=\"table\"><h2>Configurations</h2><div class=\"scroll\"><table><tr>";
-    const char* head[] = {"config", "status", "GPU ms", "95% CI", "speedup", "PSNR dB", "SSIM", "ECI", "reused %",
+    const char* head[] = {"config", "status", "GPU ms", "95% CI", "speed-up [95% CI]", "PSNR dB", "SSIM", "ECI", "reused %",
                           "occluded %"};
     for (const char* h : head) html += std::string("<th") + (h == head[0] || h == head[1] ? ">" : " class=\"num\">") + h + "</th>";
     html += "</tr>";
@@ -289,14 +290,14 @@ std::string tableSection(const std::vector<SweepPoint>& points, const VariantRol
         html += "<tr><td class=\"variant\" style=\"color:" + variantColor(variants, p.variant, roles.reference) + "\">" + esc(p.config) +
                 "</td><td>" + esc(p.status) + "</td><td class=\"num\">" + fmt(p.gpu_ms, 2) + "</td><td class=\"num\">" +
                 (p.gpu_ms_low ? fmt(p.gpu_ms_low, 2) + "\u2013" + fmt(p.gpu_ms_high, 2) : std::string(kDash)) +
-                "</td><td class=\"num\">" + fmt(p.speedup, 2) + "</td><td class=\"num\">" + fmt(p.psnr_db, 2) +
+                "</td><td class=\"num\">" + speedupText(p.speedup, kDash) + "</td><td class=\"num\">" + fmt(p.psnr_db, 2) +
                 "</td><td class=\"num\">" + fmt(p.ssim, 4) + "</td><td class=\"num\">" + fmt(p.eci, 4) +
                 "</td><td class=\"num\">" + fmtPct(classShare(p, "px_reused"), 1) + "</td><td class=\"num\">" +
                 fmtPct(classShare(p, "px_occluded"), 1) + "</td></tr>";
     }
     return html + "</table></div><p class=\"note\">From sweep.csv. GPU ms: median over all frames and repetitions; the "
-                  "interval is a 95% bootstrap interval of the median over repetitions. Speedup: paired per frame against "
-                  "the full configuration at the same shading cost. A configuration whose route or feature the device "
+                  "interval is a 95% bootstrap interval of the median over repetitions. Speed-up: the median of paired "
+                  "per-frame ratios against the full configuration at the same shading cost, with its 95% interval. A configuration whose route or feature the device "
                   "lacks is `skipped`, with the reason in sweep.csv's note.</p></section>";
 }
 

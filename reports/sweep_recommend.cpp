@@ -31,7 +31,7 @@ std::vector<const SweepPoint*> peerConfigs(const std::vector<SweepPoint>& points
     for (const auto& v : roles.equalCostPeers(scaled)) {
         const SweepPoint* best = nullptr;
         for (const auto& p : points) {
-            if (p.variant != v || p.shading_cost != cost || p.status != "ok" || !p.gpu_ms) continue;
+            if (p.variant != v || p.shading_cost != cost || !p.hasTimes() || !p.gpu_ms) continue;
             bool at_choice = !p.number("cso_tolerance") || choices.empty();
             for (const auto& ch : choices)
                 at_choice = at_choice || (ch.shading_cost == cost && ch.tolerance &&
@@ -57,7 +57,7 @@ std::vector<ToleranceChoice> recommendTolerance(const std::vector<SweepPoint>& p
     for (double cost : shadingCosts(points)) {
         std::vector<const SweepPoint*> cso;
         for (const auto& p : points)
-            if (p.shading_cost == cost && p.status == "ok" && p.gpu_ms && p.number("cso_tolerance"))
+            if (p.shading_cost == cost && p.hasTimes() && p.gpu_ms && p.number("cso_tolerance"))
                 cso.push_back(&p);
         if (cso.empty()) continue;
         ToleranceChoice c;
@@ -194,7 +194,7 @@ void equalCostAt(const std::vector<SweepPoint>& points, const std::vector<Tolera
                  const VariantRoles& roles, const std::string& scaled, double cost, std::vector<EqualCost>& out) {
     std::vector<const SweepPoint*> by_time;
     for (const auto& p : points)
-        if (p.variant == scaled && p.shading_cost == cost && p.status == "ok" && p.gpu_ms) by_time.push_back(&p);
+        if (p.variant == scaled && p.shading_cost == cost && p.hasTimes() && p.gpu_ms) by_time.push_back(&p);
     std::sort(by_time.begin(), by_time.end(), [](auto* a, auto* b) { return *a->gpu_ms < *b->gpu_ms; });
     const std::string suffix = costSuffix(points, cost);
     for (const auto* c : peerConfigs(points, cost, choices, roles, scaled)) {
@@ -303,7 +303,7 @@ std::optional<SettingChoice> chooseSetting(const Group& g, double cost, const Sw
     for (const auto& p : g.points) {
         if (p.shading_cost != cost || !settingText(p, f)) continue;
         values.insert(*settingText(p, f));
-        if (p.status == "ok" && p.gpu_ms) ran.push_back(&p);
+        if (p.hasTimes() && p.gpu_ms) ran.push_back(&p);
     }
     if (values.size() < 2) return std::nullopt;
     SettingChoice c{g.path, g.reference, cost, f.name, "", "", ""};

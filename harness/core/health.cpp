@@ -36,9 +36,17 @@ double robustSpread(const std::vector<double>& v) {
     return 1.4826 * median(dev);
 }
 
-std::string driftRatioText(double r) {
+// A drift as a change of time, "15.0% longer" or "12.0% shorter": written as a ratio
+// ("1.15x") it would read as a second speed-up beside the paired one (reports/speedup.h).
+std::string driftChangeText(double r) {
+    char b[48];
+    std::snprintf(b, sizeof b, "%.1f%% %s", std::abs(r - 1) * 100, r >= 1 ? "longer" : "shorter");
+    return b;
+}
+
+std::string percentText(double fraction) {
     char b[32];
-    std::snprintf(b, sizeof b, "%.2fx", r);
+    std::snprintf(b, sizeof b, "%.1f%%", fraction * 100);
     return b;
 }
 
@@ -107,8 +115,8 @@ DriftResult analyseDrift(const VariantSamples& c, const HealthRule& rule) {
         const std::string where = f.whole_repetition ? "repetition " + std::to_string(f.repeat + 1) + " of " + std::to_string(e.size())
                                                      : "frames " + std::to_string(f.first_frame) + "-" + std::to_string(f.last_frame) +
                                                            " of repetition " + std::to_string(f.repeat + 1);
-        out.note = where + " took " + driftRatioText(f.ratio) + " the time of the same poses in the other repetitions (steady within " +
-                   driftRatioText(1 + (f.whole_repetition ? out.level_limit : out.span_limit)) + ")";
+        out.note = where + " took " + driftChangeText(f.ratio) + " than the same poses in the other repetitions (steady within " +
+                   percentText(f.whole_repetition ? out.level_limit : out.span_limit) + ")";
     }
     return out;
 }

@@ -11,6 +11,7 @@
 #include "harness/core/stats.h"
 #include "metrics/metrics.h"
 #include "renderer/vk/context.h"
+#include "reports/speedup.h"
 
 namespace cbr::harness {
 namespace {
@@ -153,8 +154,10 @@ void printSummary(std::ostream& out, const std::filesystem::path& dir, const Run
     char line[512];
     int name_width = 10;  // a sweep's configuration labels are longer than variant names
     for (const auto& s : summaries) name_width = std::max(name_width, int(std::min<size_t>(s.variant.size(), 60)));
-    std::snprintf(line, sizeof line, "%-*s %-8s %10s %10s %9s %10s %8s %8s %8s\n", name_width, "variant", "status",
-                  "render", "gpu_ms", "speedup", "psnr_db", "ssim", "flip", "eci");
+    // The speed-up as every output prints it, with its interval (reports/speedup.h).
+    const char* kRow = "%-*s %-8s %9s %9s  %-18s %8s %7s %7s %7s\n";
+    std::snprintf(line, sizeof line, kRow, name_width, "variant", "status", "render", "gpu_ms", "speedup [95% CI]",
+                  "psnr_db", "ssim", "flip", "eci");
     out << "cbrbench: " << rc.scene.name << " / " << rc.path.name << " at " << rc.settings.width << "x"
         << rc.settings.height << ", " << rc.results.frames << " frames x " << rc.results.repeats << " repeats on "
         << rc.ctx.description.name << "\n" << line;
@@ -167,10 +170,10 @@ void printSummary(std::ostream& out, const std::filesystem::path& dir, const Run
     };
     for (const auto& s : summaries) {
         std::string render = std::to_string(s.render_width) + "x" + std::to_string(s.render_height);
-        std::snprintf(line, sizeof line, "%-*s %-8s %10s %10s %9s %10s %8s %8s %8s\n", name_width, s.variant.c_str(),
-                      s.status.c_str(),
+        const std::string speedup = reports::speedupText({s.speedup, s.speedup_low, s.speedup_high}, "-");
+        std::snprintf(line, sizeof line, kRow, name_width, s.variant.c_str(), s.status.c_str(),
                       s.frames ? render.c_str() : "-",
-                      s.frames ? fmt(s.gpu_ms_median, "%.3f").c_str() : "-", fmt(s.speedup, "%.3fx").c_str(),
+                      s.frames ? fmt(s.gpu_ms_median, "%.3f").c_str() : "-", speedup.c_str(),
                       fmt(s.psnr_db, "%.2f").c_str(), fmt(s.ssim_mean, "%.4f").c_str(),
                       fmt(s.flip_mean, "%.4f").c_str(), fmt(s.eci, "%.4f").c_str());
         out << line;

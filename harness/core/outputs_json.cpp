@@ -238,6 +238,8 @@ json variantJson(const RunContext& rc, const VariantRun& vr, const VariantSummar
     if (sm.frames > 0) {
         v["gpu_ms_median"] = sm.gpu_ms_median;
         v["speedup_vs_full"] = number(sm.speedup);
+        v["speedup_ci_low"] = number(sm.speedup_low);
+        v["speedup_ci_high"] = number(sm.speedup_high);
         v["psnr_db"] = number(sm.psnr_db);
         v["psnr_db_is_inf"] = sm.psnr_db && std::isinf(*sm.psnr_db);
         v["ssim_mean"] = number(sm.ssim_mean);

@@ -184,25 +184,65 @@ TEST(ReportColours, EveryVariantOfARunGetsItsOwnColour) {
 }
 
 TEST(ReportSentence, NoVariantFasterThanFull) {
-    std::string s = paretoSentence(std::vector<CostQuality>{{"full", 10.0, INFINITY, 1.0, 1.0, 1.0, 1.0},
-                                                            {"drr", 12.0, 30.0, 0.95, 0.8, 0.7, 0.9}}, "full");
+    std::string s = paretoSentence(std::vector<CostQuality>{{"full", 10.0, INFINITY, 1.0, {1.0, 1.0, 1.0}},
+                                                            {"drr", 12.0, 30.0, 0.95, {0.8, 0.7, 0.9}}}, "full");
     EXPECT_NE(s.find("No variant is both on the Pareto front and measurably faster than full"), std::string::npos)
         << s;
-    EXPECT_NE(s.find("drr runs at 0.83x the speed of full (paired speedup 0.80x [0.70, 0.90])"), std::string::npos)
-        << s;
+    EXPECT_NE(s.find("drr runs at 0.80x [0.70, 0.90] the speed of full with PSNR 30.00 dB"), std::string::npos) << s;
 }
 
-// A median-ms gain whose paired interval includes 1 is not a speedup (timing.md).
+// A paired speed-up whose interval includes 1 is not a speed-up (timing.md).
 TEST(ReportSentence, InsignificantSpeedupIsNotBest) {
-    std::string s = paretoSentence(std::vector<CostQuality>{{"full", 40.0, INFINITY, 1.0, 1.0, 1.0, 1.0},
-                                                            {"drr", 20.0, 25.3, 0.9, 2.0, 1.9, 2.1},
-                                                            {"cbr-cso", 25.0, 26.1, 0.93, 1.6, 0.9, 1.7}}, "full");
+    std::string s = paretoSentence(std::vector<CostQuality>{{"full", 40.0, INFINITY, 1.0, {1.0, 1.0, 1.0}},
+                                                            {"drr", 20.0, 25.3, 0.9, {2.0, 1.9, 2.1}},
+                                                            {"cbr-cso", 25.0, 26.1, 0.93, {1.6, 0.9, 1.7}}}, "full");
     EXPECT_EQ(s.rfind("drr gives the best quality for its cost: it is on the Pareto front with PSNR 25.30 dB "
-                      "(SSIM 0.9000) at 2.00x the speed of full; cbr-cso is not measurably faster than full "
-                      "(paired speedup 1.60x [0.90, 1.70]) at PSNR 26.10 dB",
+                      "(SSIM 0.9000) at 2.00x [1.90, 2.10] the speed of full; cbr-cso is not measurably faster than "
+                      "full (1.60x [0.90, 1.70]) at PSNR 26.10 dB",
                       0),
               0u)
         << s;
+}
+
+// The sentence's speeds and its front are the paired speed-ups (docs/method/measurement.md),
+// never ratios of median times: here full's median over the variants' medians (40/20 = 2,
+// 40/22 = 1.82) would put both variants on the front and print 2.00x and 1.82x.
+TEST(ReportSentence, SpeedsAndFrontArePairedNotRatiosOfMedians) {
+    std::string s = paretoSentence(std::vector<CostQuality>{{"full", 40.0, INFINITY, 1.0, {1.0, 1.0, 1.0}},
+                                                            {"drr", 20.0, 25.0, 0.9, {1.5, 1.4, 1.6}},
+                                                            {"cbr-clip", 22.0, 26.0, 0.93, {1.7, 1.6, 1.8}}}, "full");
+    EXPECT_EQ(s, "cbr-clip gives the best quality for its cost: it is on the Pareto front with PSNR 26.00 dB "
+                 "(SSIM 0.9300) at 1.70x [1.60, 1.80] the speed of full; drr is dominated: slower (1.50x [1.40, 1.60]) "
+                 "and no better (25.00 dB) (speed-ups: medians of the paired per-frame ratios full/variant, with 95% "
+                 "intervals).");
+    EXPECT_EQ(s.find("2.00x"), std::string::npos) << s;
+    EXPECT_EQ(s.find("1.82x"), std::string::npos) << s;
+}
+
+// A variant whose timed frames drifted is `unsteady` in summary.csv: it ran and its times are
+// its measurements, so the pages treat it as one that ran (reports/status.h).
+TEST(ReportSentence, UnsteadyVariantRanAndHasItsSpeedup) {
+    fs::path dir = makeRun("unsteady");
+    std::string summary = summaryCsv();
+    summary.replace(summary.find("\ndrr,ok,"), 8, "\ndrr,unsteady,");
+    spit(dir / "summary.csv", summary);
+    const RunData d = loadRun(dir);
+    EXPECT_TRUE(variantOk(d, "drr"));
+    EXPECT_FALSE(variantOk(d, "cbr-aso"));
+    EXPECT_NE(paretoSentence(d).find("drr is faster (2.00x [1.90, 2.10])"), std::string::npos) << paretoSentence(d);
+    fs::remove_all(dir);
+}
+
+// One way to print a speed-up, everywhere (reports/speedup.h).
+TEST(Speedup, OneTextWithItsInterval) {
+    EXPECT_EQ(speedupText({1.2849, 1.2651, 1.3149}, "-"), "1.28x [1.27, 1.31]");
+    EXPECT_EQ(speedupText({1.2849, std::nullopt, std::nullopt}, "-"), "1.28x");
+    EXPECT_EQ(speedupText({}, "-"), "-");
+    EXPECT_EQ(speedupValueText(0.7449, "-"), "0.74x");
+    EXPECT_TRUE(measurablyFaster({1.2, 1.1, 1.3}));
+    EXPECT_FALSE(measurablyFaster({1.2, 0.9, 1.3}));
+    EXPECT_TRUE(measurablyFaster({1.2, std::nullopt, std::nullopt}));  // one repetition: no interval
+    EXPECT_FALSE(measurablyFaster({0.9, std::nullopt, std::nullopt}));
 }
 
 TEST(Report, WritesSelfContainedReport) {
@@ -236,10 +276,14 @@ TEST(Report, WritesSelfContainedReport) {
     for (auto it = std::sregex_iterator(html.begin(), html.end(), href_re); it != std::sregex_iterator(); ++it)
         EXPECT_EQ((*it)[1].str().rfind('#', 0), 0u) << "external link " << (*it)[1].str();
 
-    // The answer, computed from the data (speeds as ratios of median frame time: 40/25, 40/20).
+    // The answer, computed from the data: the paired speed-ups of summary.csv with their intervals.
     EXPECT_NE(html.find("cbr-cso gives the best quality for its cost: it is on the Pareto front with PSNR 26.10 dB "
-                        "(SSIM 0.9300) at 1.60x the speed of full; drr is faster (2.00x) but lower quality (25.30 dB)"),
+                        "(SSIM 0.9300) at 1.60x [1.50, 1.70] the speed of full; drr is faster (2.00x [1.90, 2.10]) but "
+                        "lower quality (25.30 dB)"),
               std::string::npos);
+    // The summary table and the error-vs-time tooltips print the same figure.
+    EXPECT_NE(html.find("<td class=\"num\">1.60x [1.50, 1.70]</td>"), std::string::npos);
+    EXPECT_NE(html.find("cbr-cso: 25 ms, speed-up 1.60x [1.50, 1.70], PSNR (dB) 26.1"), std::string::npos);
 
     const std::string text = withoutPayloads(html);
     EXPECT_FALSE(std::regex_search(text, std::regex("\\bnan\\b", std::regex::icase))) << "a NaN was printed";
