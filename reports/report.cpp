@@ -7,6 +7,7 @@
 #include "reports/csv.h"
 #include "reports/html.h"
 #include "reports/report_sections.h"
+#include "reports/status.h"
 
 namespace cbr::reports {
 
@@ -39,7 +40,7 @@ td.variant{white-space:nowrap;font-weight:600}
 .kv td{word-break:break-word}
 .kv-grid{display:grid;grid-template-columns:repeat(auto-fit,minmax(360px,1fr));gap:4px 28px}
 .scroll{overflow-x:auto}
-.ok{color:#1a7f37}.bad{color:#b42318}
+.ok{color:#1a7f37}.bad{color:#b42318}.warn{color:#9a6700}
 code{font-size:12px;background:var(--soft);padding:0 3px;border-radius:3px}
 ul.messages,ul.notes{font-size:13px}
 .legend{margin:6px 0;font-size:13px}
@@ -136,7 +137,9 @@ std::string summarySection(const RunData& d) {
         std::string render = kDash;
         if (auto w = n("render_width"), h = n("render_height"); w && h) render = fmt(w, 0) + "\u00d7" + fmt(h, 0);
         out += "<tr><td class=\"variant\" style=\"color:" + esc(variantColor(d, v)) + "\">" + esc(v) + "</td>";
-        out += "<td class=\"" + std::string(status == "ok" ? "ok" : "bad") + "\">" + esc(status.empty() ? kDash : status) +
+        // unsteady: timed, but on a machine that did not hold still (amber, not red: it ran).
+        const char* cls = status == "ok" ? "ok" : statusHasTimes(status) ? "warn" : "bad";
+        out += "<td class=\"" + std::string(cls) + "\">" + esc(status.empty() ? kDash : status) +
                "</td>";
         out += td(render) + td(fmt(n("gpu_ms_median"), 3)) + td(fmt(n("gpu_ms_p95"), 3)) + td(fmt(n("gpu_ms_cv"), 3));
         out += speedupCell(d, v);

@@ -97,6 +97,8 @@ DriftResult analyseDrift(const VariantSamples& c, const HealthRule& rule) {
     const size_t span = std::max<size_t>(3, frames / 10);
     double worst_excess = -INFINITY;
     auto consider = [&](const DriftFinding& f, double limit) {
+        (f.whole_repetition ? out.level_max : out.span_max) =
+            std::max(f.whole_repetition ? out.level_max : out.span_max, std::abs(f.ratio - 1));
         const double excess = std::abs(std::log(f.ratio)) - std::log1p(limit);
         if (excess > worst_excess) worst_excess = excess, out.worst = f;
     };

@@ -56,7 +56,8 @@ struct DriftResult {
     std::string why_not;               // e.g. "one repetition: no other repetition to pair poses with"
     double noise = 0;                  // robust spread of the log residuals (about a relative sd)
     std::vector<double> levels;        // per repetition: its median ratio to the pose medians
-    std::optional<DriftFinding> worst; // the largest departure, judged or not
+    std::optional<DriftFinding> worst; // the largest departure against its limit, judged or not
+    double level_max = 0, span_max = 0;  // the largest |ratio - 1| of a repetition and of a span
     double level_limit = 0, span_limit = 0;  // the thresholds as applied
     bool unsteady = false;
     std::string note;                  // what drifted and by how much, when unsteady

@@ -27,7 +27,7 @@ json driftJson(const DriftResult& d) {
     // Every key always, null where not tested (one repetition), so the schema is one.
     json j = {{"tested", d.tested}, {"unsteady", d.unsteady}, {"why_not", d.tested ? json(nullptr) : json(d.why_not)},
               {"noise", nullptr}, {"repetition_ratios", json::array()}, {"level_limit", nullptr},
-              {"span_limit", nullptr},
+              {"span_limit", nullptr}, {"level_max", nullptr}, {"span_max", nullptr},
               {"largest", {{"repetition", nullptr}, {"first_frame", nullptr}, {"last_frame", nullptr}, {"ratio", nullptr},
                            {"whole_repetition", nullptr}}}};
     if (!d.tested) return j;
@@ -35,6 +35,8 @@ json driftJson(const DriftResult& d) {
     j["repetition_ratios"] = d.levels;
     j["level_limit"] = d.level_limit;
     j["span_limit"] = d.span_limit;
+    j["level_max"] = d.level_max;
+    j["span_max"] = d.span_max;
     if (d.worst)
         j["largest"] = {{"repetition", d.worst->repeat}, {"first_frame", d.worst->first_frame},
                         {"last_frame", d.worst->last_frame}, {"ratio", d.worst->ratio},

@@ -29,7 +29,7 @@ TEST(Sweep, ThreeTolerancesAtTwoCostsWriteSixCheckerboardConfigurations) {
     ASSERT_EQ(csv.rows.size(), 8u);  // per shading cost: full and three tolerances
     std::vector<std::string> tolerances;
     for (size_t i = 0; i < csv.rows.size(); ++i) {
-        EXPECT_TRUE(rendered(csv.at(i, "status"))) << csv.at(i, "config") << " " << csv.at(i, "status");
+        EXPECT_TRUE(cbr::test::rendered(csv.at(i, "status"))) << csv.at(i, "config") << " " << csv.at(i, "status");
         EXPECT_FALSE(csv.at(i, "gpu_ms_median").empty());
         if (csv.at(i, "variant") == "full") {
             EXPECT_EQ(csv.at(i, "psnr_db"), "inf");  // both fulls match the reference exactly
@@ -106,7 +106,7 @@ TEST(Sweep, LodBiasAndRouteAreColumnsAndAnUnsupportedRouteIsSkippedRows) {
         }
         EXPECT_EQ(csv.at(i, "cbr_lod_bias"), i < 3 ? "-1" : "0");
         EXPECT_EQ(csv.at(i, "cbr_route"), i % 2 ? "multiview" : "msaa-jitter");
-        if (rendered(csv.at(i, "status"))) psnr[csv.at(i, "cbr_route") + csv.at(i, "cbr_lod_bias")] = csv.at(i, "psnr_db");
+        if (cbr::test::rendered(csv.at(i, "status"))) psnr[csv.at(i, "cbr_route") + csv.at(i, "cbr_lod_bias")] = csv.at(i, "psnr_db");
         else EXPECT_EQ(csv.at(i, "status"), "skipped") << csv.at(i, "note");
     }
     ASSERT_TRUE(psnr.count("multiview-1") && psnr.count("multiview0"));
