@@ -184,6 +184,8 @@ Command abCommand(CLI::App& app, const std::vector<std::string>& argv) {
     cli->add_option("--junit", a->junit, "also write the verdicts as JUnit XML to FILE (SLOWER, WORSE and "
                                          "undecided: failures)");
     cli->add_flag("--quiet", a->quiet, "no line per run on stdout (the looks and the table still print)");
+    cli->add_flag("--no-stop", a->no_stop, "run the whole budget even when settled early (the verdicts are the same; "
+                                           "calibrate --settle replays the runs)");
     return {cli, [a, argv] {
                 a->argv = argv;
                 return runAb(*a);
@@ -219,6 +221,10 @@ Command calibrateCommand(CLI::App& app, const std::vector<std::string>& argv) {
     cli->add_option("--alpha", cal->alpha, "compare's --alpha")->capture_default_str();
     cli->add_option("--from", cal->from, "an earlier calibration's directory: judge its runs again (other "
                                          "--threshold, --alpha or --repeats) without rendering");
+    cli->add_flag("--settle", cal->settle, "pairs through `cbrbench ab` (ABBA, runs added until settled), each run to "
+                                           "--max-runs and replayed with both sample units: calibrate_settle.csv; "
+                                           "--repeats' smallest count is every run's repetitions");
+    cli->add_option("--max-runs", cal->max_runs, "--settle: ab's budget, runs per side")->capture_default_str();
     return {cli, [cal, variant_list, argv] {
                 cal->run.variants = splitList(variant_list->empty() ? std::string(variants::referenceVariant().name)
                                                                        : *variant_list);

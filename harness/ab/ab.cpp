@@ -106,6 +106,14 @@ Plan makePlan(const AbOptions& o) {
     for (const auto& w : splitWords(o.a_args)) p.a.args.push_back(w);
     for (const auto& w : splitWords(o.b_args)) p.b.args.push_back(w);
     p.looks = planLooks(o.max_runs, 2, o.repeat, p.unit, o.alpha);
+    if (p.looks.runs.empty()) {
+        int least = o.max_runs;
+        while (least < 1000 && planLooks(least, 2, o.repeat, p.unit, o.alpha).runs.empty()) least += 2;
+        throw std::invalid_argument("ab: --max-runs " + std::to_string(o.max_runs) + ": too few runs for any verdict (" +
+                                    std::string(sampleUnitName(p.unit)) + " samples, --repeat " +
+                                    std::to_string(o.repeat) + ", alpha " + std::to_string(o.alpha).substr(0, 6) +
+                                    "); accepted: --max-runs >= " + std::to_string(least));
+    }
     p.out = o.out.empty() ? fs::path("out") / ("ab-" + timestampForName()) : fs::path(o.out);
     if (fs::exists(p.out))
         throw std::invalid_argument("ab: --out " + p.out.string() + ": already exists; accepted: a new directory");
@@ -198,7 +206,9 @@ void runBlock(const Plan& p, State& st, const fs::path& dir) {
         const int side = s->letter == 'a' ? 0 : 1;
         reports::RunData d = runSide(p, *s, next[side]++, dir, st);
         if (st.runs.size() == 2 && side == 1) {  // a-00 then b-00: the cells can be set up
-            setUpCells(p, st, reports::loadRun(dir / "runs" / st.runs[0]), d);
+            const reports::RunData a0 = reports::loadRun(dir / "runs" / st.runs[0]);
+            setUpCells(p, st, a0, d);
+            for (size_t i = 0; i < st.variants.size(); ++i) st.cells[i].a.push_back(runSampleOf(a0, st.variants[i]));
         }
         for (size_t i = 0; i < st.variants.size(); ++i)
             (side == 0 ? st.cells[i].a : st.cells[i].b).push_back(runSampleOf(d, st.variants[i]));
@@ -212,9 +222,9 @@ void settle(const Plan& p, State& st, const fs::path& dir) {
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
     double last_block = 0;
     for (size_t look = 0;; st.seconds = elapsed()) {
-        if (st.runs_per_side >= p.o.max_runs) return void(st.stop = "budget: runs");
+        if (st.runs_per_side >= p.o.max_runs) return void(st.stop = st.stop.empty() ? "budget: runs" : st.stop);
         if (p.o.max_seconds > 0 && st.runs_per_side > 0 && elapsed() + last_block > p.o.max_seconds)
-            return void(st.stop = "budget: seconds");
+            return void(st.stop = st.stop.empty() ? "budget: seconds" : st.stop);
         const double block_start = elapsed();
         runBlock(p, st, dir);
         if (st.variants.empty())
@@ -225,7 +235,8 @@ void settle(const Plan& p, State& st, const fs::path& dir) {
             judgeLook(st.settle, st.cells, st.runs_per_side, int(++look), p.looks, p.threshold, p.unit);
             st.looks_taken = int(look);
             printLook(st, st.looks_taken);
-            if (allDecided(st.settle)) return void(st.stop = "settled");
+            if (allDecided(st.settle) && st.stop.empty()) st.stop = "settled";
+            if (allDecided(st.settle) && !p.o.no_stop) return;
         }
     }
 }

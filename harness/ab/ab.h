@@ -25,6 +25,7 @@ struct AbOptions {
     std::string out;                     // "" -> out/ab-<date-time>
     std::string junit;                   // --junit FILE
     bool quiet = false;                  // no line per run on stdout
+    bool no_stop = false;                // run the whole budget (calibrate --settle replays it); same verdicts
     std::vector<std::string> argv;       // the command line, for ab.json
 };
 

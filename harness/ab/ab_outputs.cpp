@@ -43,7 +43,9 @@ std::string noteOf(const Plan& p, const CellSettle& c) {
         note = std::to_string(c.unsteady_a) + " / " + std::to_string(c.unsteady_b) +
                " unsteady runs (A / B) left out: an unsteady run is never SAME";
     std::string why = c.time.note;
-    if (!c.decided()) {
+    if (!c.decided() && c.at_runs == 0) {
+        why = "budget spent before the first look (at " + std::to_string(p.looks.runs.front()) + " runs per side)";
+    } else if (!c.decided()) {
         auto runs = runsToSettle(p, c);
         why = "budget spent undecided" + (runs ? ": about " + std::to_string(*runs) + " runs per side would likely settle it"
                                                : std::string(c.time.reps_needed ? "" : ": " + c.time.note));
@@ -57,7 +59,7 @@ std::string abCsv(const Plan& p, const State& s) {
     for (size_t i = 0; i < s.variants.size(); ++i) {
         const CellSettle& c = s.settle[i];
         const TimeVerdict& t = c.time;
-        const TimeSamples samples = samplesOf(s.cells[i], s.runs_per_side, p.unit);
+        const TimeSamples samples = samplesOf(s.cells[i], c.at_runs, p.unit);
         const auto& ci = t.interval;
         const bool b = ci && ci->bounded();
         const auto runs = runsToSettle(p, c);
@@ -102,7 +104,7 @@ reports::ComparePage abPage(const Plan& p, const State& s, const std::string& ou
     for (size_t i = 0; i < s.variants.size(); ++i) {
         const CellSettle& c = s.settle[i];
         const TimeVerdict& t = c.time;
-        const TimeSamples samples = samplesOf(s.cells[i], s.runs_per_side, p.unit);
+        const TimeSamples samples = samplesOf(s.cells[i], c.at_runs, p.unit);
         const CellQuality& q = s.quality[i];
         page.rows.push_back({.variant = s.variants[i], .context = "A " + p.o.a_args + " | B " + p.o.b_args,
                              .base_reps = size_t(c.reps_a), .cur_reps = size_t(c.reps_b),

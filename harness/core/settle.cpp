@@ -91,6 +91,7 @@ void judgeLook(std::vector<CellSettle>& state, const std::vector<CellRuns>& cell
         CellSettle& s = state[open[k]];
         const CellRuns& c = cells[open[k]];
         s.time = verdicts[k];
+        s.at_runs = runs;
         s.runs_a = s.runs_b = s.reps_a = s.reps_b = s.unsteady_a = s.unsteady_b = 0;
         auto count = [&](const std::vector<RunSample>& side, int& used, int& reps, int& unsteady) {
             for (int i = 0; i < runs && i < int(side.size()); ++i) {

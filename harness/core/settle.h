@@ -62,6 +62,7 @@ struct CellSettle {
     int reps_a = 0, reps_b = 0;        // repetitions those runs hold
     int unsteady_a = 0, unsteady_b = 0;  // runs left out as unsteady
     int look = 0;                      // 1-based look that decided it (0: undecided)
+    int at_runs = 0;                   // runs per side (steady or not) its verdict was judged on
     bool decided() const { return look > 0; }
 };
 
