@@ -242,6 +242,9 @@ void settle(const Plan& p, State& st, const fs::path& dir) {
 }
 
 }  // namespace
+
+void tallyRunsOf(State& st, size_t cell) { tallyRuns(st.settle[cell], st.cells[cell], st.runs_per_side); }
+
 }  // namespace ab
 
 int runAb(const AbOptions& options) {
@@ -260,6 +263,8 @@ int runAb(const AbOptions& options) {
         return kAbRunFailed;
     }
     st.settle.resize(st.variants.size());
+    for (size_t i = 0; i < st.variants.size(); ++i)  // never judged (the budget ended first): the runs it had
+        if (st.settle[i].at_runs == 0) ab::tallyRunsOf(st, i);
     const int code = ab::writeAbOutputs(p, st, out.path());
     out.commit();
     return code;

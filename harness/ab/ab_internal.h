@@ -49,6 +49,9 @@ struct State {
 // exit code (kAbSettled, kAbRegression or kAbUndecided).
 int writeAbOutputs(const Plan& p, const State& s, const fs::path& dir);
 
+// A cell never judged (the budget ended before its first look): its runs counted all the same.
+void tallyRunsOf(State& st, size_t cell);
+
 // "+5.2% [+3.1%, +7.4%] 97.5%": a cell's change with its interval.
 std::string changeText(const TimeVerdict& t);
 

@@ -76,6 +76,19 @@ TimeSamples samplesOf(const CellRuns& c, int runs, SampleUnit unit) {
     return s;
 }
 
+void tallyRuns(CellSettle& s, const CellRuns& c, int runs) {
+    s.runs_a = s.runs_b = s.reps_a = s.reps_b = s.unsteady_a = s.unsteady_b = 0;
+    auto count = [&](const std::vector<RunSample>& side, int& used, int& reps, int& unsteady) {
+        for (int i = 0; i < runs && i < int(side.size()); ++i) {
+            const RunSample& r = side[size_t(i)];
+            if (r.unsteady) ++unsteady;
+            else if (!r.reps.empty()) ++used, reps += int(r.reps.size());
+        }
+    };
+    count(c.a, s.runs_a, s.reps_a, s.unsteady_a);
+    count(c.b, s.runs_b, s.reps_b, s.unsteady_b);
+}
+
 void judgeLook(std::vector<CellSettle>& state, const std::vector<CellRuns>& cells, int runs, int look,
                const LookPlan& plan, double threshold, SampleUnit unit) {
     state.resize(cells.size());
@@ -92,16 +105,7 @@ void judgeLook(std::vector<CellSettle>& state, const std::vector<CellRuns>& cell
         const CellRuns& c = cells[open[k]];
         s.time = verdicts[k];
         s.at_runs = runs;
-        s.runs_a = s.runs_b = s.reps_a = s.reps_b = s.unsteady_a = s.unsteady_b = 0;
-        auto count = [&](const std::vector<RunSample>& side, int& used, int& reps, int& unsteady) {
-            for (int i = 0; i < runs && i < int(side.size()); ++i) {
-                const RunSample& r = side[size_t(i)];
-                if (r.unsteady) ++unsteady;
-                else if (!r.reps.empty()) ++used, reps += int(r.reps.size());
-            }
-        };
-        count(c.a, s.runs_a, s.reps_a, s.unsteady_a);
-        count(c.b, s.runs_b, s.reps_b, s.unsteady_b);
+        tallyRuns(s, c, runs);
         if (s.time.verdict != "UNKNOWN") s.look = look;
     }
 }

@@ -66,6 +66,9 @@ struct CellSettle {
     bool decided() const { return look > 0; }
 };
 
+// Counts the first `runs` runs per side into `s` (used, their repetitions, unsteady ones).
+void tallyRuns(CellSettle& s, const CellRuns& c, int runs);
+
 // Judges the undecided cells on the first `runs` runs per side, at the plan's level per look
 // (Benjamini-Hochberg across the cells judged together at that look); a cell that concludes keeps
 // its verdict. `look` is the 1-based look number.
