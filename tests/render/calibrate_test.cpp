@@ -125,7 +125,8 @@ TEST(Calibrate, SettleReplaysAbWithBothUnits) {
     auto pairs = cbr::test::readCsv(out / "calibrate_settle_pairs.csv");
     ASSERT_EQ(pairs.rows.size(), 4u);  // one variant (full) per pair and unit
     for (size_t i = 0; i < pairs.rows.size(); ++i) {
-        if (pairs.at(i, "unit") == "run") EXPECT_EQ(pairs.at(i, "verdict"), pairs.at(i, "ab_verdict")) << i;
+        if (pairs.at(i, "unit") != "run") continue;
+        EXPECT_EQ(pairs.at(i, "verdict"), pairs.at(i, "ab_verdict")) << i;
     }
     // Each pair ran its whole budget: 4 runs per side, ABBA.
     for (const char* pair : {"aa-000", "slow-opaque-400-000"}) {
