@@ -52,7 +52,7 @@ void expectRunsClean(const fs::path& out) {
 TEST(Ab, SameBuildTwiceSettlesSame) {
     auto work = cbr::test::scratchDir("ab-aa");
     auto out = work / "aa";
-    auto r = runBench(abArgs(out, {"--threshold", "200%", "--max-runs", "4"}), work);
+    auto r = runBench(abArgs(out, {"--threshold", "200%", "--max-runs", "6"}), work);
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     auto csv = cbr::test::readCsv(out / "ab.csv");
     ASSERT_EQ(csv.rows.size(), 1u);
@@ -98,15 +98,23 @@ TEST(Ab, InjectedSlowdownSettlesSlower) {
 TEST(Ab, OneBlockThatCannotDecideExits3) {
     auto work = cbr::test::scratchDir("ab-budget");
     auto out = work / "budget";
-    // 0.01% is far below what lavapipe's noise resolves with 6 samples: UNKNOWN.
-    auto r = runBench(abArgs(out, {"--threshold", "0.01%", "--max-runs", "2"}), work);
+    // Unit run: the first look is at 6 runs per side; a seconds budget shorter than one block
+    // stops after the first block (2 runs per side), so no look has happened: UNKNOWN. (A
+    // tight threshold would not do: separate lavapipe processes can differ beyond any threshold.)
+    std::vector<std::string> args = abArgs(out, {"--max-seconds", "0.1"});
+    args[3] = "run";
+    auto r = runBench(args, work);
     ASSERT_EQ(r.exit_code, 3) << r.out << r.err;
     auto csv = cbr::test::readCsv(out / "ab.csv");
     ASSERT_EQ(csv.rows.size(), 1u);
     EXPECT_EQ(csv.at(0, "time_verdict"), "UNKNOWN");
     EXPECT_EQ(csv.at(0, "runs_a"), "2");
-    EXPECT_NE(csv.at(0, "note").find("budget spent"), std::string::npos) << csv.at(0, "note");
-    EXPECT_EQ(cbr::test::readJson(out / "ab.json")["stop"], "budget: runs");
+    EXPECT_EQ(csv.at(0, "runs_b"), "2");
+    EXPECT_NE(csv.at(0, "note").find("budget spent before the first look"), std::string::npos) << csv.at(0, "note");
+    auto j = cbr::test::readJson(out / "ab.json");
+    EXPECT_EQ(j["stop"], "budget: seconds");
+    EXPECT_EQ(j["runs"].size(), 4u);
+    EXPECT_EQ(j["exit_code"], 3);
 }
 
 TEST(Ab, BadInputIsOneLineExit2AndNoOutput) {
