@@ -167,7 +167,8 @@ Command abCommand(CLI::App& app, const std::vector<std::string>& argv) {
                                              "full,cbr-aso)");
     cli->add_option("--a-bin", a->a_bin, "side A's (the baseline's) cbrbench binary (default: this one)");
     cli->add_option("--b-bin", a->b_bin, "side B's cbrbench binary (default: this one)");
-    cli->add_option("--a-args", a->a_args, "run options of side A only, one string split at spaces");
+    cli->add_option("--a-args", a->a_args, "run options of side A only, one string split at spaces (not one the "
+                                           "shared run options already give)");
     cli->add_option("--b-args", a->b_args, "run options of side B only, e.g. \"--debug-slowdown opaque=2\"");
     cli->add_option("--threshold", a->threshold, "time change that counts (e.g. 3% or 0.03)")->capture_default_str();
     cli->add_option("--alpha", a->alpha, "false-alarm rate over all looks and cells")->capture_default_str();

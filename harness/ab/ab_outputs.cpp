@@ -22,6 +22,17 @@ const std::vector<std::string> kAbColumns = {
     "q_value",        "alpha_per_look",  "psnr_delta_db",   "psnr_verdict",    "ssim_delta",
     "ssim_verdict",   "eci_change_pct",  "eci_verdict",     "note"};
 
+// "A: ARGS | B: ARGS" (the binaries' file names where they differ), or "A/A" for twin sides.
+std::string sidesText(const Plan& p) {
+    auto side = [&](const char* name, const Side& s, const std::string& args) {
+        std::string t = std::string(name) + ":";
+        if (p.a.bin != p.b.bin) t += " " + s.bin.string();
+        return t + (args.empty() ? "" : " " + args);
+    };
+    if (p.a.bin == p.b.bin && p.o.a_args == p.o.b_args) return "A/A: one binary, the same options";
+    return side("A", p.a, p.o.a_args) + " | " + side("B", p.b, p.o.b_args);
+}
+
 reports::Cell opt(std::optional<double> v, double scale = 1) { return v ? reports::Cell(*v * scale) : reports::Cell(); }
 
 std::optional<double> medianOf(const std::vector<double>& v) {
@@ -106,7 +117,7 @@ reports::ComparePage abPage(const Plan& p, const State& s, const std::string& ou
         const TimeVerdict& t = c.time;
         const TimeSamples samples = samplesOf(s.cells[i], c.at_runs, p.unit);
         const CellQuality& q = s.quality[i];
-        page.rows.push_back({.variant = s.variants[i], .context = "A " + p.o.a_args + " | B " + p.o.b_args,
+        page.rows.push_back({.variant = s.variants[i], .context = sidesText(p),
                              .base_reps = size_t(c.reps_a), .cur_reps = size_t(c.reps_b),
                              .base_ms = medianOf(samples.baseline), .cur_ms = medianOf(samples.current),
                              .reps_text = std::to_string(c.runs_a) + " / " + std::to_string(c.runs_b) + " runs",
@@ -121,7 +132,7 @@ reports::ComparePage abPage(const Plan& p, const State& s, const std::string& ou
 }
 
 std::string abJunit(const Plan& p, const State& s) {
-    reports::JUnitSuite suite{"cbrbench ab " + p.o.a_args + " | " + p.o.b_args, {}};
+    reports::JUnitSuite suite{"cbrbench ab " + sidesText(p), {}};
     for (size_t i = 0; i < s.variants.size(); ++i) {
         const CellSettle& c = s.settle[i];
         const CellQuality& q = s.quality[i];
@@ -143,7 +154,7 @@ std::string abJunit(const Plan& p, const State& s) {
         }
         suite.cases.push_back(std::move(jc));
     }
-    return reports::junitXml("cbrbench ab", {suite}, timestampForName());
+    return reports::junitXml("cbrbench ab", {suite}, isoDate());
 }
 
 void printTable(const Plan& p, const State& s) {
