@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "camera_paths/path.h"
+#include "harness/ab/ab.h"
 #include "harness/calibrate/calibrate.h"
 #include "harness/compare/compare.h"
 #include "harness/core/options.h"
@@ -139,7 +140,8 @@ Command reportCommand(CLI::App& app) {
 
 Command compareCommand(CLI::App& app) {
     auto* cli = app.add_subcommand("compare", "regression verdicts: CURRENT_DIR against BASELINE_DIR (exit 0 same, "
-                                               "1 regression, 2 inconclusive with --strict, 3 bad input)");
+                                               "1 regression, 2 inconclusive: no cell decided, or UNKNOWN cells with "
+                                               "--strict, 3 bad input)");
     auto cmp = std::make_shared<CompareOptions>();
     cli->add_option("BASELINE_DIR", cmp->baseline_dir, "the baseline run's output directory")->required();
     cli->add_option("CURRENT_DIR", cmp->current_dir, "the current run's output directory (gets compare.*)")->required();
@@ -153,6 +155,42 @@ Command compareCommand(CLI::App& app) {
     cli->add_flag("--strict", cmp->strict, "UNKNOWN cells give exit code 2");
     // Its callers read exit 2 as "inconclusive": its bad input is 3.
     return {cli, [cmp] { return runCompare(*cmp); }, kCompareBadInput};
+}
+
+Command abCommand(CLI::App& app, const std::vector<std::string>& argv) {
+    auto* cli = app.add_subcommand(
+        "ab", "A/B of two builds or two option sets on this machine: runs in ABBA order, added to both sides until "
+              "every cell is SAME, SLOWER or FASTER or the budget is spent (exit 0 settled, 1 regression, 2 bad "
+              "input, 3 undecided, 4 a run failed); run arguments of both sides after --");
+    auto a = std::make_shared<AbOptions>();
+    cli->add_option("RUN_ARGS", a->run_args, "run options both sides take, after -- (e.g. -- --res 640x360 --variants "
+                                             "full,cbr-aso)");
+    cli->add_option("--a-bin", a->a_bin, "side A's (the baseline's) cbrbench binary (default: this one)");
+    cli->add_option("--b-bin", a->b_bin, "side B's cbrbench binary (default: this one)");
+    cli->add_option("--a-args", a->a_args, "run options of side A only, one string split at spaces (not one the "
+                                           "shared run options already give)");
+    cli->add_option("--b-args", a->b_args, "run options of side B only, e.g. \"--debug-slowdown opaque=2\"");
+    cli->add_option("--threshold", a->threshold, "time change that counts (e.g. 3% or 0.03)")->capture_default_str();
+    cli->add_option("--alpha", a->alpha, "false-alarm rate over all looks and cells")->capture_default_str();
+    cli->add_option("--repeat", a->repeat, "repetitions of every run")->capture_default_str();
+    cli->add_option("--max-runs", a->max_runs, "budget: runs per side (even; ABBA blocks add 2)")->capture_default_str();
+    cli->add_option("--max-seconds", a->max_seconds, "budget: seconds; no block starts that would end past it (0: none)")
+        ->capture_default_str();
+    cli->add_option("--unit", a->unit, "the sample: run (each run's median) or repetition (every repetition's "
+                                       "median)")->capture_default_str();
+    cli->add_option("--psnr-threshold", a->psnr_db, "PSNR change that counts, dB")->capture_default_str();
+    cli->add_option("--ssim-threshold", a->ssim, "SSIM change that counts")->capture_default_str();
+    cli->add_option("--eci-threshold", a->eci, "relative ECI change that counts")->capture_default_str();
+    cli->add_option("--out", a->out, "output directory (default out/ab-<date-time>)");
+    cli->add_option("--junit", a->junit, "also write the verdicts as JUnit XML to FILE (SLOWER, WORSE and "
+                                         "undecided: failures)");
+    cli->add_flag("--quiet", a->quiet, "no line per run on stdout (the looks and the table still print)");
+    cli->add_flag("--no-stop", a->no_stop, "run the whole budget even when settled early (the verdicts are the same; "
+                                           "calibrate --settle replays the runs)");
+    return {cli, [a, argv] {
+                a->argv = argv;
+                return runAb(*a);
+            }};
 }
 
 Command exportCommand(CLI::App& app) {
@@ -184,6 +222,10 @@ Command calibrateCommand(CLI::App& app, const std::vector<std::string>& argv) {
     cli->add_option("--alpha", cal->alpha, "compare's --alpha")->capture_default_str();
     cli->add_option("--from", cal->from, "an earlier calibration's directory: judge its runs again (other "
                                          "--threshold, --alpha or --repeats) without rendering");
+    cli->add_flag("--settle", cal->settle, "pairs through `cbrbench ab` (ABBA, runs added until settled), each run to "
+                                           "--max-runs and replayed with both sample units: calibrate_settle.csv; "
+                                           "--repeats' smallest count is every run's repetitions");
+    cli->add_option("--max-runs", cal->max_runs, "--settle: ab's budget, runs per side")->capture_default_str();
     return {cli, [cal, variant_list, argv] {
                 cal->run.variants = splitList(variant_list->empty() ? std::string(variants::referenceVariant().name)
                                                                        : *variant_list);
@@ -389,6 +431,7 @@ std::vector<Command> addCommands(CLI::App& app, const std::vector<std::string>& 
     c.push_back(runCommand(app, argv));
     c.push_back(reportCommand(app));
     c.push_back(compareCommand(app));
+    c.push_back(abCommand(app, argv));
     c.push_back(exportCommand(app));
     c.push_back(calibrateCommand(app, argv));
     c.push_back(metricCostCommand(app));

@@ -14,7 +14,8 @@ struct CompareRow {
     std::string variant, context;
     size_t base_reps = 0, cur_reps = 0;
     std::optional<double> base_ms, cur_ms;
-    std::optional<double> change, detectable, noise;  // fractions (0.03 = 3%)
+    std::string reps_text;  // the reps column when not "base / cur" (ab: "runs A / B, reps A / B")
+    std::optional<double> change, detectable, resolution, noise;  // fractions (0.03 = 3%)
     std::optional<double> p, q;
     std::string interval;  // "[+1.2%, +4.5%] 90%", or "-" without a bounded interval
     std::string time_verdict;
@@ -24,10 +25,13 @@ struct CompareRow {
 };
 
 struct ComparePage {
+    std::string command = "compare";  // the title's command: compare or ab
     std::string outcome;  // "regression", "no regression", ...
     std::string baseline_dir, current_dir, device;
     double threshold = 0, alpha = 0, psnr_db = 0, ssim = 0, eci_threshold = 0;  // as judged
     std::string time_rule;  // the time verdicts' rule in words
+    std::string settle_rule;  // ab: the looks and the budget in words (empty for compare)
+    std::string exit_rule = "Exit code 1 for any SLOWER or WORSE cell.";
     std::vector<CompareRow> rows;
 };
 

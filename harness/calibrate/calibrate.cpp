@@ -13,8 +13,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/calibrate/calibrate_settle.h"
 #include "harness/core/progress.h"
 #include "harness/core/run.h"
+#include "harness/core/settle.h"
 #include "harness/core/stats.h"
 #include "harness/core/verdict.h"
 #include "reports/csv.h"
@@ -75,6 +77,12 @@ Plan plan(const CalibrateOptions& o) {
                                                 timestampForName())
                           : fs::path(o.out);
     if (fs::exists(p.out)) throw std::invalid_argument("--out " + p.out.string() + ": already exists; expected a new directory");
+    if (o.settle && !o.from.empty()) throw std::invalid_argument("calibrate: --settle and --from: accepted: one of them");
+    if (o.settle && planLooks(o.max_runs, 2, p.repeats.front(), SampleUnit::Run, o.alpha).runs.empty())
+        throw std::invalid_argument("calibrate: --max-runs " + std::to_string(o.max_runs) +
+                                    ": too few runs per side for any settled verdict; accepted: an even count >= 4");
+    if (o.settle && (o.max_runs % 2 != 0))
+        throw std::invalid_argument("calibrate: --max-runs " + std::to_string(o.max_runs) + ": accepted: an even count >= 4");
     if (!o.from.empty()) return p;  // judged from existing runs: nothing renders
     // The runs' own checks (scene, path, settings, and the slowdown's pass) before any output.
     RunOptions check = r;
@@ -83,15 +91,6 @@ Plan plan(const CalibrateOptions& o) {
     if (!p.slowdowns.empty()) check.debug_slowdown = p.slowdowns.front();
     checkRunOptions(check);
     return p;
-}
-
-// Wilson score interval for k of n at 95%.
-std::pair<double, double> wilson(int k, int n) {
-    if (n == 0) return {0, 1};
-    const double z = 1.959963984540054, ph = double(k) / n, z2n = z * z / n;
-    double centre = (ph + z2n / 2) / (1 + z2n);
-    double half = z / (1 + z2n) * std::sqrt(ph * (1 - ph) / n + z2n / (4.0 * n));
-    return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
 }
 
 struct PairVerdicts {
@@ -283,7 +282,7 @@ void writeTables(const Plan& p, const Judged& judged, const fs::path& dir) {
                 }
             }
             const int n = int(list.size());
-            auto [lo, hi] = wilson(exit1, n);
+            auto [lo, hi] = wilsonInterval(exit1, n);
             double med_change = changes.empty() ? NAN : median(changes), med_det = detectable.empty() ? NAN : median(detectable);
             rates.addRow({{"kind", kind}, {"injected_pct", injected[kind]}, {"repeats", reps},
                           {"pairs", n}, {"exit1_pairs", exit1}, {"rate", double(exit1) / n}, {"rate_low", lo},
@@ -300,20 +299,14 @@ void writeTables(const Plan& p, const Judged& judged, const fs::path& dir) {
     reports::writeTextAtomically(dir / "calibrate_pairs.csv", pair_rows.str());
 }
 
-}  // namespace
-
-int runCalibrate(const CalibrateOptions& options) {
-    const Plan p = plan(options);
-    const auto start = std::chrono::steady_clock::now();
-    reports::OutputDir out(p.out);
-    if (p.o.from.empty()) fs::create_directories(out.path() / "runs");
-    const Judged judged = p.o.from.empty() ? renderPairs(p, out.path()) : judgeExisting(p);
-    writeTables(p, judged, out.path());
+// calibrate.json: what was measured and by which rule.
+void writeJson(const Plan& p, const fs::path& dir, std::chrono::steady_clock::time_point start,
+               const std::string& device, const std::string& setup) {
     nlohmann::json j;
     j["command"] = "calibrate";
     j["argv"] = p.o.run.control.argv;
-    j["device"] = judged.device;
-    j["setup"] = judged.setup;
+    j["device"] = device;
+    j["setup"] = setup;
     if (!p.o.from.empty()) j["from"] = p.o.from;
     j["threshold"] = p.rule.threshold;
     j["alpha"] = p.rule.alpha;
@@ -325,7 +318,38 @@ int runCalibrate(const CalibrateOptions& options) {
     j["rate_interval"] = "Wilson score, 95%";
     j["exit1"] = "a pair exits 1 when any of its cells is SLOWER (the images are equal, so quality never fails it)";
     j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    reports::writeTextAtomically(out.path() / "calibrate.json", j.dump(2) + "\n");
+    if (p.o.settle) {
+        j["settle"] = {{"max_runs", p.o.max_runs}, {"repeat", p.repeats.front()}, {"rule", kSettleRule}};
+        j["exit1"] = "a pair exits 1 when any of its cells is SLOWER; an A/A pair is wrong when any is SLOWER or FASTER";
+    }
+    reports::writeTextAtomically(dir / "calibrate.json", j.dump(2) + "\n");
+}
+
+}  // namespace
+
+int runCalibrate(const CalibrateOptions& options) {
+    const Plan p = plan(options);
+    const auto start = std::chrono::steady_clock::now();
+    reports::OutputDir out(p.out);
+    if (p.o.from.empty() && !p.o.settle) fs::create_directories(out.path() / "runs");
+    if (p.o.settle) {
+        std::string variants;
+        for (const auto& v : p.o.run.variants) variants += (variants.empty() ? "" : ",") + v;
+        const SettleCalibration c{.argv = p.o.run.control.argv, .variants = variants, .pairs = p.o.pairs, .slow_pairs = p.o.slow_pairs,
+                                  .slowdowns = p.slowdowns, .threshold = p.o.threshold,
+                                  .threshold_fraction = p.rule.threshold, .alpha = p.rule.alpha,
+                                  .max_runs = p.o.max_runs, .repeat = p.repeats.front()};
+        runSettleCalibration(c, out.path());
+        writeJson(p, out.path(), start, "", "");
+        out.commit();
+        std::printf("calibrate --settle: %s (rates), %s (every cell); ab directories under %s\n",
+                    (p.out / "calibrate_settle.csv").c_str(), (p.out / "calibrate_settle_pairs.csv").c_str(),
+                    (p.out / "settles").c_str());
+        return 0;
+    }
+    const Judged judged = p.o.from.empty() ? renderPairs(p, out.path()) : judgeExisting(p);
+    writeTables(p, judged, out.path());
+    writeJson(p, out.path(), start, judged.device, judged.setup);
     out.commit();
     std::printf("calibrate: %s (rates), %s (every verdict); run directories under %s\n",
                 (p.out / "calibrate.csv").c_str(), (p.out / "calibrate_pairs.csv").c_str(),

@@ -19,6 +19,8 @@ struct CalibrateOptions {
     double alpha = 0.05;
     std::string out;                      // "" -> out/calibrate-<scene>-<path>-<date-time>
     std::string from;                     // an earlier calibration's directory: judge its runs again
+    bool settle = false;                  // pairs through `cbrbench ab` (calibrate_settle.h), not single runs
+    int max_runs = 8;                     // --settle: ab's budget, runs per side
 };
 
 // Runs, in time order per pair i: baseline i, its A/A twin, then one run per injected

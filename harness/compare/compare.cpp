@@ -52,10 +52,8 @@ struct Cell {
     std::optional<double> base_ms, cur_ms;
     TimeVerdict time;
     std::string note;  // unmatched cells
-    struct Quality {
-        std::optional<double> base, cur, delta;
-        std::string verdict = "n/a";
-    } psnr, ssim, eci;
+    using Quality = QualityVerdict;
+    Quality psnr, ssim, eci;
 };
 
 
@@ -115,28 +113,12 @@ std::string deviceText(const RunData& d) {
            jsonString(d.run, "/device/driver_version");
 }
 
-// Higher is better for PSNR and SSIM (absolute threshold), lower for ECI (relative).
-void judgeQuality(Cell::Quality& q, bool higher_better, double threshold, bool relative) {
-    if (!q.base || !q.cur) return;
-    double b = *q.base, c = *q.cur;
-    if (b == c) {  // covers inf == inf (full against itself)
-        q.delta = 0;
-        q.verdict = "SAME";
-        return;
-    }
-    double delta = relative ? (b != 0 ? (c - b) / std::abs(b) : (c > b ? INFINITY : -INFINITY)) : c - b;
-    if (std::isfinite(delta)) q.delta = delta;
-    bool up = c > b;
-    if (std::abs(delta) <= threshold) q.verdict = "SAME";
-    else q.verdict = up == higher_better ? "BETTER" : "WORSE";
-}
-
 std::string num(std::optional<double> v) { return v ? reports::Cell(*v).text() : std::string(); }
 
 const std::vector<std::string> kCsvColumns = {
     "scene",          "path",           "pipeline",      "variant",      "resolution",    "settings",
     "baseline_reps",  "current_reps",   "baseline_gpu_ms", "current_gpu_ms", "time_change_pct", "hl_change_pct",
-    "change_low_pct", "change_high_pct", "interval_confidence_pct", "detectable_change_pct", "reps_to_settle",
+    "change_low_pct", "change_high_pct", "interval_confidence_pct", "detectable_change_pct", "resolvable_change_pct", "reps_to_settle",
     "noise_cv_pct",   "p_value",        "q_value",        "time_verdict",  "baseline_psnr_db", "current_psnr_db", "psnr_delta_db",
     "psnr_verdict",   "baseline_ssim",  "current_ssim",  "ssim_delta",   "ssim_verdict",  "baseline_eci",
     "current_eci",    "eci_change_pct", "eci_verdict",   "note"};
@@ -163,13 +145,21 @@ std::string noteOf(const Cell& c) { return c.note.empty() ? c.time.note : c.note
 reports::ComparePage comparePage(const CompareOptions& o, const Side& base, const Side& cur,
                                  const std::vector<Cell>& cells, double threshold, double eci_threshold,
                                  const std::string& outcome) {
-    reports::ComparePage page{outcome, base.data.dir.string(), cur.data.dir.string(), deviceText(cur.data),
-                              threshold, o.alpha, o.psnr_db, o.ssim, eci_threshold, kTimeRule, {}};
+    reports::ComparePage page{.outcome = outcome, .baseline_dir = base.data.dir.string(),
+                              .current_dir = cur.data.dir.string(), .device = deviceText(cur.data),
+                              .threshold = threshold, .alpha = o.alpha, .psnr_db = o.psnr_db, .ssim = o.ssim,
+                              .eci_threshold = eci_threshold, .time_rule = kTimeRule};
+    page.exit_rule = "Exit code 1 for any SLOWER or WORSE cell; 2 when no cell was decided (or, with --strict, any "
+                     "cell is UNKNOWN).";
     for (const auto& c : cells) {
         const TimeVerdict& t = c.time;
-        page.rows.push_back({c.variant, sideOf(c).context, c.base_reps.size(), c.cur_reps.size(), c.base_ms, c.cur_ms,
-                             t.change, t.detectable, t.noise, t.p, t.q, intervalText(t), t.verdict, c.psnr.delta,
-                             c.ssim.delta, c.eci.delta, c.psnr.verdict, c.ssim.verdict, c.eci.verdict, noteOf(c)});
+        page.rows.push_back({.variant = c.variant, .context = sideOf(c).context, .base_reps = c.base_reps.size(),
+                             .cur_reps = c.cur_reps.size(), .base_ms = c.base_ms, .cur_ms = c.cur_ms,
+                             .change = t.change, .detectable = t.detectable, .resolution = t.resolution,
+                             .noise = t.noise, .p = t.p, .q = t.q, .interval = intervalText(t),
+                             .time_verdict = t.verdict, .psnr_delta = c.psnr.delta, .ssim_delta = c.ssim.delta,
+                             .eci_change = c.eci.delta, .psnr_verdict = c.psnr.verdict,
+                             .ssim_verdict = c.ssim.verdict, .eci_verdict = c.eci.verdict, .note = noteOf(c)});
     }
     return page;
 }
@@ -255,6 +245,7 @@ std::string compareCsv(const std::vector<Cell>& cells) {
                     {"change_high_pct", num(pct(bounded ? std::optional(ci->high) : std::nullopt))},
                     {"interval_confidence_pct", num(pct(bounded ? std::optional(ci->confidence) : std::nullopt))},
                     {"detectable_change_pct", num(pct(t.detectable))},
+                    {"resolvable_change_pct", num(pct(t.resolution))},
                     {"reps_to_settle", t.reps_needed ? std::to_string(*t.reps_needed) : std::string()},
                     {"noise_cv_pct", num(pct(t.noise))},
                     {"p_value", num(t.p)},
@@ -309,15 +300,23 @@ void printCompareTable(const std::vector<Cell>& cells) {
 // short table; returns the exit code.
 int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, const std::vector<Cell>& cells,
                  double threshold, double eci_threshold) {
-    bool regression = false, unknown = false, matched = false;
+    bool regression = false, unknown = false, matched = false, decided = false;
     for (const auto& c : cells) {
         regression |= c.time.verdict == "SLOWER" || c.psnr.verdict == "WORSE" || c.ssim.verdict == "WORSE" ||
                       c.eci.verdict == "WORSE";
         unknown |= c.time.verdict == "UNKNOWN";
         matched |= c.base && c.cur;
+        decided |= c.base && c.cur && c.time.verdict != "UNKNOWN";
     }
-    int code = regression ? kCompareRegression : unknown && o.strict ? kCompareInconclusive : kCompareSame;
-    std::string outcome = regression ? "regression" : unknown ? "no regression found, some cells UNKNOWN" : "no regression";
+    // A check that decided nothing does not pass: no cell with a time verdict is inconclusive
+    // with or without --strict.
+    int code = regression                        ? kCompareRegression
+               : (unknown && o.strict) || !decided ? kCompareInconclusive
+                                                   : kCompareSame;
+    std::string outcome = regression ? "regression"
+                          : !decided ? "inconclusive: no cell decided (every time verdict UNKNOWN or unmatched)"
+                          : unknown  ? "no regression found, some cells UNKNOWN"
+                                     : "no regression";
 
     fs::path out = o.current_dir;
     reports::writeTextAtomically(out / "compare.csv", compareCsv(cells));
@@ -396,6 +395,20 @@ std::vector<Cell> compareCells(const CompareOptions& o, const Side& base, const 
     return cells;
 }
 
+// A run whose timed frames drifted (summary.csv status `unsteady`) cannot show that nothing
+// changed: such a cell's SAME becomes UNKNOWN, saying which side and what drifted.
+void neverSameIfUnsteady(Cell& c) {
+    std::string why;
+    for (auto [side, role] : {std::pair{c.base, "baseline"}, std::pair{c.cur, "current"}}) {
+        if (reports::summaryText(side->data, c.variant, "status") != kUnsteadyStatus) continue;
+        const std::string note = reports::summaryText(side->data, c.variant, "note");
+        why += std::string(why.empty() ? "" : "; ") + role + " unsteady" + (note.empty() ? "" : " (" + note + ")");
+    }
+    if (why.empty()) return;
+    if (c.time.verdict == "SAME") c.time.verdict = "UNKNOWN";
+    c.time.note = why + "; an unsteady run is never SAME" + (c.time.note.empty() ? "" : "; " + c.time.note);
+}
+
 }  // namespace
 
 int runCompare(const CompareOptions& o) {
@@ -428,7 +441,7 @@ int runCompare(const CompareOptions& o) {
     for (auto& c : cells)
         if (c.base && c.cur) samples.push_back({c.base_reps, c.cur_reps}), matched.push_back(&c);
     auto verdicts = judgeTimes(samples, {threshold, o.alpha});
-    for (size_t i = 0; i < matched.size(); ++i) matched[i]->time = verdicts[i];
+    for (size_t i = 0; i < matched.size(); ++i) matched[i]->time = verdicts[i], neverSameIfUnsteady(*matched[i]);
     return writeCompare(o, base, cur, cells, threshold, eci_threshold);
 }
 

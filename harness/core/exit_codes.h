@@ -7,7 +7,7 @@
 
 namespace cbr::harness {
 
-// compare and score-seq follow the conventions of the tools CI systems already wrap
+// compare, ab and score-seq follow the conventions of the tools CI systems already wrap
 // (compare: 2 means inconclusive; score-seq: OpenImageIO idiff's codes), so one number
 // means different things per command: the names say which.
 enum ExitCode : int {
@@ -19,8 +19,14 @@ enum ExitCode : int {
     // compare
     kCompareSame = 0,
     kCompareRegression = 1,
-    kCompareInconclusive = 2,  // UNKNOWN cells with --strict
+    kCompareInconclusive = 2,  // UNKNOWN cells with --strict, or no cell decided
     kCompareBadInput = 3,
+    // ab: bad input is 2 as for run; a check that decided nothing is 3, never 0
+    kAbSettled = 0,
+    kAbRegression = 1,
+    kAbBadInput = 2,
+    kAbUndecided = 3,
+    kAbRunFailed = 4,
     // score-seq (idiff's: 5 is cbrbench's own)
     kSeqPass = 0,
     kSeqWarn = 1,
@@ -31,7 +37,7 @@ enum ExitCode : int {
 };
 
 // The table's columns: which commands a code's meaning is for.
-enum class ExitColumn { Run, Matrix, Stress, Compare, ScoreSeq };
+enum class ExitColumn { Run, Matrix, Stress, Compare, Ab, ScoreSeq };
 
 struct ExitMeaning {
     ExitCode code;

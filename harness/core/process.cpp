@@ -1,7 +1,12 @@
 #include "harness/core/process.h"
 
+#include <cstdio>
 #include <cstdlib>
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <cerrno>
 #include <cstring>
+#include <stdexcept>
 #include <fstream>
 #include <malloc.h>
 #include <thread>
@@ -85,6 +90,32 @@ nlohmann::json hostJson() {
              {{"keeps_freed_memory", true},
               {"transparent_huge_pages", thp.empty() ? "unknown" : thp},
               {"heap_huge_pages", huge}}}};
+}
+
+ChildExit runChildProcess(const std::vector<std::string>& argv, const std::filesystem::path& out_log,
+                          const std::filesystem::path& err_log) {
+    std::fflush(nullptr);
+    pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("fork failed: " + std::string(std::strerror(errno)));
+    if (pid == 0) {
+        int o = ::open(out_log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int e = ::open(err_log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (o >= 0) dup2(o, 1);
+        if (e >= 0) dup2(e, 2);
+        std::vector<std::string> copy = argv;
+        std::vector<char*> cargv;
+        for (auto& a : copy) cargv.push_back(a.data());
+        cargv.push_back(nullptr);
+        execv(cargv[0], cargv.data());
+        _exit(127);
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    ChildExit r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+    return r;
 }
 
 }  // namespace cbr::harness

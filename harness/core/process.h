@@ -2,7 +2,9 @@
 // host description run.json carries.
 #pragma once
 
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -17,5 +19,16 @@ void setUpProcessMemory(char** argv);
 
 // "name", "cpus" and "memory" (what setUpProcessMemory did) for run.json files.
 nlohmann::json hostJson();
+
+// A child process's end: its exit code (-1 when killed) and the signal that killed it (0: none).
+struct ChildExit {
+    int code = -1;
+    int signal = 0;
+};
+
+// fork + exec of argv[0] with `argv`, stdout and stderr to the two files (created or
+// truncated), waited for. `stress` and `ab` run their `cbrbench run` children this way.
+ChildExit runChildProcess(const std::vector<std::string>& argv, const std::filesystem::path& out_log,
+                          const std::filesystem::path& err_log);
 
 }  // namespace cbr::harness

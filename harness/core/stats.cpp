@@ -241,4 +241,12 @@ double changeBelowP(const std::vector<double>& baseline, const std::vector<doubl
     return upperTail(cdf, double(d.size()) - countAbove(d, std::log1p(change)));
 }
 
+Interval wilsonInterval(int k, int n) {
+    if (n == 0) return {0, 1};
+    const double z = 1.959963984540054, ph = double(k) / n, z2n = z * z / n;
+    double centre = (ph + z2n / 2) / (1 + z2n);
+    double half = z / (1 + z2n) * std::sqrt(ph * (1 - ph) / n + z2n / (4.0 * n));
+    return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
 }  // namespace cbr::harness

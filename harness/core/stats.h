@@ -24,6 +24,9 @@ struct Interval {
 Interval bootstrapMedianOverRuns(const std::vector<std::vector<double>>& runs, int resamples = 2000,
                                  double confidence = 0.95, uint64_t seed = 0x5eed);
 
+// Wilson score interval for k successes of n at 95% ({0, 1} for n = 0).
+Interval wilsonInterval(int k, int n);
+
 // Mann-Whitney U test, two-sided, of x against y (regression verdicts, method/timing.md).
 // Exact: the permutation distribution of the rank sum of x, midranks for ties, counted
 // by dynamic programming over all C(n, nx) splits (what scipy's method='exact' gives

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -21,9 +22,14 @@ const char* const kTimeRule =
     "repetitions grow, so any real change beyond the threshold becomes a verdict with enough of them: an UNKNOWN "
     "cell names the repetitions per side likely to settle it (the interval's half-width scaled by 1/sqrt(n) until "
     "it fits between the estimate and the nearest boundary). Fewer than 3 repetitions on either side: UNKNOWN. "
-    "The noise (coefficient of variation of the per-repetition medians) is reported, not a gate.";
+    "The noise (coefficient of variation of the per-repetition medians) is reported, not a gate. The resolution is "
+    "the interval's half-width: the smallest change the noise could show at all; a SAME under a threshold at least "
+    "4 times wider says so in its note (and whether the interval excludes 0: a real change inside the threshold).";
 
 namespace {
+
+// A threshold this many times the resolution is "far wider" (the SAME note).
+constexpr double kFarWider = 4.0;
 
 struct Tests {
     double p = 1;
@@ -85,6 +91,22 @@ std::optional<int> repsNeeded(const TimeSamples& s, const ChangeInterval& ci, do
     return int(std::min(n, 100000.0));
 }
 
+// A SAME under a threshold far wider than what the noise resolves says so: "+2.1% SAME at
+// 3%" on a machine that resolves 0.1% hides a real change inside the threshold.
+std::string sameNote(const TimeVerdict& v, double threshold) {
+    if (!v.resolution || !(threshold >= kFarWider * *v.resolution)) return "";
+    char b[200];
+    std::snprintf(b, sizeof b, "the noise resolves +-%.2g%%, far less than the %g%% threshold", *v.resolution * 100,
+                  threshold * 100);
+    std::string note = b;
+    if (v.interval && (v.interval->low > 0 || v.interval->high < 0)) {
+        std::snprintf(b, sizeof b, ": a real change of %+.2g%% (the interval excludes 0), inside the threshold",
+                      v.interval->estimate * 100);
+        note += b;
+    }
+    return note;
+}
+
 }  // namespace
 
 std::vector<TimeVerdict> judgeTimes(const std::vector<TimeSamples>& cells, const VerdictRule& rule) {
@@ -126,7 +148,9 @@ std::vector<TimeVerdict> judgeTimes(const std::vector<TimeSamples>& cells, const
         if (v.interval->bounded()) {
             double half = (std::log1p(v.interval->high) - std::log1p(v.interval->low)) / 2;
             v.detectable = std::expm1(std::log1p(rule.threshold) + half);
+            v.resolution = std::expm1(half);
         }
+        if (v.verdict == "SAME") v.note = sameNote(v, rule.threshold);
         if (v.verdict != "UNKNOWN") continue;
         v.reps_needed = repsNeeded(s, *v.interval, rule.threshold, tail);
         v.note = v.reps_needed ? "interval straddles a boundary: about " + std::to_string(*v.reps_needed) +
@@ -141,6 +165,21 @@ std::vector<double> repetitionMedians(const reports::RunData& d, const std::stri
     std::vector<double> out;
     for (auto& [rep, v] : reports::gpuMsByRepetition(d, variant, max_repeats)) out.push_back(median(v));
     return out;
+}
+
+void judgeQuality(QualityVerdict& q, bool higher_better, double threshold, bool relative) {
+    if (!q.base || !q.cur) return;
+    double b = *q.base, c = *q.cur;
+    if (b == c) {  // covers inf == inf (full against itself)
+        q.delta = 0;
+        q.verdict = "SAME";
+        return;
+    }
+    double delta = relative ? (b != 0 ? (c - b) / std::abs(b) : (c > b ? INFINITY : -INFINITY)) : c - b;
+    if (std::isfinite(delta)) q.delta = delta;
+    bool up = c > b;
+    if (std::abs(delta) <= threshold) q.verdict = "SAME";
+    else q.verdict = up == higher_better ? "BETTER" : "WORSE";
 }
 
 double parseFraction(const std::string& text, const std::string& command, const std::string& option) {

@@ -13,6 +13,9 @@
 
 namespace cbr::harness {
 
+// summary.csv's status of a variant whose timed frames drifted or ramped: never SAME.
+inline constexpr const char* kUnsteadyStatus = "unsteady";
+
 // The rule, stated once: compare.html, the printed output and docs/method/measurement.md say the same.
 extern const char* const kTimeRule;
 
@@ -33,6 +36,7 @@ struct TimeVerdict {
     std::optional<double> noise;      // coefficient of variation, the larger side
     std::optional<double> p, q;       // the likeliest conclusion's one-sided p, BH q
     std::optional<double> detectable; // smallest change these repetitions would call SLOWER
+    std::optional<double> resolution; // smallest change the noise could show at all: the interval's half-width
     std::optional<int> reps_needed;   // UNKNOWN: repetitions per side likely to settle it
     std::string note;
 };
@@ -45,6 +49,15 @@ struct TimeVerdict {
 // coverage rate), so a concluded cell's interval lies wholly beyond (SLOWER, FASTER) or
 // inside (SAME) the threshold, and an UNKNOWN cell's straddles a boundary.
 std::vector<TimeVerdict> judgeTimes(const std::vector<TimeSamples>& cells, const VerdictRule& rule);
+
+// A quality verdict of one cell from summary.csv: BETTER, WORSE or SAME when the value changed
+// by more than the threshold (absolute, or relative to the baseline), n/a where a side has none.
+struct QualityVerdict {
+    std::optional<double> base, cur, delta;
+    std::string verdict = "n/a";
+};
+// Higher is better for PSNR and SSIM (absolute threshold), lower for ECI (relative).
+void judgeQuality(QualityVerdict& q, bool higher_better, double threshold, bool relative);
 
 // "3%" or "0.03" -> 0.03; anything else throws std::invalid_argument naming COMMAND, the
 // option and what is accepted.

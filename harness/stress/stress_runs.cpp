@@ -3,15 +3,13 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fcntl.h>
 #include <fstream>
 #include <map>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "camera_paths/path.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
+#include "harness/core/process.h"
 
 namespace cbr::harness::stress {
 namespace {
@@ -23,7 +21,7 @@ std::string readText(const fs::path& p) {
 
 }  // namespace
 
-// fork + exec of this very binary, stdout and stderr to files beside the run's directory.
+// This very binary in a child process (runChildProcess), stdout and stderr to files beside the run's directory.
 void runChild(const fs::path& self, Child& c, const std::vector<std::string>& common) {
     std::vector<std::string> argv = {self.string(), "run"};
     argv.insert(argv.end(), c.args.begin(), c.args.end());
@@ -36,24 +34,9 @@ void runChild(const fs::path& self, Child& c, const std::vector<std::string>& co
         for (const auto& a : argv) cmd << a << ' ';
         cmd << '\n';
     }
-    std::fflush(nullptr);
-    pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error("stress: fork failed");
-    if (pid == 0) {
-        int o = ::open(out_log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        int e = ::open(err_log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (o >= 0) dup2(o, 1);
-        if (e >= 0) dup2(e, 2);
-        std::vector<char*> cargv;
-        for (auto& a : argv) cargv.push_back(a.data());
-        cargv.push_back(nullptr);
-        execv(cargv[0], cargv.data());
-        _exit(127);
-    }
-    int status = 0;
-    waitpid(pid, &status, 0);
-    c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    c.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+    const ChildExit end = runChildProcess(argv, out_log, err_log);
+    c.exit_code = end.code;
+    c.signal = end.signal;
     c.err = readText(err_log);
     if (c.exit_code == 0) {
         try {

@@ -102,3 +102,36 @@ TEST(Calibrate, BadOptionsAreOneLineAndNoOutput) {
         EXPECT_FALSE(fs::exists(out)) << args[1];
     }
 }
+
+// --settle: every pair an `ab --no-stop` run to its budget, replayed with both sample units;
+// the replay with unit run gives exactly the verdicts ab printed itself.
+TEST(Calibrate, SettleReplaysAbWithBothUnits) {
+    auto work = cbr::test::scratchDir("calibrate-settle");
+    auto out = work / "cal";
+    auto r = runBench({"calibrate", "--settle", "--scene", "blocks", "--path", "orbit", "--res", "64x36", "--frames",
+                       "4", "--warmup", "2", "--validate", "--pairs", "1", "--slow-pairs", "1", "--slowdown",
+                       "opaque=400", "--repeats", "3", "--max-runs", "4", "--threshold", "50%", "--out", out.string()},
+                      work);
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    auto rates = cbr::test::readCsv(out / "calibrate_settle.csv");
+    ASSERT_EQ(rates.rows.size(), 4u);  // (run, repetition) x (aa, opaque=400)
+    std::set<std::string> seen;
+    for (size_t i = 0; i < rates.rows.size(); ++i) {
+        seen.insert(rates.at(i, "unit") + " " + rates.at(i, "kind"));
+        EXPECT_EQ(rates.at(i, "pairs"), "1");
+        EXPECT_EQ(rates.at(i, "max_runs"), "4");
+    }
+    EXPECT_EQ(seen, (std::set<std::string>{"run aa", "run opaque=400", "repetition aa", "repetition opaque=400"}));
+    auto pairs = cbr::test::readCsv(out / "calibrate_settle_pairs.csv");
+    ASSERT_EQ(pairs.rows.size(), 4u);  // one variant (full) per pair and unit
+    for (size_t i = 0; i < pairs.rows.size(); ++i) {
+        if (pairs.at(i, "unit") != "run") continue;
+        EXPECT_EQ(pairs.at(i, "verdict"), pairs.at(i, "ab_verdict")) << i;
+    }
+    // Each pair ran its whole budget: 4 runs per side, ABBA.
+    for (const char* pair : {"aa-000", "slow-opaque-400-000"}) {
+        auto ab = nlohmann::json::parse(std::ifstream(out / "settles" / pair / "ab.json"));
+        EXPECT_EQ(ab["runs_per_side"], 4) << pair;
+        EXPECT_EQ(ab["runs"][1], "b-00") << pair;
+    }
+}
