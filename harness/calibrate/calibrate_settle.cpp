@@ -102,10 +102,10 @@ Pair settlePair(const SettleCalibration& c, const fs::path& dir, const std::stri
     return pr;
 }
 
-const std::vector<std::string> kRateColumns = {
+const std::vector<std::string> kSettleRateColumns = {
     "unit", "kind", "injected_pct", "pairs", "settled_pairs", "exit1_pairs", "wrong_pairs", "undecided_pairs",
     "rate", "rate_low", "rate_high", "wrong_rate", "median_runs_to_settle", "max_runs", "alpha_per_look"};
-const std::vector<std::string> kPairColumns = {"unit", "kind", "injected_pct", "pair", "variant", "verdict",
+const std::vector<std::string> kSettlePairColumns = {"unit", "kind", "injected_pct", "pair", "variant", "verdict",
                                                "ab_verdict", "decided_at_runs", "stopped_at_runs", "change_pct",
                                                "change_low_pct", "change_high_pct", "resolvable_change_pct",
                                                "ab_seconds"};
@@ -113,7 +113,7 @@ const std::vector<std::string> kPairColumns = {"unit", "kind", "injected_pct", "
 // Rates per unit and kind: a pair exits 1 when a cell is SLOWER; an A/A pair is wrong when a
 // cell is SLOWER or FASTER.
 void writeSettleTables(const SettleCalibration& c, const std::vector<Pair>& pairs, const fs::path& dir) {
-    reports::CsvTable rates(kRateColumns), rows(kPairColumns);
+    reports::CsvTable rates(kSettleRateColumns), rows(kSettlePairColumns);
     std::printf("%-11s %-14s %6s %8s %7s %7s %10s %20s %14s\n", "unit", "kind", "pairs", "settled", "exit 1", "wrong",
                 "undecided", "rate [95% Wilson]", "runs to settle");
     for (SampleUnit unit : {SampleUnit::Run, SampleUnit::Repetition}) {

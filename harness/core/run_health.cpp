@@ -50,7 +50,10 @@ void gpuState(MachineHealth& m, const std::vector<MachineSample>& samples, const
         m.sm_mhz_min = *std::min_element(sm.begin(), sm.end());
         m.sm_mhz_max = *std::max_element(sm.begin(), sm.end());
         m.sm_mhz_median = median(sm);
-        m.clock_left_band = *m.sm_mhz_min < *m.sm_mhz_median * (1 - rule.clock_band);
+        // Two readings in a row below the band: NVML's clock can lag a GPU that just woke
+        // (one stale 345 MHz reading inside a 4K pass whose frames were already steady).
+        const double floor = *m.sm_mhz_median * (1 - rule.clock_band);
+        for (size_t i = 1; i < sm.size(); ++i) m.clock_left_band |= sm[i - 1] < floor && sm[i] < floor;
     }
     m.throttle_reasons = throttleReasonNames(reasons & ~uint64_t(1));  // gpu_idle: between passes, not a slowdown
     m.throttled = throttleSlowsDown(reasons);
