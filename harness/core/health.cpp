@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 
 #include "harness/core/results.h"
@@ -14,6 +15,11 @@ namespace cbr::harness {
 const HealthRule& healthRule() {
     static const HealthRule rule;
     return rule;
+}
+
+bool healthStatusGate() {
+    const char* v = std::getenv("CBR_HEALTH_STATUS");
+    return !(v && std::string(v) == "off");
 }
 
 bool warmUpSteady(const std::vector<double>& times, const HealthRule& rule) {

@@ -41,6 +41,11 @@ struct HealthRule {
 };
 const HealthRule& healthRule();
 
+// Whether an unsteady variant's status becomes `unsteady`: yes, unless the environment has
+// CBR_HEALTH_STATUS=off, where health is measured and reported but every status stays as it
+// ran (cbrbench's own tests, which ctest runs side by side on shared cores).
+bool healthStatusGate();
+
 // Warm-up: true once `times` (ms, in order) is steady under the rule.
 bool warmUpSteady(const std::vector<double>& times, const HealthRule& rule = healthRule());
 
@@ -129,6 +134,7 @@ struct RunHealth {
     std::vector<TimedWindow> windows;
     MachineHealth machine;
     bool busy = false, unsteady = false;
+    bool status_gate = true;  // an unsteady variant's status becomes `unsteady` (healthStatusGate)
     std::vector<std::string> disturbances;  // each a clause of the line
     std::string line;                       // "" for a quiet run
 };

@@ -97,6 +97,7 @@ json healthJson(const RunResults& r) {
     return {{"quiet", h.line.empty()},
             {"busy", h.busy},
             {"unsteady", h.unsteady},
+            {"status_gate", h.status_gate},
             {"line", h.line},
             {"disturbances", h.disturbances},
             {"variants", configs},

@@ -111,7 +111,7 @@ void configHealth(RunState& s, const std::vector<MachineSample>& samples, const 
                           std::to_string(c.busy_repeat + 1) + " first)");
         c.unsteady = !why.empty();
         for (const auto& w : why) c.note += (c.note.empty() ? "" : "; ") + w;
-        if (c.unsteady && vr.status == "ok") {
+        if (c.unsteady && vr.status == "ok" && h.status_gate) {
             vr.status = "unsteady";
             vr.note = c.note;
         }
@@ -141,7 +141,8 @@ void disturbances(RunState& s) {
         std::string list;
         for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
         h.unsteady = true;
-        h.disturbances.push_back(list + " unsteady (see their notes)");
+        h.disturbances.push_back(list + " unsteady (see their notes)" +
+                                 (h.status_gate ? "" : "; statuses kept as ok: CBR_HEALTH_STATUS=off"));
     }
     for (const auto& d : h.disturbances) h.line += (h.line.empty() ? "measurement disturbed: " : "; ") + d;
 }
@@ -150,6 +151,7 @@ void disturbances(RunState& s) {
 
 void assessHealth(RunState& s) {
     const HealthRule& rule = healthRule();
+    s.results.health.status_gate = healthStatusGate();
     const std::vector<MachineSample> samples = s.sampler.samples();
     s.results.health.configs.resize(s.results.variants.size());
     machineState(s, samples, rule);

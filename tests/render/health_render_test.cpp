@@ -39,11 +39,12 @@ struct Spinners {
 
 TEST(Health, RunJsonRecordsWarmUpDriftAndTheMachine) {
     auto work = scratchDir("health-keys");
-    auto r = runBench(smallRun(work / "out"), work);
+    auto r = runBench(smallRun(work / "out"), work, {"CBR_HEALTH_STATUS=on"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     auto run = readJson(work / "out" / "run.json");
     const auto& h = run["health"];
     ASSERT_TRUE(h.is_object());
+    EXPECT_TRUE(h["status_gate"].get<bool>());
     ASSERT_EQ(h["variants"].size(), 2u);
     for (const auto& v : h["variants"]) {
         ASSERT_EQ(v["warm_up_frames"].size(), 3u) << v.dump();
@@ -71,7 +72,7 @@ TEST(Health, TwoBusyProcessesMakeTheRunBusyAndItsVariantsUnsteady) {
     BenchResult r;
     {
         Spinners busy(2);  // two cores' worth of other work for the whole run
-        r = runBench(smallRun(work / "out"), work);
+        r = runBench(smallRun(work / "out"), work, {"CBR_HEALTH_STATUS=on"});
     }
     ASSERT_EQ(r.exit_code, 0) << r.err;
     auto run = readJson(work / "out" / "run.json");
@@ -93,6 +94,21 @@ TEST(Health, TwoBusyProcessesMakeTheRunBusyAndItsVariantsUnsteady) {
     EXPECT_NE(page.find("<b>Measurement:</b> measurement disturbed"), std::string::npos);
     EXPECT_NE(page.find("Measurement health"), std::string::npos);
     EXPECT_EQ(run["validation"]["errors"].get<int>() + run["validation"]["warnings"].get<int>(), 0);
+}
+
+TEST(Health, StatusGateOffReportsButKeepsStatusOk) {
+    auto work = scratchDir("health-gate-off");
+    BenchResult r;
+    {
+        Spinners busy(2);
+        r = runBench(smallRun(work / "out"), work, {"CBR_HEALTH_STATUS=off"});
+    }
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto run = readJson(work / "out" / "run.json");
+    EXPECT_FALSE(run["health"]["status_gate"].get<bool>());
+    EXPECT_TRUE(run["health"]["busy"].get<bool>());  // still measured and said
+    auto summary = readCsv(work / "out" / "summary.csv");
+    for (size_t i = 0; i < summary.rows.size(); ++i) EXPECT_EQ(summary.at(i, "status"), "ok");
 }
 
 }  // namespace

@@ -205,7 +205,8 @@ TEST(OneSpeedup, NoOtherFigureInAnyOutput) {
     fs::remove_all(current);
     fs::copy(r.dir, current, fs::copy_options::recursive);
     auto c = runBench({"compare", r.dir.string(), current.string(), "--junit", junit.string()}, r.work);
-    ASSERT_EQ(c.exit_code, 0) << c.out << c.err;
+    // 0, or 2 when three repetitions a side decide no cell: the figures are what is checked.
+    ASSERT_TRUE(c.exit_code == 0 || c.exit_code == 2) << c.exit_code << c.out << c.err;
     expectOnlyKnownFigures(c.out, expected, "compare's terminal");
     for (const fs::path& f : {current / "compare.html", current / "compare.csv", junit}) {
         ASSERT_TRUE(fs::exists(f)) << f;
