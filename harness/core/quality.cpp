@@ -468,6 +468,11 @@ std::vector<WorstFrame> QualityScorer::finish(const std::filesystem::path& dir) 
     return out;
 }
 
+unsigned scoringThreads(int requested) {
+    if (requested > 0) return unsigned(requested);
+    return std::max(1u, std::thread::hardware_concurrency() / 2);
+}
+
 unsigned worstImageEncoders(int width, int height) {
     const double job_bytes = kWorstEncodeBytesPerPixel * double(width) * double(height);
     const auto by_memory = unsigned(std::max(2.0, 768e6 / job_bytes));

@@ -91,6 +91,10 @@ private:
     std::vector<std::string> variant_order_;  // first-scored order: the order finish() reports
 };
 
+// The CPU scorer's worker threads: `requested` (--scoring-threads) when above 0, else half the
+// hardware threads (the other half renders).
+unsigned scoringThreads(int requested);
+
 // At most this many worst-frame images are encoded at once for w x h images: each encode holds
 // about twice the frame's RGBA8 bytes while it runs (a coloured map, the filtered rows, the
 // stream), and a 4K run must stay within its memory (about 66 MB an encode there: 11 at once).

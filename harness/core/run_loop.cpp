@@ -46,7 +46,7 @@ RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene
       h(int(prepared.settings.height)),
       results(startResults(prepared)),
       spill(out_dir / kFramesSpill, prepared.settings.width, prepared.settings.height),
-      workers(std::max(1u, std::thread::hardware_concurrency() / 2)),
+      workers(scoringThreads(prepared.options.control.scoring_threads)),
       scorer(w, h, prepared.options.tune.flip_ppd, workers, &account),
       mid(prepared.poses.size() / 2),
       mid_images(prepared.configs.size()),
