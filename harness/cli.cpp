@@ -105,8 +105,8 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
                     "MiB: refuse a run whose estimated device memory is above this (default: the device's budget)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--scoring-threads", o.control.scoring_threads,
-                    "worker threads of the CPU scorer (default 0: half the hardware threads); the scores do not "
-                    "depend on it")
+                    "worker threads of the CPU scorer (default 0: half the hardware threads), at most as many as "
+                    "frames its memory budget holds (2 at 3840x2160); the scores do not depend on it")
         ->check(CLI::Range(0, 256));
 }
 

@@ -206,7 +206,8 @@ json metricsJson(const RunContext& rc) {
                 {"scorer_note", r.scorer_note},
                 {"scored_repeat", 0}};
     if (r.scorer == "cpu") {
-        out["scorer_threads"] = scoringThreads(rc.options.control.scoring_threads);
+        out["scorer_threads"] =
+            scoringThreads(rc.options.control.scoring_threads, int(rc.settings.width), int(rc.settings.height));
         out["scorer_frames"] = scorerFrames(int(rc.settings.width), int(rc.settings.height));
     }
     if (!r.reference_ms.empty()) out["reference_gpu_ms_median"] = median(r.reference_ms);

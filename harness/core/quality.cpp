@@ -559,9 +559,9 @@ std::vector<WorstFrame> QualityScorer::finish(const std::filesystem::path& dir) 
     return out;
 }
 
-unsigned scoringThreads(int requested) {
-    if (requested > 0) return unsigned(requested);
-    return std::max(1u, std::thread::hardware_concurrency() / 2);
+unsigned scoringThreads(int requested, int width, int height) {
+    const unsigned threads = requested > 0 ? unsigned(requested) : std::max(1u, std::thread::hardware_concurrency() / 2);
+    return std::min(threads, unsigned(scorerFrames(width, height)));
 }
 
 unsigned worstImageEncoders(int width, int height) {

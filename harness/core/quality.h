@@ -123,9 +123,12 @@ private:
     std::vector<std::string> variant_order_;  // first-scored order: the order finish() reports
 };
 
-// The CPU scorer's worker threads: `requested` (--scoring-threads) when above 0, else half the
-// hardware threads (the other half renders).
-unsigned scoringThreads(int requested);
+// The CPU scorer's worker threads for w x h frames: `requested` (--scoring-threads) when above
+// 0, else half the hardware threads (the other half renders); at most scorerFrames(), as no more
+// frames are scored at once. More workers would score nothing more (each metric is parallel
+// inside), but each would keep the memory it freed (glibc's per-thread arenas, with freed
+// memory kept: process.cpp): 8 at 4K held 310 MB more than 2 (docs/history/memory.md).
+unsigned scoringThreads(int requested, int width, int height);
 
 // At most this many worst-frame images are encoded at once for w x h images: each encode holds
 // about twice the frame's RGBA8 bytes while it runs (a coloured map, the filtered rows, the

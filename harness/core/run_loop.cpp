@@ -46,7 +46,7 @@ RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene
       h(int(prepared.settings.height)),
       results(startResults(prepared)),
       spill(out_dir / kFramesSpill, prepared.settings.width, prepared.settings.height),
-      workers(scoringThreads(prepared.options.control.scoring_threads)),
+      workers(scoringThreads(prepared.options.control.scoring_threads, w, h)),
       scorer(w, h, prepared.options.tune.flip_ppd, workers, &account, out_dir / kWorstSpill),
       mid(prepared.poses.size() / 2),
       mid_images(prepared.configs.size()),
