@@ -226,6 +226,7 @@ void QualityScorer::submitScore(Chain& c, const std::string& variant, FrameRow& 
             c.pending.emplace(index, Chain::Pending{&row, std::move(frame), std::move(ref)});
             for (auto it = c.pending.find(c.next); it != c.pending.end(); it = c.pending.find(c.next)) {
                 crawlStep(variant, *it->second.row, it->second.frame, it->second.reference);
+                c.tracker.dropSpare();  // one frame's state kept per variant (kCrawlStateBytesPerPixel)
                 c.pending.erase(it);
                 std::lock_guard reference_lock(mutex_);
                 release(size_t(c.next));

@@ -37,14 +37,14 @@ struct QualityFrame {
 
 // The CPU scorer's memory for each frame it holds: the frame (image, class map, motion
 // analysis: 21 bytes a pixel), its reference frame's share (4) and the most its scoring adds at
-// once (16: the motion field while the analysis is turned into it; FLIP's error map and buckets
-// take 6, the edge crawl's map 8): 41, 340 MB at 4K. Besides, each variant's edge-crawl state
-// (two frames of blurred lumas and depth: 24 bytes a pixel).
-inline constexpr double kScoredFrameBytesPerPixel = 41;
-inline constexpr double kCrawlStateBytesPerPixel = 24;
+// once (20: the edge crawl's new state, 12, and its map, 8; the motion field while the analysis
+// is turned into it takes 16, FLIP's error map and buckets 6): 45, 373 MB at 4K. Besides, each
+// variant's edge-crawl state between frames (blurred lumas and depth: 12 bytes a pixel).
+inline constexpr double kScoredFrameBytesPerPixel = 45;
+inline constexpr double kCrawlStateBytesPerPixel = 12;
 inline constexpr double kScorerBudgetBytes = 768e6;
 // How many frames the CPU scorer holds at once for w x h frames: as many as kScorerBudgetBytes
-// holds (2 at 4K, 9 at 1080p), at least 1, at most 16.
+// holds (2 at 4K, 8 at 1080p), at least 1, at most 16.
 size_t scorerFrames(int width, int height);
 // The spill's directory in the run's temporary directory (QualityScorer's `spill`).
 inline constexpr const char* kWorstSpill = ".worst.spill";
