@@ -105,6 +105,10 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_option("--device-memory-limit", o.control.device_memory_limit_mib,
                     "MiB: refuse a run whose estimated device memory is above this (default: the device's budget)")
         ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--scoring-threads", o.control.scoring_threads,
+                    "worker threads of the CPU scorer (default 0: half the hardware threads), at most as many as "
+                    "frames its memory budget holds (2 at 3840x2160); the scores do not depend on it")
+        ->check(CLI::Range(0, 256));
 }
 
 

@@ -419,6 +419,53 @@ void checkPpd(const char* what, double ppd) {
                                     std::to_string(ppd));
 }
 
+// Error maps kept for the next call of the same size (a fresh one would be page-faulted, and
+// zeroed by the kernel, on every call): one for each call running at once, rather than one for
+// every thread that ever called, so that a pool of scoring threads holds as many maps as it
+// scores frames at once.
+class ErrorMaps {
+public:
+    std::unique_ptr<float[]> take(size_t pixels) {
+        {
+            std::lock_guard lock(mutex_);
+            if (pixels != pixels_) {
+                free_.clear();
+                pixels_ = pixels;
+            }
+            if (!free_.empty()) {
+                std::unique_ptr<float[]> map = std::move(free_.back());
+                free_.pop_back();
+                return map;
+            }
+        }
+        return detail::scratchBuffer<float>(pixels);
+    }
+    void give(std::unique_ptr<float[]> map, size_t pixels) {
+        std::lock_guard lock(mutex_);
+        if (pixels == pixels_) free_.push_back(std::move(map));
+    }
+
+private:
+    std::mutex mutex_;
+    size_t pixels_ = 0;
+    std::vector<std::unique_ptr<float[]>> free_;
+};
+
+ErrorMaps& errorMaps() {
+    static ErrorMaps maps;
+    return maps;
+}
+
+// One call's error map, given back to the pool when the call ends (or throws).
+struct ErrorMap {
+    explicit ErrorMap(size_t n) : pixels(n), map(errorMaps().take(n)) {}
+    ~ErrorMap() { errorMaps().give(std::move(map), pixels); }
+    ErrorMap(const ErrorMap&) = delete;
+    ErrorMap& operator=(const ErrorMap&) = delete;
+    size_t pixels;
+    std::unique_ptr<float[]> map;
+};
+
 // FLIP of two sources of the same size: tiles in parallel into a float error map (the
 // errors are floats; 8 MB per 1080p frame), then the mean and weighted quartiles from it.
 // The double map is filled only when asked for.
@@ -430,16 +477,8 @@ FlipResult flipCore(const Source& reference, const Source& test, double ppd, boo
     constants.pccmax = kPc * constants.cmax;
     const int width = reference.width, height = reference.height;
     const size_t pixels = size_t(width) * height;
-    // The calling thread's error map, kept for the next frame of the same size: a fresh one
-    // would be page-faulted (and zeroed by the kernel) on every call.
-    thread_local std::unique_ptr<float[]> kept;
-    thread_local size_t kept_pixels = 0;
-    if (kept_pixels != pixels) {
-        kept.reset();
-        kept = detail::scratchBuffer<float>(pixels);
-        kept_pixels = pixels;
-    }
-    float* const errors = kept.get();
+    const ErrorMap kept(pixels);
+    float* const errors = kept.map.get();
     const int tile_cols = (width + kTileCols - 1) / kTileCols;
     const int tile_rows = (height + kTileRows - 1) / kTileRows;
     const int tiles = tile_cols * tile_rows;

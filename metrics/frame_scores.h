@@ -20,8 +20,8 @@ namespace cbr::metrics {
 double mseRgba8(const uint8_t* a, const uint8_t* b, int width, int height);
 SsimResult ssimRgba8(const uint8_t* a, const uint8_t* b, int width, int height);
 // want_map: fill FlipResult::map (16 MB of doubles at 1080p); without it map stays empty.
-// flip() and flipRgba8 keep their float error map (4 bytes a pixel) per calling thread
-// for the next frame of the same size, so a scoring thread holds 8 MB at 1080p.
+// flip() and flipRgba8 keep their float error maps (4 bytes a pixel) for the next frames of
+// the same size, one for each call that ran at once: 8 MB a call at 1080p.
 FlipResult flipRgba8(const uint8_t* reference, const uint8_t* test, int width, int height,
                      double ppd = kFlipDefaultPpd, bool want_map = false);
 

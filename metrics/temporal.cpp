@@ -402,6 +402,15 @@ CrawlTracker::CrawlTracker(CrawlSettings settings) : settings_(settings) {
 
 void CrawlTracker::reset() { previous_.reset(); }
 
+void CrawlTracker::dropSpare() {
+    // A copy of this tracker shares the state: its next add() may still read that frame.
+    if (!previous_ || previous_.use_count() > 1) return;
+    State::Frame& spare = previous_->frames[1 - previous_->current];
+    std::vector<float>().swap(spare.reference_luma);
+    std::vector<float>().swap(spare.variant_luma);
+    std::vector<float>().swap(spare.depth);
+}
+
 CrawlFrame CrawlTracker::add(const Image& reference, const Image& variant, const MotionField& motion,
                              bool cut, bool want_map) {
     checkInputs(reference, variant, motion);

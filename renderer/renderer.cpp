@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -61,6 +62,8 @@ struct Renderer::Slot {
     size_t index = 0;  // in slots_
     bool in_flight = false;
     bool has_readback = false;
+    // Collected early (collectNow): what its feedback needs, taken when the slot comes round.
+    std::optional<FrameResult> collected_early;
     FrameRequest request;
     graph::RecordedFrame recorded;
     VkExtent2D render{};
@@ -198,8 +201,10 @@ std::vector<FrameResult> Renderer::submit(const FrameRequest& request) {
     next_slot_ = (next_slot_ + 1) % slots_.size();
     if (slot.in_flight) {
         done.push_back(collect(slot));
-        updateScale(done.back());
-        calibrateSlowdown(done.back());
+        feedback(done.back());
+    } else if (slot.collected_early) {
+        feedback(*slot.collected_early);
+        slot.collected_early.reset();
     }
 
     variants::FrameSetup setup;
@@ -282,6 +287,12 @@ void Renderer::allocateHostReadback(Slot& slot) {
     if (variant_->diagnosticImage())
         slot.diagnostic = vk::createReadbackBuffer(ctx_, pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     if (settings_.analysis) slot.analysis = vk::createReadbackBuffer(ctx_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+}
+
+void Renderer::releaseHostReadback(Slot& slot) {
+    vk::destroyBuffer(ctx_, slot.readback);
+    vk::destroyBuffer(ctx_, slot.diagnostic);
+    vk::destroyBuffer(ctx_, slot.analysis);
 }
 
 bool Renderer::deviceWorst(int kind, FrameResult& out) { return scoring_ && scoring_->fetchWorst(kind, out); }
@@ -368,11 +379,34 @@ std::vector<FrameResult> Renderer::finish() {
         Slot& slot = *slots_[(next_slot_ + i) % slots_.size()];
         if (slot.in_flight) {
             done.push_back(collect(slot));
-            updateScale(done.back());
-            calibrateSlowdown(done.back());
+            feedback(done.back());
+        } else if (slot.collected_early) {
+            feedback(*slot.collected_early);
+            slot.collected_early.reset();
         }
     }
     return done;
+}
+
+std::vector<FrameResult> Renderer::collectNow() {
+    std::vector<FrameResult> done;
+    for (size_t i = 0; i < slots_.size(); ++i) {
+        Slot& slot = *slots_[(next_slot_ + i) % slots_.size()];
+        if (!slot.in_flight) continue;
+        done.push_back(collect(slot));
+        // The figures the feedback reads, without the images.
+        FrameResult& early = slot.collected_early.emplace();
+        early.index = done.back().index;
+        early.gpu_ms = done.back().gpu_ms;
+        early.passes = done.back().passes;
+        releaseHostReadback(slot);
+    }
+    return done;
+}
+
+void Renderer::feedback(const FrameResult& collected) {
+    updateScale(collected);
+    calibrateSlowdown(collected);
 }
 
 FrameResult Renderer::collect(Slot& slot) {

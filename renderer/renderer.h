@@ -36,6 +36,12 @@ public:
     std::vector<FrameResult> submit(const FrameRequest& request);
     // Waits for every frame in flight and returns them.
     std::vector<FrameResult> finish();
+    // Waits for the frames in flight and returns them now, and frees the host readback copies
+    // they were read back through: a pass of read-back frames then holds one frame's copies
+    // (173 MB at 4K) at a time, not one per slot and renderer. The frames' feedback (the
+    // dynamic scale, the slowdown's calibration) is still taken where submit() or finish()
+    // would have collected them, so the frames rendered next are the same.
+    std::vector<FrameResult> collectNow();
     double currentScale() const { return scale_; }
     // Quality frames requested with `score` are scored on the device against the shared
     // scorer's reference frames (role Variant) or become them (role Reference).
@@ -61,6 +67,8 @@ private:
                       const std::shared_ptr<passes::SceneFrame>& frame);
     void addAnalysis(graph::Graph& graph, const std::shared_ptr<passes::SceneFrame>& frame);
     void allocateHostReadback(Slot& slot);
+    void releaseHostReadback(Slot& slot);
+    void feedback(const FrameResult& collected);
     void addSlowdownSpin(graph::Graph& graph, const FrameRequest& request);
     void recordFrame(Slot& slot, graph::Graph& graph);
 

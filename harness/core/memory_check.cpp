@@ -40,7 +40,6 @@ Growth growth(const MemoryPlan& plan) {
     const double scored = double(plan.scored);
     const double frames = double(plan.frames);
     const bool device = plan.device_scorer;
-    const int in_flight = std::max(1, plan.frames_in_flight);
     const bool analysis = plan.analysis;
     Growth g;
     // A quality frame read back: RGBA8, the class map, the motion analysis (RGBA32F).
@@ -59,20 +58,26 @@ Growth growth(const MemoryPlan& plan) {
     // frames they read, up to three at once (RGBA8 reference and image, class map, float maps).
     const double worst_frames = std::min(3.0, scored * 2);
     const double encoders = std::min(double(worstImageEncoders(plan.width, plan.height)), worst_frames * 7);
-    const double writing = encoders * kWorstEncodeBytesPerPixel * px + worst_frames * px * 21;
+    double writing = encoders * kWorstEncodeBytesPerPixel * px + worst_frames * px * 21;
     double scoring;
     if (device) {
         g.device = scored * 2 * px * 21;  // each configuration's two worst-frame stores
         g.mapped = px * 21;               // the one host buffer they are fetched through
         scoring = 0;
     } else {
-        g.mapped = configs * in_flight * readback;
-        // Frames queued for the CPU scorer (16 at most, harness/run_loop.cpp) and the worst
-        // frames kept per configuration and kind (image, classes, crawl heat map).
-        scoring = 16 * readback + scored * 2 * px * 9 + configs * px * 4;
+        // Read back one frame at a time (Renderer::collectNow): one frame's host copies.
+        g.mapped = readback;
+        // The CPU scorer (quality.h): the frames it holds, with what scoring them takes; each
+        // scored configuration's edge-crawl state; the frame being handed in (its heap copy);
+        // the metrics' tiles on every thread (under 1 MB each). Its worst frames wait on disk.
+        scoring = double(scorerFrames(plan.width, plan.height)) * kScoredFrameBytesPerPixel * px +
+                  scored * kCrawlStateBytesPerPixel * px + readback +
+                  double(std::thread::hardware_concurrency()) * 1024 * 1024;
+        // The worst frames' SSIM and FLIP maps, computed from the images one frame at a time:
+        // two RGB images of doubles (48 bytes a pixel), the maps and their colours (12); FLIP's
+        // error maps kept from the scoring (4 bytes a pixel each).
+        writing += px * 60 + double(scorerFrames(plan.width, plan.height)) * px * 4;
     }
-    // The CPU scorer's scratch on each worker (FLIP's and SSIM's planes: about 48 bytes a pixel).
-    if (!device) scoring += double(std::thread::hardware_concurrency()) * px * 48;
     // The rest (thread stacks, the allocator's slack): a tenth more.
     g.host = 1.1 * (rows + alignment + std::max({scoring, writing, report}));
     return g;
@@ -106,7 +111,9 @@ void checkMemory(const MemoryPlan& plan, const vk::Context& ctx, MemoryFigures& 
     const double device_now = double(ctx.memory_use.deviceLocal());
     const double rss_now = currentRssMib();
     m.device_estimate_mib = (device_now + g.device + (shared ? g.mapped : 0)) / kMiB;
-    m.host_estimate_mib = rss_now + (g.host + g.mapped + (shared ? g.device : 0)) / kMiB;
+    // There its allocations so far are not yet in the RSS either: their pages are touched as
+    // the frames render.
+    m.host_estimate_mib = rss_now + (g.host + g.mapped + (shared ? device_now + g.device : 0)) / kMiB;
     m.device_heap_mib = double(heaps.heap_bytes) / kMiB;
     if (heaps.has_budget) m.device_budget_mib = double(heaps.budget_bytes) / kMiB;
 

@@ -20,7 +20,6 @@ struct MemoryPlan {
     size_t frames = 0;
     int repeat = 1;
     bool device_scorer = false;
-    int frames_in_flight = 1;
     bool analysis = false;   // quality frames also read back motion and depths
     double host_limit_mib = 0, device_limit_mib = 0;  // the options; 0: what the machine has
 };

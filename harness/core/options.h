@@ -21,6 +21,10 @@ struct RunControl {
     // available; the device's budget or heap size).
     double host_memory_limit_mib = 0;
     double device_memory_limit_mib = 0;
+    // The CPU scorer's worker threads (0: half the hardware threads). The scores do not
+    // depend on it (each metric sums fixed tiles in order); it sets how many frames are
+    // scored at once, within the scorer's memory budget (quality.h).
+    int scoring_threads = 0;
 };
 
 // --debug-slowdown PASS=PCT, parsed where the option is read: one pass made PCT percent

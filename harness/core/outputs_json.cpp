@@ -10,6 +10,7 @@
 
 #include "harness/core/process.h"
 #include "harness/core/outputs_internal.h"
+#include "harness/core/quality.h"
 #include "harness/core/resolve_bandwidth.h"
 #include "harness/core/stats.h"
 #include "metrics/image_encode.h"
@@ -204,6 +205,11 @@ json metricsJson(const RunContext& rc) {
                 {"scorer_requested", settings::text(*settings::find("scorer"), rc.options.tune)},
                 {"scorer_note", r.scorer_note},
                 {"scored_repeat", 0}};
+    if (r.scorer == "cpu") {
+        out["scorer_threads"] =
+            scoringThreads(rc.options.control.scoring_threads, int(rc.settings.width), int(rc.settings.height));
+        out["scorer_frames"] = scorerFrames(int(rc.settings.width), int(rc.settings.height));
+    }
     if (!r.reference_ms.empty()) out["reference_gpu_ms_median"] = median(r.reference_ms);
     return out;
 }

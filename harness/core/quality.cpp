@@ -5,9 +5,11 @@
 #include <cmath>
 
 #include <cstdio>
+#include <malloc.h>
 #include <set>
 #include <thread>
 
+#include "harness/core/worst_spill.h"
 #include "metrics/flip.h"
 #include "metrics/frame_scores.h"
 #include "metrics/image_encode.h"
@@ -41,12 +43,62 @@ struct QualityScorer::Chain {
     std::map<int, Pending> pending;
     metrics::CrawlTracker tracker;
     Worst worst_ssim, worst_eci;
+    size_t number = 0;  // in first-scored order: its spill files' names
 };
 
-QualityScorer::QualityScorer(int width, int height, double flip_ppd, WorkerPool& workers, WallAccount* wall)
-    : width_(width), height_(height), flip_ppd_(flip_ppd), workers_(workers), wall_(wall) {}
+namespace {
 
-QualityScorer::~QualityScorer() { workers_.wait(); }
+// The renderer's analysis (RGBA32F: motion.xy, depth, previous depth) as the edge crawl reads
+// it; null when it is not the frame's size.
+std::shared_ptr<const metrics::MotionField> motionField(const std::vector<float>& analysis, int w, int h) {
+    const size_t n = size_t(w) * size_t(h);
+    if (analysis.size() != 4 * n) return nullptr;
+    auto motion = std::make_shared<metrics::MotionField>();
+    motion->width = w;
+    motion->height = h;
+    motion->motion.resize(n * 2);
+    motion->depth.resize(n);
+    motion->prev_depth_expected.resize(n);
+    const float* a = analysis.data();
+    for (size_t i = 0; i < n; ++i) {
+        motion->motion[2 * i] = a[4 * i];
+        motion->motion[2 * i + 1] = a[4 * i + 1];
+        motion->depth[i] = a[4 * i + 2];
+        motion->prev_depth_expected[i] = a[4 * i + 3];
+    }
+    return motion;
+}
+
+}  // namespace
+
+size_t scorerFrames(int width, int height) {
+    const double frame = kScoredFrameBytesPerPixel * double(width) * double(height);
+    return size_t(std::clamp(std::floor(kScorerBudgetBytes / frame), 1.0, 16.0));
+}
+
+QualityScorer::QualityScorer(int width, int height, double flip_ppd, WorkerPool& workers, WallAccount* wall,
+                             std::filesystem::path spill)
+    : width_(width), height_(height), flip_ppd_(flip_ppd), workers_(workers), wall_(wall), spill_(std::move(spill)),
+      frame_limit_(scorerFrames(width, height)) {}
+
+QualityScorer::~QualityScorer() {
+    workers_.wait();
+    std::error_code ignored;
+    if (!spill_.empty()) std::filesystem::remove_all(spill_, ignored);
+}
+
+void QualityScorer::letGo() {
+    {
+        std::lock_guard lock(mutex_);
+        --held_;
+    }
+    let_go_.notify_all();
+}
+
+void QualityScorer::waitUntilHeldAtMost(size_t frames) {
+    std::unique_lock lock(mutex_);
+    let_go_.wait(lock, [&] { return held_ - held_waiting_ <= frames; });
+}
 
 void QualityScorer::setReference(size_t frame, Bytes rgba, int uses) {
     std::vector<std::function<void()>> waiting;
@@ -88,6 +140,7 @@ QualityScorer::Chain& QualityScorer::chain(const std::string& variant) {
     auto& c = chains_[variant];
     if (!c) {
         c = std::make_unique<Chain>();
+        c->number = variant_order_.size();
         variant_order_.push_back(variant);
     }
     return *c;
@@ -112,6 +165,7 @@ void QualityScorer::score(const std::string& variant, bool is_reference, FrameRo
         row.quality.note += "no reference frame (the reference failed); ";
         return;
     }
+    ++held_;
     Reference& r = references_[index];
     if (r.rgba) {
         Bytes ref = r.rgba;
@@ -119,21 +173,28 @@ void QualityScorer::score(const std::string& variant, bool is_reference, FrameRo
         return submitScore(c, variant, row, std::move(frame), std::move(ref));
     }
     // Its reference frame is still in flight: scored when it arrives (or noted if it never does).
-    r.waiting.push_back([this, &c, variant, &row, frame, index] {
+    ++held_waiting_;
+    r.waiting.push_back([this, &c, variant, &row, frame = std::move(frame), index]() mutable {
         Bytes ref;
         {
             std::lock_guard inner(mutex_);
+            --held_waiting_;
             auto it = references_.find(index);
             if (it != references_.end()) ref = it->second.rgba;
         }
-        if (!ref) row.quality.note += "no reference frame (the reference failed); ";
-        else submitScore(c, variant, row, frame, std::move(ref));
+        if (ref) return submitScore(c, variant, row, std::move(frame), std::move(ref));
+        row.quality.note += "no reference frame (the reference failed); ";
+        letGo();
     });
 }
 
 void QualityScorer::submitScore(Chain& c, const std::string& variant, FrameRow& row, QualityFrame frame, Bytes ref) {
     int w = width_, h = height_;
-    workers_.submit([this, &c, &row, ref, frame, variant, w, h] {
+    workers_.submit([this, &c, &row, ref, frame = std::move(frame), variant, w, h]() mutable {
+        if (frame.analysis) {
+            frame.motion = motionField(*frame.analysis, w, h);
+            frame.analysis.reset();
+        }
         try {
             // Straight from the 8-bit readbacks (metrics/frame_scores.h): no [0,1] image built.
             const metrics::FrameScores f = metrics::scoreFrame(ref->data(), frame.rgba->data(), w, h, flip_ppd_);
@@ -153,24 +214,59 @@ void QualityScorer::submitScore(Chain& c, const std::string& variant, FrameRow& 
             row.quality.flip_q3 = f.flip_q3;
             std::lock_guard lock(c.mutex);
             if (row.quality.ssim && (c.worst_ssim.frame < 0 || *row.quality.ssim < c.worst_ssim.value))
-                c.worst_ssim = {frame.index, *row.quality.ssim, ref, frame.rgba, frame.classes, nullptr};
+                keepWorst(c, "ssim", c.worst_ssim, {frame.index, *row.quality.ssim, ref, frame.rgba, frame.classes, nullptr});
         } catch (const std::exception& e) {
             row.quality.note += std::string("metrics failed: ") + e.what() + "; ";
         }
         // Edge crawl needs frame t-1 of the same variant: run the chain in order. Each
         // reference frame is given back once its crawl step is done.
-        std::lock_guard lock(c.mutex);
-        c.pending.emplace(frame.index, Chain::Pending{&row, frame, ref});
-        for (auto it = c.pending.find(c.next); it != c.pending.end(); it = c.pending.find(c.next)) {
-            crawlStep(variant, *it->second.row, it->second.frame, it->second.reference);
-            {
+        size_t done = 0;
+        {
+            std::lock_guard lock(c.mutex);
+            const int index = frame.index;
+            c.pending.emplace(index, Chain::Pending{&row, std::move(frame), std::move(ref)});
+            for (auto it = c.pending.find(c.next); it != c.pending.end(); it = c.pending.find(c.next)) {
+                crawlStep(variant, *it->second.row, it->second.frame, it->second.reference);
+                c.tracker.dropSpare();  // one frame's state kept per variant (kCrawlStateBytesPerPixel)
+                c.pending.erase(it);
                 std::lock_guard reference_lock(mutex_);
                 release(size_t(c.next));
+                --held_;
+                ++done;
+                ++c.next;
             }
-            c.pending.erase(it);
-            ++c.next;
         }
+        if (done) let_go_.notify_all();
     });
+}
+
+// A chain's new worst frame of a kind: its images to the spill, when there is one, for finish()
+// to read back; kept in memory otherwise (or when the spill cannot be written).
+void QualityScorer::keepWorst(const Chain& c, const char* kind, Worst& slot, Worst worst) {
+    if (!spill_.empty()) {
+        const auto file = spill_ / (std::to_string(c.number) + "-" + kind + ".raw");
+        try {
+            std::filesystem::create_directories(spill_);
+            spillImages(file, {worst.reference, worst.image, worst.classes, worst.crawl_map});
+            worst.reference = worst.image = worst.classes = worst.crawl_map = nullptr;
+            worst.load = [file](WorstImages& out) {
+                try {
+                    const auto images = readSpilledImages(file, 4);
+                    out.reference = images[0];
+                    out.image = images[1];
+                    out.classes = images[2];
+                    out.crawl_heat_map = images[3];
+                    return out.reference && out.image;
+                } catch (const std::exception& e) {
+                    std::fprintf(stderr, "cbrbench: worst frame not written: %s\n", e.what());
+                    return false;
+                }
+            };
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "cbrbench: worst frame kept in memory: %s\n", e.what());
+        }
+    }
+    slot = std::move(worst);
 }
 
 void QualityScorer::offerWorstLater(const std::string& variant, const std::string& kind, int frame, double value,
@@ -216,28 +312,13 @@ void fillQuality(Quality& q, const scoring::DeviceScores& d) {
 void QualityScorer::crawlStep(const std::string& variant, FrameRow& row, const QualityFrame& frame, const Bytes& ref) {
     Chain& c = *chains_.at(variant);
     WallAccount::WorkerScope timer(wall_, WorkerTask::Eci);
-    if (!frame.analysis) {
+    if (!frame.motion) {
         row.quality.note += "no motion analysis: no edge crawl; ";
         c.tracker.reset();
         return;
     }
     try {
-        int w = width_, h = height_;
-        metrics::MotionField motion;
-        motion.width = w;
-        motion.height = h;
-        size_t n = size_t(w) * size_t(h);
-        motion.motion.resize(n * 2);
-        motion.depth.resize(n);
-        motion.prev_depth_expected.resize(n);
-        const float* a = frame.analysis->data();
-        for (size_t i = 0; i < n; ++i) {
-            motion.motion[2 * i] = a[4 * i];
-            motion.motion[2 * i + 1] = a[4 * i + 1];
-            motion.depth[i] = a[4 * i + 2];
-            motion.prev_depth_expected[i] = a[4 * i + 3];
-        }
-        metrics::CrawlFrame cf = c.tracker.addRgba8(ref->data(), frame.rgba->data(), motion, frame.cut, true);
+        metrics::CrawlFrame cf = c.tracker.addRgba8(ref->data(), frame.rgba->data(), *frame.motion, frame.cut, true);
         if (!cf.has_pair) return;  // first frame or after a cut: no pair to compare
         row.quality.eci = cf.eci;
         row.quality.flicker_ratio = cf.flicker_ratio;
@@ -246,9 +327,9 @@ void QualityScorer::crawlStep(const std::string& variant, FrameRow& row, const Q
         row.quality.crawl_denominator = cf.denominator;
         if (cf.no_edges) row.quality.note += "no reference edges in the valid region: ECI 0; ";
         if (c.worst_eci.frame < 0 || cf.eci > c.worst_eci.value)
-            c.worst_eci = {frame.index, cf.eci, ref, frame.rgba, frame.classes,
-                           cf.crawl_map ? std::make_shared<const std::vector<uint8_t>>(heatMap(*cf.crawl_map, 8.0))
-                                        : nullptr};
+            keepWorst(c, "eci", c.worst_eci,
+                      {frame.index, cf.eci, ref, frame.rgba, frame.classes,
+                       cf.crawl_map ? std::make_shared<const std::vector<uint8_t>>(heatMap(*cf.crawl_map, 8.0)) : nullptr});
     } catch (const std::exception& e) {
         row.quality.note += std::string("edge crawl failed: ") + e.what() + "; ";
         c.tracker.reset();
@@ -431,6 +512,7 @@ bool QualityScorer::loadWorst(Worst& worst) {
     worst.classes = images.classes;
     worst.ssim_map = images.ssim_map;
     worst.flip_map = images.flip_map;
+    worst.crawl_map = images.crawl_heat_map;
     if (images.crawl_map && images.crawl_map->size() == size_t(width_) * size_t(height_))
         worst.crawl_values = images.crawl_map;
     return true;
@@ -438,6 +520,22 @@ bool QualityScorer::loadWorst(Worst& worst) {
 
 std::vector<WorstFrame> QualityScorer::finish(const std::filesystem::path& dir) {
     workers_.wait();
+    // The spill goes with what it held, before the output is committed.
+    struct RemoveSpill {
+        const std::filesystem::path& dir;
+        ~RemoveSpill() {
+            std::error_code ignored;
+            if (!dir.empty()) std::filesystem::remove_all(dir, ignored);
+        }
+    } remove_spill{spill_};
+    // The edge-crawl states are done with; what the workers freed stays in their own arenas
+    // (process.cpp keeps freed memory), where the images' phase, on other threads, cannot
+    // reuse it: given back first (4K, every variant, lavapipe: the phase's peak 4,492 MiB, 453
+    // above the quality pass's, before this).
+    for (auto& [variant, c] : chains_) c->tracker.reset();
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
     std::vector<WorstFrame> out;
     bool any = false;
     for (auto& [variant, c] : chains_) any |= c->worst_ssim.frame >= 0 || c->worst_eci.frame >= 0;
@@ -466,6 +564,11 @@ std::vector<WorstFrame> QualityScorer::finish(const std::filesystem::path& dir) 
     }
     writer.wait();
     return out;
+}
+
+unsigned scoringThreads(int requested, int width, int height) {
+    const unsigned threads = requested > 0 ? unsigned(requested) : std::max(1u, std::thread::hardware_concurrency() / 2);
+    return std::min(threads, unsigned(scorerFrames(width, height)));
 }
 
 unsigned worstImageEncoders(int width, int height) {

@@ -2,6 +2,7 @@
 // in frame order per variant, and the worst frames kept for the report (method/metrics.md).
 #pragma once
 
+#include <condition_variable>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -28,15 +29,34 @@ struct QualityFrame {
     int index = 0;
     Bytes rgba;                                    // display image, RGBA8
     Bytes classes;                                 // checkerboard class map (R8), may be null
-    std::shared_ptr<const std::vector<float>> analysis;  // motion.xy, depth, previous depth
+    std::shared_ptr<const std::vector<float>> analysis;  // motion.xy, depth, previous depth (RGBA32F)
     bool cut = false;                              // history reset (first frame or camera cut)
+    // The analysis as the edge crawl reads it, made from `analysis` (then dropped) by the worker.
+    std::shared_ptr<const metrics::MotionField> motion;
 };
+
+// The CPU scorer's memory for each frame it holds: the frame (image, class map, motion
+// analysis: 21 bytes a pixel), its reference frame's share (4) and the most its scoring adds at
+// once (20: the edge crawl's new state, 12, and its map, 8; the motion field while the analysis
+// is turned into it takes 16, FLIP's error map and buckets 6): 45, 373 MB at 4K. Besides, each
+// variant's edge-crawl state between frames (blurred lumas and depth: 12 bytes a pixel).
+inline constexpr double kScoredFrameBytesPerPixel = 45;
+inline constexpr double kCrawlStateBytesPerPixel = 12;
+inline constexpr double kScorerBudgetBytes = 768e6;
+// How many frames the CPU scorer holds at once for w x h frames: as many as kScorerBudgetBytes
+// holds (2 at 4K, 8 at 1080p), at least 1, at most 16.
+size_t scorerFrames(int width, int height);
+// The spill's directory in the run's temporary directory (QualityScorer's `spill`).
+inline constexpr const char* kWorstSpill = ".worst.spill";
 
 class QualityScorer {
 public:
     // flip_ppd: FLIP's pixels per degree (--flip-ppd). `wall`, when given, receives the
-    // workers' time per metric and for image encoding.
-    QualityScorer(int width, int height, double flip_ppd, WorkerPool& workers, WallAccount* wall = nullptr);
+    // workers' time per metric and for image encoding. `spill`, when given, is a directory
+    // (made when first needed, removed by finish()) where the worst frames' images wait for
+    // finish() (worst_spill.h); without it they are kept in memory.
+    QualityScorer(int width, int height, double flip_ppd, WorkerPool& workers, WallAccount* wall = nullptr,
+                  std::filesystem::path spill = {});
     ~QualityScorer();
 
     // Reference frame `frame`, to be scored against by `uses` frames (one per other variant):
@@ -50,10 +70,16 @@ public:
     // Scores `frame` of `variant` into `row` (which must outlive finish()). `is_reference`:
     // the variant is the reference itself (PSNR inf, SSIM 1, ECI 0, FLIP 0 without computing).
     void score(const std::string& variant, bool is_reference, FrameRow& row, QualityFrame frame);
+    // The frames handed to score() and not yet through their edge-crawl step, less those
+    // waiting for their reference frame (which only the caller can hand in): the caller waits
+    // for this before it reads back another frame, so that the scorer holds frameLimit() frames.
+    void waitUntilHeldAtMost(size_t frames);
+    size_t frameLimit() const { return frame_limit_; }
     // The images of a worst frame kept elsewhere (on the device), fetched when it is written.
     struct WorstImages {
         Bytes reference, image, classes;
         Floats crawl_map, ssim_map, flip_map;
+        Bytes crawl_heat_map;  // the crawl map already as its heat map (the CPU scorer's)
     };
     using WorstLoader = std::function<bool(WorstImages&)>;
     // A variant's worst frame by `kind` (ssim or eci) whose images `load` brings only when
@@ -77,6 +103,8 @@ private:
     void crawlStep(const std::string& variant, FrameRow& row, const QualityFrame& frame, const Bytes& ref);
     void submitScore(Chain& c, const std::string& variant, FrameRow& row, QualityFrame frame, Bytes ref);
     void release(size_t frame);  // with mutex_ held
+    void letGo();                // a held frame is done with (mutex_ not held)
+    void keepWorst(const Chain& c, const char* kind, Worst& slot, Worst worst);  // with c.mutex held
     bool loadWorst(Worst& worst);
     Chain& chain(const std::string& variant);
 
@@ -84,12 +112,23 @@ private:
     double flip_ppd_;
     WorkerPool& workers_;
     WallAccount* wall_;
+    const std::filesystem::path spill_;
+    const size_t frame_limit_;
     mutable std::mutex mutex_;
+    std::condition_variable let_go_;
+    size_t held_ = 0, held_waiting_ = 0;  // frames handed in and not done; of them, waiting for a reference
     std::map<size_t, Reference> references_;  // the frames still to be scored against
     bool reference_failed_ = false;
     std::map<std::string, std::unique_ptr<Chain>> chains_;
     std::vector<std::string> variant_order_;  // first-scored order: the order finish() reports
 };
+
+// The CPU scorer's worker threads for w x h frames: `requested` (--scoring-threads) when above
+// 0, else half the hardware threads (the other half renders); at most scorerFrames(), as no more
+// frames are scored at once. More workers would score nothing more (each metric is parallel
+// inside), but each would keep the memory it freed (glibc's per-thread arenas, with freed
+// memory kept: process.cpp): 8 at 4K held 310 MB more than 2 (docs/history/memory.md).
+unsigned scoringThreads(int requested, int width, int height);
 
 // At most this many worst-frame images are encoded at once for w x h images: each encode holds
 // about twice the frame's RGBA8 bytes while it runs (a coloured map, the filtered rows, the

@@ -52,10 +52,7 @@ MemoryPlan memoryPlan(const RunState& s) {
     plan.frames = s.p.poses.size();
     plan.repeat = s.options.repeat;
     plan.device_scorer = s.results.scorer == "device";
-    for (const auto& c : s.p.configs) {
-        plan.frames_in_flight = std::max(plan.frames_in_flight, c.settings.frames_in_flight);
-        plan.analysis |= c.settings.analysis;
-    }
+    for (const auto& c : s.p.configs) plan.analysis |= c.settings.analysis;
     plan.host_limit_mib = s.options.control.host_memory_limit_mib;
     plan.device_limit_mib = s.options.control.device_memory_limit_mib;
     return plan;

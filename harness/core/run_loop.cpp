@@ -47,8 +47,8 @@ RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene
       h(int(prepared.settings.height)),
       results(startResults(prepared)),
       spill(out_dir / kFramesSpill, prepared.settings.width, prepared.settings.height),
-      workers(std::max(1u, std::thread::hardware_concurrency() / 2)),
-      scorer(w, h, prepared.options.tune.flip_ppd, workers, &account),
+      workers(scoringThreads(prepared.options.control.scoring_threads, w, h)),
+      scorer(w, h, prepared.options.tune.flip_ppd, workers, &account, out_dir / kWorstSpill),
       mid(prepared.poses.size() / 2),
       mid_images(prepared.configs.size()),
       reference_frames(prepared.poses.size()),
@@ -257,6 +257,9 @@ public:
             throwIfInterrupted();
             for (auto& fr : s_.renderers[vi_]->submit(timed() ? request(s_.p, i, false) : qualityRequest(s_, i)))
                 keep(std::move(fr));
+            // Read back for the CPU scorer: taken at once, so that one frame's host copies exist at a time.
+            if (!timed() && !s_.device_scoring)
+                for (auto& fr : s_.renderers[vi_]->collectNow()) keep(std::move(fr));
         });
     }
     void end() {
@@ -363,8 +366,12 @@ private:
                         i == 0 || s_.p.poses[i].cut};
         s_.scorer.score(vr_.name, is_reference, row, std::move(qf));
         if (s_.options.save_frames) savePng(s_, vr_.name, fr.index, image, classes);
+        // At most frameLimit() frames with the scorer (its memory budget, quality.h) and as
+        // many jobs queued: the next frame is read back once one more is done.
         Stopwatch wait;
-        s_.workers.waitUntilAtMost(kMaxQueuedJobs);
+        const size_t limit = s_.scorer.frameLimit();
+        s_.workers.waitUntilAtMost(limit);
+        s_.scorer.waitUntilHeldAtMost(limit - 1);
         scoring_wait_s_ += wait.seconds();
     }
 
@@ -398,8 +405,6 @@ private:
         }
         if (s_.options.save_frames && image) savePng(s_, vr_.name, fr.index, image, classes);
     }
-
-    static constexpr size_t kMaxQueuedJobs = 16;
 
     RunState& s_;
     const int rep_;
@@ -533,6 +538,8 @@ void renderQualityFrames(RunState& s) {
         if (s.ssaa_reference) {
             throwIfInterrupted();
             for (auto& fr : s.ssaa_reference->submit(qualityRequest(s, i))) readback += keepSsaaFrame(s, std::move(fr));
+            if (!s.device_scoring)
+                for (auto& fr : s.ssaa_reference->collectNow()) readback += keepSsaaFrame(s, std::move(fr));
         }
         for (auto& pass : passes) pass->frame(i);
     }

@@ -118,6 +118,44 @@ TEST(Quality, WorstFramesAreWrittenOnceWithPageCopies) {
     EXPECT_EQ(phases, (std::vector<std::string>{"quality_pass", "timed_frames", "worst_images", "report"}));
 }
 
+// The CPU scorer with several workers, as on a 16-thread host (--scoring-threads): the scores
+// and the worst frames' images are those of one worker (each metric sums fixed tiles in order;
+// the worst frames wait on disk, not in memory), and the run's memory estimate covers its peak.
+TEST(Quality, CpuScorerWorkersScoreAlikeWithinTheEstimate) {
+    const std::vector<std::string> args = {"--scene", "atrium", "--path", "flythrough", "--res", "640x360", "--frames",
+                                           "8", "--variants", "full,cbr-aso,taau", "--scorer", "cpu"};
+    auto with = [&](const char* threads) {
+        auto all = args;
+        all.insert(all.end(), {"--scoring-threads", threads});
+        return runValidated(std::string("quality-workers-") + threads, all);
+    };
+    const ValidatedRun one = with("1"), six = with("6");
+    ASSERT_EQ(one.result.exit_code, 0) << one.result.err;
+    ASSERT_EQ(six.result.exit_code, 0) << six.result.err;
+    EXPECT_EQ(six.run["metrics"]["scorer_threads"], 6);
+    EXPECT_EQ(six.run["metrics"]["scorer_frames"], 16) << "640x360 frames: the budget holds the most";
+    ASSERT_EQ(one.frames.rows.size(), six.frames.rows.size());
+    for (size_t i = 0; i < one.frames.rows.size(); ++i)
+        for (const char* column : {"psnr_db", "ssim", "ssim_luma", "flip_mean", "flip_q1", "flip_median", "flip_q3", "eci",
+                                   "flicker_ratio", "crawl_valid_fraction"})
+            EXPECT_EQ(one.frames.at(i, column), six.frames.at(i, column)) << i << " " << column;
+    ASSERT_EQ(one.run["worst"].size(), 4u);
+    size_t compared = 0;
+    for (const auto& e : one.run["worst"])
+        for (const auto& [what, file] : e["files"].items()) {
+            const auto name = file.get<std::string>();
+            EXPECT_EQ(slurp(one.dir / name), slurp(six.dir / name)) << name;
+            ++compared;
+        }
+    EXPECT_GE(compared, 4u * 5u) << "reference, variant and the error, SSIM and FLIP maps at least";
+    EXPECT_FALSE(std::filesystem::exists(six.dir / ".worst.spill")) << "the spill goes before the output is committed";
+    const auto& m = six.run["memory"];
+#ifndef CBR_SANITIZED
+    EXPECT_GE(m["estimate_host_mib"].get<double>(), m["peak_rss_mib"].get<double>())
+        << "the estimate misses part of the peak";
+#endif
+}
+
 TEST(Quality, StaticPathGivesFiniteCrawlAndReferenceIsExact) {
     auto work = scratchDir("quality-static");
     auto out = work / "out";

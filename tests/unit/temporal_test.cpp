@@ -396,6 +396,37 @@ TEST(EdgeCrawl, CopiedTrackersAreIndependent) {
     EXPECT_NE(one_2, two_2);
 }
 
+// Dropping the spare frame between adds (as the run's scorer does, to hold one frame's state
+// per variant) changes no figure and no map, and leaves a copy sharing the state intact.
+TEST(EdgeCrawl, DroppingTheSpareFrameChangesNothing) {
+    const Scene scene = checker(5.0, 0.25, 0.05, 0.95);
+    const std::vector<Image> reference = panSequence(scene, 4);
+    const std::vector<Image> aliased = panSequence(scene, 1);
+    const MotionField motion = uniformMotion(kW, kH, kPanX, kPanY);
+    CrawlTracker kept, dropped;
+    for (size_t t = 0; t < reference.size(); ++t) {
+        const CrawlFrame a = kept.add(reference[t], aliased[t], motion, false, true);
+        const CrawlFrame b = dropped.add(reference[t], aliased[t], motion, false, true);
+        dropped.dropSpare();
+        EXPECT_EQ(a.has_pair, b.has_pair) << t;
+        EXPECT_EQ(a.eci, b.eci) << t;
+        EXPECT_EQ(a.flicker_ratio, b.flicker_ratio) << t;
+        EXPECT_EQ(a.numerator, b.numerator) << t;
+        EXPECT_EQ(a.denominator, b.denominator) << t;
+        EXPECT_EQ(a.valid_fraction, b.valid_fraction) << t;
+        ASSERT_TRUE(a.crawl_map && b.crawl_map);
+        EXPECT_EQ(a.crawl_map->data, b.crawl_map->data) << t;
+        if (t > 0) {
+            EXPECT_GT(a.eci, 0.0) << t;
+        }
+    }
+    // A copy shares the state until either adds: dropping the spare then is left for later.
+    CrawlTracker copy = dropped;
+    dropped.dropSpare();
+    EXPECT_EQ(copy.add(reference[1], aliased[1], motion, false).eci,
+              kept.add(reference[1], aliased[1], motion, false).eci);
+}
+
 // The definition step by step, written plainly: luma, blur, Sobel / 8 > threshold,
 // 3x3 dilation, valid mask with nearest-pixel depth test, bilinear backward warp.
 struct Naive {
