@@ -100,7 +100,9 @@ DriftResult analyseDrift(const VariantSamples& c, const HealthRule& rule) {
     out.noise = robustSpread(within);
     out.level_limit = std::max(rule.level_floor, std::expm1(rule.drift_noise_k * out.noise / 2));
     out.span_limit = std::max(rule.span_floor, std::expm1(rule.drift_noise_k * out.noise));
-    const size_t span = std::max<size_t>(3, frames / 10);
+    // A quarter of the path: a burst shorter than half of it (a few frames of a lavapipe run
+    // on a quiet machine) moves neither the span's median nor the variant's figures.
+    const size_t span = std::max<size_t>(3, frames / 4);
     double worst_excess = -INFINITY;
     auto consider = [&](const DriftFinding& f, double limit) {
         (f.whole_repetition ? out.level_max : out.span_max) =

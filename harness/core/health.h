@@ -26,8 +26,8 @@ struct HealthRule {
     int warm_cap_frames = 120;
     double warm_cap_seconds = 3.0;
     // Drift: a repetition's median time against its poses' median over the repetitions
-    // (the repetition level), and a run of `drift_span` frames (at least 3, a tenth of the
-    // path) against the same poses in the others. Unsteady beyond the larger of the floor
+    // (the repetition level), and a span of frames (at least 3, a quarter of the path)
+    // against the same poses in the others. Unsteady beyond the larger of the floor
     // and `drift_noise_k` times the frame-level noise (the residuals' robust spread).
     double level_floor = 0.02;
     double span_floor = 0.05;
