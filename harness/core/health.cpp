@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <map>
 
-#include "harness/core/results.h"
 #include "harness/core/stats.h"
 
 namespace cbr::harness {
@@ -58,19 +57,20 @@ std::string percentText(double fraction) {
 
 // Per repetition, per frame: log(time / median of the same frame's time in the other
 // repetitions). Frames only some repetitions have are left out.
-std::map<int, std::map<int, double>> poseResiduals(const VariantSamples& c) {
+std::map<int, std::map<int, double>> poseResiduals(const std::vector<double>& ms, const std::vector<int>& repeat,
+                                                   const std::vector<int>& frame) {
     std::map<int, std::map<int, double>> by_frame;  // frame -> repeat -> ms
-    for (size_t i = 0; i < c.ms.size(); ++i)
-        if (c.ms[i] > 0 && std::isfinite(c.ms[i])) by_frame[c.frame[i]][c.repeat[i]] = c.ms[i];
+    for (size_t i = 0; i < ms.size() && i < repeat.size() && i < frame.size(); ++i)
+        if (ms[i] > 0 && std::isfinite(ms[i])) by_frame[frame[i]][repeat[i]] = ms[i];
     std::map<int, std::map<int, double>> e;  // repeat -> frame -> residual
     std::vector<double> others;
-    for (const auto& [frame, reps] : by_frame) {
+    for (const auto& [f, reps] : by_frame) {
         if (reps.size() < 2) continue;
-        for (const auto& [rep, ms] : reps) {
+        for (const auto& [rep, t] : reps) {
             others.clear();
-            for (const auto& [r2, ms2] : reps)
-                if (r2 != rep) others.push_back(ms2);
-            e[rep][frame] = std::log(ms / median(others));
+            for (const auto& [r2, t2] : reps)
+                if (r2 != rep) others.push_back(t2);
+            e[rep][f] = std::log(t / median(others));
         }
     }
     return e;
@@ -78,9 +78,10 @@ std::map<int, std::map<int, double>> poseResiduals(const VariantSamples& c) {
 
 }  // namespace
 
-DriftResult analyseDrift(const VariantSamples& c, const HealthRule& rule) {
+DriftResult analyseDrift(const std::vector<double>& ms, const std::vector<int>& repeat, const std::vector<int>& frame,
+                         const HealthRule& rule) {
     DriftResult out;
-    const auto e = poseResiduals(c);
+    const auto e = poseResiduals(ms, repeat, frame);
     if (e.size() < 2) {
         out.why_not = "fewer than 2 repetitions: no other repetition to pair its poses with";
         return out;
@@ -98,8 +99,8 @@ DriftResult analyseDrift(const VariantSamples& c, const HealthRule& rule) {
         out.levels.push_back(std::exp(level[rep]));
     }
     out.noise = robustSpread(within);
-    out.level_limit = std::max(rule.level_floor, std::expm1(rule.drift_noise_k * out.noise / 2));
-    out.span_limit = std::max(rule.span_floor, std::expm1(rule.drift_noise_k * out.noise));
+    out.level_limit = std::max(rule.level_floor, std::expm1(rule.level_noise_k * out.noise));
+    out.span_limit = std::max(rule.span_floor, std::expm1(rule.span_noise_k * out.noise));
     // A quarter of the path: a burst shorter than half of it (a few frames of a lavapipe run
     // on a quiet machine) moves neither the span's median nor the variant's figures.
     const size_t span = std::max<size_t>(3, frames / 4);

@@ -13,8 +13,6 @@
 
 namespace cbr::harness {
 
-struct VariantSamples;
-
 // Every threshold in one place; docs/method/measurement.md gives the measurements they
 // were chosen from.
 struct HealthRule {
@@ -27,11 +25,12 @@ struct HealthRule {
     double warm_cap_seconds = 3.0;
     // Drift: a repetition's median time against its poses' median over the repetitions
     // (the repetition level), and a span of frames (at least 3, a quarter of the path)
-    // against the same poses in the others. Unsteady beyond the larger of the floor
-    // and `drift_noise_k` times the frame-level noise (the residuals' robust spread).
+    // against the same poses in the others. Unsteady beyond the larger of the floor and
+    // e^(k x noise) - 1, the noise being the frame-level residuals' robust spread.
     double level_floor = 0.02;
     double span_floor = 0.05;
-    double drift_noise_k = 4.0;
+    double level_noise_k = 3.0;
+    double span_noise_k = 5.0;
     // The machine: other processes' CPU load in cores during a timed pass, on a CPU device
     // (lavapipe), beyond which the pass ran on a busy machine.
     double busy_other_cores = 0.30;
@@ -67,9 +66,10 @@ struct DriftResult {
     bool unsteady = false;
     std::string note;                  // what drifted and by how much, when unsteady
 };
-// One configuration's timed frames: per repetition and frame (VariantSamples' ms, repeat,
-// frame), paired by pose across repetitions.
-DriftResult analyseDrift(const VariantSamples& c, const HealthRule& rule = healthRule());
+// One configuration's timed frames, parallel: time (ms), repetition and frame of each (as
+// VariantSamples keeps them), paired by pose across repetitions.
+DriftResult analyseDrift(const std::vector<double>& ms, const std::vector<int>& repeat, const std::vector<int>& frame,
+                         const HealthRule& rule = healthRule());
 
 // A reading of the machine, `t` seconds after the sampler started.
 struct MachineSample {

@@ -19,7 +19,7 @@ json ruleJson(const HealthRule& r) {
     return {{"warm_up_window", r.warm_window},          {"warm_up_tolerance", r.warm_tolerance},
             {"warm_up_cap_frames", r.warm_cap_frames},  {"warm_up_cap_seconds", r.warm_cap_seconds},
             {"drift_level_floor", r.level_floor},       {"drift_span_floor", r.span_floor},
-            {"drift_noise_k", r.drift_noise_k},         {"busy_other_cores", r.busy_other_cores},
+            {"drift_level_noise_k", r.level_noise_k}, {"drift_span_noise_k", r.span_noise_k},         {"busy_other_cores", r.busy_other_cores},
             {"clock_band", r.clock_band}};
 }
 

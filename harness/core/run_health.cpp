@@ -95,7 +95,7 @@ void configHealth(RunState& s, const std::vector<MachineSample>& samples, const 
     for (size_t vi = 0; vi < s.results.variants.size(); ++vi) {
         VariantRun& vr = s.results.variants[vi];
         ConfigHealth& c = h.configs[vi];
-        if (const VariantSamples* samples_of = s.results.digest.find(vr.name)) c.drift = analyseDrift(*samples_of, rule);
+        if (const VariantSamples* t = s.results.digest.find(vr.name)) c.drift = analyseDrift(t->ms, t->repeat, t->frame, rule);
         for (const auto& w : h.windows) {
             if (w.config != vr.name) continue;
             const WindowLoad wl = windowLoad(samples, w);

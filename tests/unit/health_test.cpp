@@ -27,6 +27,8 @@ VariantSamples series(int repeats, int frames, double noise, uint32_t seed = 7) 
     return c;
 }
 
+DriftResult drift(const VariantSamples& c) { return analyseDrift(c.ms, c.repeat, c.frame); }
+
 TEST(WarmUp, SteadyOnlyWhenTheLastWindowMatchesTheOneBefore) {
     HealthRule rule;
     rule.warm_window = 4;
@@ -41,7 +43,7 @@ TEST(WarmUp, SteadyOnlyWhenTheLastWindowMatchesTheOneBefore) {
 
 TEST(Drift, QuietRepetitionsAreSteady) {
     for (uint32_t seed = 1; seed <= 20; ++seed) {
-        const DriftResult d = analyseDrift(series(5, 60, 0.03, seed));
+        const DriftResult d = drift(series(5, 60, 0.03, seed));
         ASSERT_TRUE(d.tested);
         EXPECT_FALSE(d.unsteady) << "seed " << seed << ": " << d.note;
         EXPECT_NEAR(d.noise, 0.03, 0.012);
@@ -52,7 +54,7 @@ TEST(Drift, ARepetitionAtTwiceTheTimeIsUnsteadyAndNamed) {
     VariantSamples c = series(5, 60, 0.03);
     for (size_t i = 0; i < c.ms.size(); ++i)
         if (c.repeat[i] == 0) c.ms[i] *= 2.0;  // a busy machine during the first repetition
-    const DriftResult d = analyseDrift(c);
+    const DriftResult d = drift(c);
     ASSERT_TRUE(d.unsteady);
     ASSERT_TRUE(d.worst);
     EXPECT_TRUE(d.worst->whole_repetition);
@@ -66,7 +68,7 @@ TEST(Drift, AClockRampInTheFirstFramesIsUnsteady) {
     const double ramp[] = {6.0, 5.0, 4.8, 3.0, 1.5};  // full's first frames after the GPU idled
     for (size_t i = 0; i < c.ms.size(); ++i)
         if (c.repeat[i] == 0 && c.frame[i] < 5) c.ms[i] *= ramp[c.frame[i]];
-    const DriftResult d = analyseDrift(c);
+    const DriftResult d = drift(c);
     ASSERT_TRUE(d.unsteady);
     EXPECT_FALSE(d.worst->whole_repetition);
     EXPECT_EQ(d.worst->repeat, 0);
@@ -75,14 +77,14 @@ TEST(Drift, AClockRampInTheFirstFramesIsUnsteady) {
 }
 
 TEST(Drift, OneRepetitionIsNotTestedAndSaysWhy) {
-    const DriftResult d = analyseDrift(series(1, 30, 0.01));
+    const DriftResult d = drift(series(1, 30, 0.01));
     EXPECT_FALSE(d.tested);
     EXPECT_FALSE(d.unsteady);
     EXPECT_FALSE(d.why_not.empty());
 }
 
 TEST(Drift, NoiseRaisesTheLimitSoNoisyButSteadyRunsPass) {
-    const DriftResult d = analyseDrift(series(5, 60, 0.08));
+    const DriftResult d = drift(series(5, 60, 0.08));
     EXPECT_FALSE(d.unsteady) << d.note;
     EXPECT_GT(d.span_limit, healthRule().span_floor);
 }
