@@ -1,4 +1,4 @@
-// PSNR and SSIM on [0,1] double images, as defined in shared/method/metrics.md.
+// PSNR and SSIM on [0,1] double images, as defined in docs/method/measurement.md ("Quality").
 // SSIM: Z. Wang, A. C. Bovik, H. R. Sheikh, E. P. Simoncelli, "Image quality assessment:
 // from error visibility to structural similarity", IEEE TIP 13(4):600-612, 2004.
 // Implemented to match skimage.metrics.structural_similarity(gaussian_weights=True,

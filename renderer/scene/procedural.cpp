@@ -4,7 +4,7 @@
 // Y up, floor at y = 0, walls at x = +-10 and z = +-6, 6 m tall, open to the sky; a clear
 // aisle along X (|z| < 1, 0 <= y <= 3 holds no geometry); pillars at x = -8..8 step 4,
 // z = +-2, so one stands near x = 0, z = 2 in front of the striped far wall.
-// What each part stresses (see shared/method/cbr.md):
+// What each part stresses (see docs/method/checkerboard.md):
 //   thin geometry (cables ~1 cm, railing balusters, coat hangers): detail under one
 //     quarter-res pixel, where ASO smears and CSO should recover;
 //   checker floor and striped walls: high-contrast edges and texture aliasing (crawl);

@@ -23,7 +23,7 @@ Image load(const std::string& name) {
     return fromRgba8(png.pixels.data(), png.width, png.height, size_t(png.width) * 4);
 }
 
-// tests/data/flip (copied from shared/data/flip): the values NVIDIA's FLIP tool v1.6
+// tests/data/flip (the project's copy of the reference pairs; docs/method/flip.md): the values NVIDIA's FLIP tool v1.6
 // prints for these pairs in LDR mode with its default viewing conditions (ppd 67.02).
 struct ToolValues {
     const char* reference;
