@@ -43,8 +43,8 @@ struct DisplayModel {
 // "NAME" (displayNames()), or NAME followed by ",KEY=VALUE" overrides, or KEY=VALUE pairs alone
 // (over standard_4k). Keys: res=WxH, diagonal=INCHES, width=METRES (screen width; sets the
 // diagonal), distance=METRES, fov=DEGREES (diagonal field of view), peak=CD/M2, contrast=RATIO,
-// black=CD/M2, ambient=LUX, refl=FRACTION. Throws std::invalid_argument naming what is wrong and
-// what is accepted.
+// black=CD/M2, ambient=LUX, refl=FRACTION. Throws std::invalid_argument naming what is wrong (the
+// settings table's --display row adds what is accepted).
 DisplayModel parseDisplay(const std::string& spec);
 std::vector<std::string> displayNames();
 std::string displayDescription(const std::string& name);  // "" for an unknown name
@@ -52,6 +52,7 @@ std::string displayDescription(const std::string& name);  // "" for an unknown n
 // Sequence figures: per-frame values q (the frame's differences pooled over bands and channels)
 // pool over frames to the sequence's q, which maps to JOD. An image (one frame scored as an image)
 // is scaled by the model's image-integration factor instead.
+const char* cvvdpModelVersion();  // the calibrated parameters' version, e.g. "0.5.6"
 double cvvdpJod(double q);
 double cvvdpQ(double jod);  // the inverse of cvvdpJod (jod <= 10)
 double cvvdpPoolFrames(const std::vector<double>& frame_q);

@@ -48,16 +48,8 @@ DisplayModel fromNamed(const T::NamedDisplay& d) {
     return m;
 }
 
-std::string namesList() {
-    std::string s;
-    for (const auto& d : T::kNamedDisplays) s += (s.empty() ? "" : ", ") + std::string(d.name);
-    return s;
-}
-
 [[noreturn]] void badDisplay(const std::string& spec, const std::string& why) {
-    throw std::invalid_argument("display '" + spec + "': " + why + "; accepted: a name (" + namesList() +
-                                ") and/or KEY=VALUE overrides with KEY res, diagonal, width, distance, fov, peak, "
-                                "contrast, black, ambient, refl (e.g. standard_4k,peak=400,ambient=10)");
+    throw std::invalid_argument("display '" + spec + "': " + why);
 }
 
 double positive(const std::string& spec, const std::string& key, const std::string& value, bool allow_zero = false) {
@@ -189,6 +181,8 @@ std::string displayDescription(const std::string& name) {
     const auto* d = findNamed(name);
     return d ? d->description : "";
 }
+
+const char* cvvdpModelVersion() { return T::kModelVersion; }
 
 double cvvdpJod(double q) {
     // Linear below q = 0.1 (the reference's choice, so that the map is smooth at 0).

@@ -19,7 +19,7 @@ CLI::Option* addOption(CLI::App* cmd, const Row& row, Tunables& t) {
         },
         optionHelp(row));
     opt->default_str(text(row, Tunables{}));
-    opt->type_name(row.type == Type::Word ? "WORD" : row.type == Type::Int ? "INT" : "FLOAT");
+    opt->type_name(row.type == Type::Text ? "SPEC" : row.type == Type::Word ? "WORD" : row.type == Type::Int ? "INT" : "FLOAT");
     return opt;
 }
 

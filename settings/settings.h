@@ -2,6 +2,7 @@
 // types become these enums once, while the command line is parsed (settings/options.h).
 #pragma once
 
+#include "metrics/cvvdp.h"
 #include "metrics/flip.h"
 
 namespace cbr::settings {
@@ -57,8 +58,14 @@ struct Tunables {
     DebugShading debug_shading = DebugShading::None;
     Reference reference = Reference::Full;
     int ssaa = 4;                // k x k samples per pixel of the ssaa reference
-    double flip_ppd = metrics::kFlipDefaultPpd;  // FLIP's observer: pixels per degree of visual angle
+    // How the frames are seen (ColorVideoVDP's display model); its pixels per degree are FLIP's too
+    // unless flip_ppd is given.
+    metrics::DisplayModel display;
+    double flip_ppd = 0;  // FLIP's observer: pixels per degree of visual angle; 0: the display's
     Scorer scorer = Scorer::Auto;
 };
+
+// FLIP's pixels per degree: flip_ppd where given, else the display model's.
+inline double flipPpd(const Tunables& t) { return t.flip_ppd > 0 ? t.flip_ppd : t.display.ppd(); }
 
 }  // namespace cbr::settings

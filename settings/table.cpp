@@ -106,9 +106,27 @@ void addRunRows(std::vector<Row>& rows) {
          false, {}, {}, "ref", true, 8, Hash::Always, false, false, field<&Tunables::reference>()});
     add({"ssaa", "ssaa", "samples per axis of the ssaa reference (box filter)", Type::Int, {}, 2, 8, false, false, {},
          {}, nullptr, false, 0, Hash::Always, false, false, field<&Tunables::ssaa>()});
+    Row display{"display", "display",
+                "how the frames are seen, for ColorVideoVDP and FLIP: a display model (its size, distance, peak "
+                "luminance and ambient light; cbrbench displays lists them)",
+                Type::Text, {}, 0, 0, false, false, {}, {}, nullptr, false, 0, Hash::UnlessDefault, true, false, {}};
+    display.text_field = {[](const Tunables& t) { return t.display.spec(); },
+                          [](Tunables& t, const std::string& v) { t.display = metrics::parseDisplay(v); },
+                          [](const Tunables& t) {
+                              const auto& d = t.display;
+                              return nlohmann::json{{"name", d.name},          {"spec", d.spec()},
+                                                    {"ppd", d.ppd()},          {"width", d.width},
+                                                    {"height", d.height},      {"distance_m", d.distance_m},
+                                                    {"diagonal_in", d.diagonal_in}, {"fov_diagonal_deg", d.fov_diagonal_deg},
+                                                    {"peak", d.peak},          {"contrast", d.contrast},
+                                                    {"ambient_lux", d.ambient_lux}, {"k_refl", d.k_refl},
+                                                    {"description", d.describe()}};
+                          }};
+    add(std::move(display));
     add({"flip-ppd", "flip_ppd",
-         "FLIP's pixels per degree of visual angle (default 67.02: 0.7 m from a 0.7 m wide, 3840-pixel monitor)",
-         Type::Real, {}, 0, kNoMax, true, true, {}, {}, nullptr, false, 0, Hash::UnlessDefault, false, false,
+         "FLIP's pixels per degree of visual angle (0: the display model's, 75.40 for standard_4k; FLIP's own "
+         "default observer, 0.7 m from a 0.7 m wide 3840-pixel monitor, is 67.02)",
+         Type::Real, {}, 0, kNoMax, false, true, {}, {}, nullptr, false, 0, Hash::UnlessDefault, false, false,
          field<&Tunables::flip_ppd>()});
     add({"scorer", "scorer",
          "where quality frames are scored: device (Vulkan compute, where the images are), cpu, or auto (device on "
@@ -152,9 +170,9 @@ std::string joinOr(const std::vector<std::string>& items) {
     return out;
 }
 
-[[noreturn]] void refuse(const Row& row, const std::string& text) {
+[[noreturn]] void refuse(const Row& row, const std::string& text, const std::string& why = "") {
     throw std::invalid_argument("--" + std::string(row.name) + " " + text + ": expected " + accepted(row) +
-                                " (default " + settings::text(row, Tunables{}) + ")");
+                                " (default " + settings::text(row, Tunables{}) + ")" + (why.empty() ? "" : "; " + why));
 }
 
 }  // namespace
@@ -183,6 +201,9 @@ std::vector<const Row*> compareKey() {
 
 std::string accepted(const Row& row) {
     std::vector<std::string> items;
+    if (row.type == Type::Text)
+        return "a display name (" + joinOr(metrics::displayNames()) +
+               ") and/or KEY=VALUE overrides: res, diagonal, width, distance, fov, peak, contrast, black, ambient, refl";
     if (row.type == Type::Word) {
         for (const char* w : row.words) items.emplace_back(w);
         return joinOr(items);
@@ -198,21 +219,26 @@ std::string accepted(const Row& row) {
 }
 
 std::string text(const Row& row, const Tunables& t) {
+    if (row.type == Type::Text) return row.text_field.get(t);
     double v = row.field.get(t);
     return row.type == Type::Word ? std::string(row.words.at(size_t(v))) : number(v);
 }
 
 nlohmann::json toJson(const Row& row, const Tunables& t) {
+    if (row.type == Type::Text) return row.text_field.json(t);
     double v = row.field.get(t);
     if (row.type == Type::Word) return row.words.at(size_t(v));
     if (row.type == Type::Int) return int(v);
     return v;
 }
 
-bool isDefault(const Row& row, const Tunables& t) { return row.field.get(t) == row.field.get(Tunables{}); }
+bool isDefault(const Row& row, const Tunables& t) {
+    if (row.type == Type::Text) return row.text_field.get(t) == row.text_field.get(Tunables{});
+    return row.field.get(t) == row.field.get(Tunables{});
+}
 
 bool acceptsNumber(const Row& row, double v) {
-    if (row.type == Type::Word || !std::isfinite(v)) return false;
+    if (row.type == Type::Word || row.type == Type::Text || !std::isfinite(v)) return false;
     if (row.type == Type::Int && v != std::floor(v)) return false;
     if (!row.only.empty()) {
         for (double o : row.only)
@@ -228,6 +254,13 @@ void setNumber(const Row& row, Tunables& t, double value) {
 }
 
 void setText(const Row& row, Tunables& t, const std::string& text) {
+    if (row.type == Type::Text) {
+        try {
+            return row.text_field.set(t, text);
+        } catch (const std::invalid_argument& e) {
+            refuse(row, text, e.what());
+        }
+    }
     if (row.type == Type::Word) {
         for (size_t i = 0; i < row.words.size(); ++i)
             if (text == row.words[i]) return row.field.set(t, double(i));
@@ -240,6 +273,11 @@ void setText(const Row& row, Tunables& t, const std::string& text) {
 
 void check(const Tunables& t) {
     for (const auto& r : table()) {
+        if (r.type == Type::Text) {
+            Tunables copy = t;
+            setText(r, copy, r.text_field.get(t));  // reads back, or says what is wrong
+            continue;
+        }
         double v = r.field.get(t);
         if (r.type == Type::Word ? !(v >= 0 && size_t(v) < r.words.size()) : !acceptsNumber(r, v))
             refuse(r, r.type == Type::Word ? number(v) : text(r, t));

@@ -14,7 +14,7 @@
 
 namespace cbr::settings {
 
-enum class Type { Int, Real, Word };
+enum class Type { Int, Real, Word, Text };  // Text: a structured value (the display model)
 
 // How a row enters the plan hash (harness/matrix.cpp): settings added after plans were first
 // hashed enter it only away from their default, so older plans keep their hash.
@@ -24,6 +24,13 @@ enum class Hash { Always, UnlessDefault, Never };
 struct Field {
     double (*get)(const Tunables&);
     void (*set)(Tunables&, double);
+};
+// A Text row's field: its text (parsed back by set, which throws std::invalid_argument with the
+// accepted forms) and what run.json writes.
+struct TextField {
+    std::string (*get)(const Tunables&) = nullptr;
+    void (*set)(Tunables&, const std::string&) = nullptr;
+    nlohmann::json (*json)(const Tunables&) = nullptr;
 };
 
 struct Row {
@@ -43,6 +50,7 @@ struct Row {
     bool run_json = true;            // in run.json's settings object
     bool json_float = false;         // the renderer holds it as a float: run.json writes that float
     Field field{};
+    TextField text_field{};  // Text rows only (their `field` is unset)
 };
 
 // Every row, in the order the help, sweep's labels and the columns list them.

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "harness/core/output_cells.h"  // optional(): an absent score, an empty cell
+#include "metrics/cvvdp.h"
 
 namespace cbr::harness {
 
@@ -35,6 +36,7 @@ void VariantSamples::add(const FrameRow& row) {
     if (q.ssim) ssim.push_back(*q.ssim);
     if (q.ssim_luma) ssim_luma.push_back(*q.ssim_luma);
     if (q.flip_mean) flip.push_back(*q.flip_mean);
+    if (q.cvvdp_q) cvvdp_q.push_back(*q.cvvdp_q);
     if (q.eci) {
         eci.push_back(*q.eci);
         crawl_num += q.crawl_numerator;
@@ -87,6 +89,7 @@ std::map<std::string, reports::Cell> frameCells(const FrameRow& row, uint32_t wi
     m["flip_q1"] = optional(row.quality.flip_q1);
     m["flip_median"] = optional(row.quality.flip_median);
     m["flip_q3"] = optional(row.quality.flip_q3);
+    if (row.quality.cvvdp_q) m["cvvdp_jod"] = metrics::cvvdpJod(*row.quality.cvvdp_q);
     for (const auto& [name, value] : row.stats) m[name] = value;
     long long fs = 0;
     bool any = false;
@@ -108,7 +111,8 @@ std::vector<std::string> framesCsvColumns(const FrameColumns& c) {
                                      "render_scale", "gpu_ms",        "timing_ok",    "psnr_db",
                                      "ssim",         "ssim_luma",     "mse",          "eci",
                                      "flicker_ratio", "crawl_valid_fraction", "flip_mean",
-                                     "flip_q1",      "flip_median",   "flip_q3",      "fs_invocations",
+                                     "flip_q1",      "flip_median",   "flip_q3",      "cvvdp_jod",
+                                     "fs_invocations",
                                      "status",       "note"};
     cols.insert(cols.end(), c.stats.begin(), c.stats.end());
     for (const auto& p : c.passes) cols.push_back("gpu_ms_" + p);

@@ -9,6 +9,7 @@
 #include "harness/core/frame_rows.h"
 #include "harness/core/outputs_internal.h"
 #include "harness/core/stats.h"
+#include "metrics/cvvdp.h"
 #include "metrics/metrics.h"
 #include "renderer/vk/context.h"
 #include "reports/speedup.h"
@@ -93,6 +94,7 @@ void qualityStats(VariantSummary& s, const VariantSamples& c) {
     }
     if (!c.ssim_luma.empty()) s.ssim_luma_mean = mean(c.ssim_luma);
     if (!c.flip.empty()) s.flip_mean = mean(c.flip);
+    if (!c.cvvdp_q.empty()) s.cvvdp_jod = metrics::cvvdpJod(metrics::cvvdpPoolFrames(c.cvvdp_q));
     if (!eci.empty()) {
         // Sequence ECI pools numerators and denominators (metrics.md); crawl comes in
         // bursts, so p95 and max besides.
@@ -155,9 +157,9 @@ void printSummary(std::ostream& out, const std::filesystem::path& dir, const Run
     int name_width = 10;  // a sweep's configuration labels are longer than variant names
     for (const auto& s : summaries) name_width = std::max(name_width, int(std::min<size_t>(s.variant.size(), 60)));
     // The speed-up as every output prints it, with its interval (reports/speedup.h).
-    const char* kRow = "%-*s %-8s %9s %9s  %-18s %8s %7s %7s %7s\n";
+    const char* kRow = "%-*s %-8s %9s %9s  %-18s %8s %7s %7s %7s %6s\n";
     std::snprintf(line, sizeof line, kRow, name_width, "variant", "status", "render", "gpu_ms", "speedup [95% CI]",
-                  "psnr_db", "ssim", "flip", "eci");
+                  "psnr_db", "ssim", "flip", "eci", "jod");
     out << "cbrbench: " << rc.scene.name << " / " << rc.path.name << " at " << rc.settings.width << "x"
         << rc.settings.height << ", " << rc.results.frames << " frames x " << rc.results.repeats << " repeats on "
         << rc.ctx.description.name << "\n" << line;
@@ -175,7 +177,7 @@ void printSummary(std::ostream& out, const std::filesystem::path& dir, const Run
                       s.frames ? render.c_str() : "-",
                       s.frames ? fmt(s.gpu_ms_median, "%.3f").c_str() : "-", speedup.c_str(),
                       fmt(s.psnr_db, "%.2f").c_str(), fmt(s.ssim_mean, "%.4f").c_str(),
-                      fmt(s.flip_mean, "%.4f").c_str(), fmt(s.eci, "%.4f").c_str());
+                      fmt(s.flip_mean, "%.4f").c_str(), fmt(s.eci, "%.4f").c_str(), fmt(s.cvvdp_jod, "%.2f").c_str());
         out << line;
     }
     auto& val = rc.ctx.validation;

@@ -44,6 +44,7 @@ struct VariantSummary {
     std::optional<double> psnr_db, psnr_db_min, psnr_db_p5, ssim_mean, ssim_min, ssim_luma_mean;
     std::optional<double> eci, eci_p95, eci_max, flicker_ratio_mean;
     std::optional<double> flip_mean;  // mean of the per-frame FLIP means
+    std::optional<double> cvvdp_jod;  // ColorVideoVDP of the sequence: the frames' q pooled, in JOD
     std::optional<double> fs_invocations_median;
     uint32_t render_width = 0, render_height = 0;
     std::vector<std::pair<std::string, double>> pass_ms_median;

@@ -34,6 +34,7 @@ void summaryQualityCells(std::map<std::string, reports::Cell>& m, const VariantS
     m["ssim_min"] = optional(s.ssim_min);
     m["ssim_luma_mean"] = optional(s.ssim_luma_mean);
     m["flip_mean"] = optional(s.flip_mean);
+    m["cvvdp_jod"] = optional(s.cvvdp_jod);
     m["eci"] = optional(s.eci);
     m["eci_p95"] = optional(s.eci_p95);
     m["eci_max"] = optional(s.eci_max);
@@ -48,7 +49,8 @@ size_t writeSummaryCsv(const std::filesystem::path& file, const RunResults& r,
                                      "gpu_ms_p95",     "gpu_ms_p99",     "gpu_ms_mean",     "gpu_ms_cv",
                                      "speedup_vs_full", "speedup_ci_low", "speedup_ci_high", "psnr_db_mean",
                                      "psnr_db_min",    "psnr_db_p5",     "ssim_mean",       "ssim_min",
-                                     "ssim_luma_mean", "flip_mean",      "eci",             "eci_p95",
+                                     "ssim_luma_mean", "flip_mean",      "cvvdp_jod",       "eci",
+                                     "eci_p95",
                                      "eci_max",
                                      "flicker_ratio_mean", "fs_invocations_median", "note"};
     for (const auto& p : passes) cols.push_back("gpu_ms_" + p + "_median");
@@ -91,7 +93,7 @@ void sweepSettingCells(std::map<std::string, Cell>& row, const VariantRun& vr, c
     // The swept rows of the variants they name (shading cost, for all, has a column of its own).
     for (const auto& r : settings::table())
         if (r.sweep && !r.variants.empty() && settings::appliesTo(r, vr.variant))
-            row[r.column] = r.type == settings::Type::Word ? Cell(settings::text(r, rc.settings)) : Cell(r.field.get(rc.settings));
+            row[r.column] = r.type == settings::Type::Word || r.type == settings::Type::Text ? Cell(settings::text(r, rc.settings)) : Cell(r.field.get(rc.settings));
     // A variant that keeps the full history whatever --cbr-history asks (the variant table).
     if (variants::findVariant(vr.variant).full_history) row["cbr_history"] = std::string("full");
     for (const auto& st : vr.settings) {

@@ -13,6 +13,7 @@
 #include "harness/core/quality.h"
 #include "harness/core/resolve_bandwidth.h"
 #include "harness/core/stats.h"
+#include "metrics/cvvdp.h"
 #include "metrics/image_encode.h"
 #include "metrics/image_io.h"
 #include "renderer/variants/variants.h"
@@ -132,7 +133,8 @@ json settingsJson(const RunContext& rc) {
               {"step", s.drr_control.step}}},
             {"frames_in_flight", s.frames_in_flight},
             {"depth", "reversed-Z, D32_SFLOAT"},
-            {"save_frames", rc.options.save_frames}};
+            {"save_frames", rc.options.save_frames},
+            {"cvvdp_fps", rc.results.cvvdp_fps}};
     for (const auto& row : settings::table())
         if (row.run_json)
             out[row.column] = row.json_float ? json(float(row.field.get(s))) : settings::toJson(row, s);
@@ -193,7 +195,11 @@ json metricsJson(const RunContext& rc) {
                 {"flip", "LDR-FLIP (Andersson et al. 2020) as NVIDIA's tool v1.6 computes it: mean of the error "
                          "map and weighted quartiles (pixels weighted by their error); summary flip_mean is the mean "
                          "of the per-frame means"},
-                {"flip_ppd", rc.options.tune.flip_ppd},
+                {"flip_ppd", settings::flipPpd(rc.options.tune)},
+                {"cvvdp", "ColorVideoVDP (Mantiuk, Hammou, Hanji 2024, model " + std::string(metrics::cvvdpModelVersion()) +
+                              ") on the display model settings.display at settings.cvvdp_fps frames per second: JOD, 10 "
+                              "= no visible difference, one JOD less = 75% of viewers prefer the better; frames.csv "
+                              "cvvdp_jod is each frame's, summary cvvdp_jod the sequence's (docs/method/cvvdp.md)"},
                 {"reference_kind", rc.options.tune.reference == settings::Reference::Ssaa
                                        ? "ssaa: " + std::to_string(rc.options.tune.ssaa) + "x" +
                                              std::to_string(rc.options.tune.ssaa) + " samples per pixel, box filter in HDR"
@@ -250,6 +256,7 @@ json variantJson(const RunContext& rc, const VariantRun& vr, const VariantSummar
         v["psnr_db_is_inf"] = sm.psnr_db && std::isinf(*sm.psnr_db);
         v["ssim_mean"] = number(sm.ssim_mean);
         v["flip_mean"] = number(sm.flip_mean);
+        v["cvvdp_jod"] = number(sm.cvvdp_jod);
         v["eci"] = number(sm.eci);
         v["render_width"] = sm.render_width;
         v["render_height"] = sm.render_height;

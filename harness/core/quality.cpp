@@ -29,6 +29,10 @@ struct QualityScorer::Worst {
     Floats ssim_map, flip_map;
     WorstLoader load;     // images kept elsewhere: fetched by finish()
     Floats crawl_values;  // the ECI kind's crawl map as loaded (the device's values), coloured when written
+    // ColorVideoVDP's difference map of the frame (1 - JOD/10 per pixel): 8 bits a pixel from the CPU
+    // scorer (its chain step, which alone has the frames before), floats from the device.
+    Bytes cvvdp_map;
+    Floats cvvdp_values;
 };
 
 // Frames of one variant arrive out of order; the crawl metric needs them in order.
@@ -42,6 +46,7 @@ struct QualityScorer::Chain {
     };
     std::map<int, Pending> pending;
     metrics::CrawlTracker tracker;
+    std::unique_ptr<metrics::CvvdpTracker> cvvdp;  // made at the chain's first frame and at each cut
     Worst worst_ssim, worst_eci;
     size_t number = 0;  // in first-scored order: its spill files' names
 };
@@ -156,6 +161,7 @@ void QualityScorer::score(const std::string& variant, bool is_reference, FrameRo
         row.quality.eci = 0.0;
         row.quality.flicker_ratio = 1.0;
         row.quality.flip_mean = row.quality.flip_q1 = row.quality.flip_median = row.quality.flip_q3 = 0.0;
+        if (cvvdp_display_) row.quality.cvvdp_q = 0.0;
         return;
     }
     Chain& c = chain(variant);
@@ -227,6 +233,7 @@ void QualityScorer::submitScore(Chain& c, const std::string& variant, FrameRow& 
             c.pending.emplace(index, Chain::Pending{&row, std::move(frame), std::move(ref)});
             for (auto it = c.pending.find(c.next); it != c.pending.end(); it = c.pending.find(c.next)) {
                 crawlStep(variant, *it->second.row, it->second.frame, it->second.reference);
+                if (cvvdp_display_) cvvdpStep(c, *it->second.row, it->second.frame, it->second.reference);
                 c.tracker.dropSpare();  // one frame's state kept per variant (kCrawlStateBytesPerPixel)
                 c.pending.erase(it);
                 std::lock_guard reference_lock(mutex_);
@@ -396,6 +403,7 @@ public:
         image(wf, "reference", stem, kept(worst.reference), kFrame);
         image(wf, "variant", base, kept(worst.image), kFrame);
         maps(wf, base, worst);
+        cvvdpMap(wf, base, worst);
         if (worst.crawl_map) {
             image(wf, "crawl_map", base + "_crawl_map", kept(worst.crawl_map), kMap);
         } else if (worst.crawl_values) {
@@ -493,6 +501,21 @@ private:
         image(wf, "flip_map", base + "_flip_map", kept(flip), kMap);
     }
 
+    // ColorVideoVDP's map, at 4x (a quarter of the way to 10 JOD is white): kept by the chain step
+    // or brought from the device. A frame worst by both kinds has one.
+    void cvvdpMap(WorstFrame& wf, const std::string& base, const Worst& worst) {
+        constexpr double kScale = 4.0;
+        if (worst.cvvdp_map) {
+            image(wf, "cvvdp_map", base + "_cvvdp_map", [map = worst.cvvdp_map] {
+                return colour(heatMapOf(map->size(), kScale, [&](size_t i) { return (*map)[i] / 255.0; }));
+            }, kMap);
+        } else if (worst.cvvdp_values) {
+            image(wf, "cvvdp_map", base + "_cvvdp_map", [map = worst.cvvdp_values] {
+                return colour(heatMapOf(map->size(), kScale, [&](size_t i) { return double((*map)[i]); }));
+            }, kMap);
+        }
+    }
+
     size_t pixels() const { return size_t(w_) * size_t(h_); }
 
     const std::filesystem::path dir_;
@@ -513,6 +536,8 @@ bool QualityScorer::loadWorst(Worst& worst) {
     worst.ssim_map = images.ssim_map;
     worst.flip_map = images.flip_map;
     worst.crawl_map = images.crawl_heat_map;
+    if (images.cvvdp_map && images.cvvdp_map->size() == size_t(width_) * size_t(height_))
+        worst.cvvdp_values = images.cvvdp_map;
     if (images.crawl_map && images.crawl_map->size() == size_t(width_) * size_t(height_))
         worst.crawl_values = images.crawl_map;
     return true;
@@ -532,7 +557,10 @@ std::vector<WorstFrame> QualityScorer::finish(const std::filesystem::path& dir) 
     // (process.cpp keeps freed memory), where the images' phase, on other threads, cannot
     // reuse it: given back first (4K, every variant, lavapipe: the phase's peak 4,492 MiB, 453
     // above the quality pass's, before this).
-    for (auto& [variant, c] : chains_) c->tracker.reset();
+    for (auto& [variant, c] : chains_) {
+        c->tracker.reset();
+        c->cvvdp.reset();
+    }
 #ifdef __GLIBC__
     malloc_trim(0);
 #endif

@@ -15,6 +15,7 @@
 #include "harness/core/results.h"
 #include "harness/core/wall_account.h"
 #include "harness/core/worker_pool.h"
+#include "metrics/cvvdp.h"
 #include "metrics/image.h"
 #include "metrics/temporal.h"
 #include "renderer/scoring/device_metrics.h"
@@ -58,6 +59,9 @@ public:
     QualityScorer(int width, int height, double flip_ppd, WorkerPool& workers, WallAccount* wall = nullptr,
                   std::filesystem::path spill = {});
     ~QualityScorer();
+    // Scores ColorVideoVDP too (in frame order per variant, beside the edge crawl) on `display` at
+    // `fps` frames per second (0: each variant's single frame as an image). Before the first score().
+    void enableCvvdp(const metrics::DisplayModel& display, double fps);
 
     // Reference frame `frame`, to be scored against by `uses` frames (one per other variant):
     // it is dropped once they are done (or skipped), so memory does not grow with the path.
@@ -78,7 +82,7 @@ public:
     // The images of a worst frame kept elsewhere (on the device), fetched when it is written.
     struct WorstImages {
         Bytes reference, image, classes;
-        Floats crawl_map, ssim_map, flip_map;
+        Floats crawl_map, ssim_map, flip_map, cvvdp_map;
         Bytes crawl_heat_map;  // the crawl map already as its heat map (the CPU scorer's)
     };
     using WorstLoader = std::function<bool(WorstImages&)>;
@@ -101,6 +105,7 @@ private:
         std::vector<std::function<void()>> waiting;  // scores handed in before the frame
     };
     void crawlStep(const std::string& variant, FrameRow& row, const QualityFrame& frame, const Bytes& ref);
+    void cvvdpStep(Chain& c, FrameRow& row, const QualityFrame& frame, const Bytes& ref);  // quality_cvvdp.cpp
     void submitScore(Chain& c, const std::string& variant, FrameRow& row, QualityFrame frame, Bytes ref);
     void release(size_t frame);  // with mutex_ held
     void letGo();                // a held frame is done with (mutex_ not held)
@@ -110,6 +115,8 @@ private:
 
     int width_, height_;
     double flip_ppd_;
+    std::optional<metrics::DisplayModel> cvvdp_display_;  // set: ColorVideoVDP is scored
+    double cvvdp_fps_ = 0;
     WorkerPool& workers_;
     WallAccount* wall_;
     const std::filesystem::path spill_;

@@ -27,6 +27,8 @@ struct Quality {
     double crawl_numerator = 0, crawl_denominator = 0;  // for the pooled sequence ECI
     // LDR-FLIP (metrics/flip.h): mean of the error map and its weighted quartiles.
     std::optional<double> flip_mean, flip_q1, flip_median, flip_q3;
+    // ColorVideoVDP (metrics/cvvdp.h): the frame's pooled difference q; frames.csv writes its JOD.
+    std::optional<double> cvvdp_q;
     std::string note;               // why a metric is missing
 };
 
@@ -54,7 +56,7 @@ struct VariantSamples {  // one configuration's ok rows
     std::vector<double> ms;
     std::vector<int> repeat, frame;  // parallel to ms: pairs a time with its baseline's
     std::vector<double> widths, heights;
-    std::vector<double> psnr, ssim, ssim_luma, mse, fs, eci, flicker, flip;
+    std::vector<double> psnr, ssim, ssim_luma, mse, fs, eci, flicker, flip, cvvdp_q;
     double crawl_num = 0, crawl_den = 0;
     std::map<std::string, std::vector<double>> pass_ms, stat_values;
     std::vector<std::string> pass_order, stat_order;
@@ -143,6 +145,7 @@ struct RunResults {
     vk::CopyBandwidth copy_bandwidth;        // measured after the variants, for the resolve's bandwidth
     SceneLoad scene_load;
     std::string scorer = "cpu";  // where the quality frames were scored: device | cpu
+    double cvvdp_fps = 0;        // the frame rate ColorVideoVDP took the scored frames at (0: one frame, an image)
     std::string scorer_note;     // why, when --scorer auto chose, or the device could not
     MemoryFigures memory;
     RunHealth health;  // warm-up, drift and the machine while frames were timed (run.json health)

@@ -35,6 +35,9 @@ struct Prepared {
     paths::CameraPath path;
     std::vector<double> times;
     std::vector<paths::CameraPose> poses;
+    // The frame rate the scored frames stand for, ColorVideoVDP's: the frames' spacing along the
+    // path, (frames - 1) / the time they span; 0 for a single frame (scored as an image).
+    double cvvdp_fps = 0;
     PathPlacement placement;  // how a built-in path was placed (run.json path.placement)
     std::vector<const variants::Variant*> order;
     // What runs, in order within each repetition: a variant with its settings (a plain

@@ -21,6 +21,7 @@ RunResults startResults(const Prepared& p) {
     RunResults results;
     results.frames = int(p.poses.size());
     results.repeats = p.options.repeat;
+    results.cvvdp_fps = p.cvvdp_fps;
     for (const auto& c : p.configs) {
         results.order.push_back(c.sweep.label);
         VariantRun vr;
@@ -48,7 +49,7 @@ RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene
       results(startResults(prepared)),
       spill(out_dir / kFramesSpill, prepared.settings.width, prepared.settings.height),
       workers(scoringThreads(prepared.options.control.scoring_threads, w, h)),
-      scorer(w, h, prepared.options.tune.flip_ppd, workers, &account, out_dir / kWorstSpill),
+      scorer(w, h, settings::flipPpd(prepared.options.tune), workers, &account, out_dir / kWorstSpill),
       mid(prepared.poses.size() / 2),
       mid_images(prepared.configs.size()),
       reference_frames(prepared.poses.size()),
@@ -59,7 +60,9 @@ RunState::RunState(const Prepared& prepared, vk::Context& context, gpu::GpuScene
                !prepared.options.control.silent),
       renderers(prepared.configs.size()),
       sampler(context.description.is_lavapipe ? std::string() : nvmlUuid(context.description.uuid),
-              context.description.is_lavapipe ? 0.1 : 0.05) {}
+              context.description.is_lavapipe ? 0.1 : 0.05) {
+    scorer.enableCvvdp(prepared.options.tune.display, prepared.cvvdp_fps);
+}
 
 namespace {
 
@@ -481,7 +484,7 @@ void chooseScorer(RunState& s) {
         scoring::DeviceMetricsSettings settings;
         settings.width = uint32_t(s.w);
         settings.height = uint32_t(s.h);
-        settings.flip_ppd = s.options.tune.flip_ppd;
+        settings.flip_ppd = settings::flipPpd(s.options.tune);
         s.device_scoring = std::make_unique<scoring::DeviceScoring>(s.ctx, settings, in_flight);
     } catch (const vk::Unsupported& e) {
         if (want == Scorer::Device) throw std::invalid_argument(std::string("--scorer device: ") + e.what() + "; expected --scorer cpu or auto on this device");

@@ -95,6 +95,8 @@ void loadSceneAndPath(const RunOptions& o, Prepared& p) {
     const int frames = gltf_path && !o.frames_set ? 0 : o.frames;
     p.times = paths::frameTimes(p.path, frames);
     p.poses = paths::sampleFrames(p.path, frames);
+    const double span = p.times.size() > 1 ? p.times.back() - p.times.front() : 0.0;
+    p.cvvdp_fps = span > 0 ? double(p.times.size() - 1) / span : 0.0;
 }
 
 // --out, or a new name under out/; never an existing directory.

@@ -13,7 +13,7 @@ const char* wallPartKey(WallPart part) {
 }
 
 const char* workerTaskKey(WorkerTask task) {
-    static const char* const kKeys[kWorkerTasks] = {"psnr", "ssim", "flip", "eci", "image_encode"};
+    static const char* const kKeys[kWorkerTasks] = {"psnr", "ssim", "flip", "eci", "cvvdp", "image_encode"};
     return kKeys[size_t(task)];
 }
 

@@ -34,7 +34,7 @@ inline constexpr size_t kWallParts = size_t(WallPart::Other) + 1;
 const char* wallPartKey(WallPart part);  // run.json key, e.g. "quality_render"
 
 // CPU time the worker threads spent, per task.
-enum class WorkerTask { Psnr, Ssim, Flip, Eci, ImageEncode };
+enum class WorkerTask { Psnr, Ssim, Flip, Eci, Cvvdp, ImageEncode };
 inline constexpr size_t kWorkerTasks = size_t(WorkerTask::ImageEncode) + 1;
 const char* workerTaskKey(WorkerTask task);
 

@@ -25,11 +25,12 @@ using cbr::test::runBench;
 // An accepted value other than the default, as typed.
 std::string otherValue(const Row& row) {
     const Tunables defaults;
+    if (row.type == Type::Text) return "standard_fhd";
     if (row.type == Type::Word) {
         for (const char* w : row.words)
             if (w != cbr::settings::text(row, defaults)) return w;
     }
-    const double d = row.field.get(defaults);
+    const double d = row.field.get(defaults);  // Int, Real and Word rows
     std::vector<double> candidates = row.only;
     for (double v : {row.max, row.min, d * 2, d / 2, d + 1, d - 1, 0.5}) candidates.push_back(v);
     for (double v : candidates) {
