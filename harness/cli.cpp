@@ -43,6 +43,7 @@ std::string variantNames() {
 
 // --flip-ppd of score and metric-cost: the table's row, as run's.
 const std::string kFlipPpdHelp = settings::optionHelp(*settings::find("flip-ppd"));
+const std::string kDisplayHelp = settings::optionHelp(*settings::find("display"));
 
 int listDevices() {
     auto devices = cbr::vk::listDevices();
@@ -254,30 +255,30 @@ Command metricCostCommand(CLI::App& app) {
 }
 
 Command scoreCommand(CLI::App& app) {
-    auto* cli = app.add_subcommand("score", "PSNR, SSIM and FLIP of an image against a reference (any format "
+    auto* cli = app.add_subcommand("score", "PSNR, SSIM, ColorVideoVDP (JOD) and FLIP of an image against a reference (any format "
                                              "OpenImageIO reads; linear EXR/HDR tone-mapped as the renderer does)");
     struct Args {
-        std::string ref, img, crop;
-        double flip_ppd = metrics::kFlipDefaultPpd;
+        std::string ref, img, crop, display = "standard_4k";
+        double flip_ppd = 0;
         float exposure = 1.0f;
     };
     auto a = std::make_shared<Args>();
     cli->add_option("REFERENCE", a->ref, "reference image")->required();
     cli->add_option("IMAGE", a->img, "image to score (the same size)")->required();
     cli->add_option("--crop", a->crop, "score only X,Y,W,H (e.g. to leave out a border column)");
+    cli->add_option("--display", a->display, kDisplayHelp)->capture_default_str();
     cli->add_option("--flip-ppd", a->flip_ppd, kFlipPpdHelp);
     cli->add_option("--exposure", a->exposure, "exposure of the display transform for linear (float) inputs")
         ->capture_default_str();
-    return {cli, [a] { return scoreImages(a->ref, a->img, a->crop, a->flip_ppd, a->exposure); }};
+    return {cli, [a] { return scoreImages(a->ref, a->img, a->crop, a->flip_ppd, a->exposure, a->display); }};
 }
 
 Command scoreSeqCommand(CLI::App& app, const std::vector<std::string>& argv) {
     auto* cli = app.add_subcommand(
-        "score-seq", "PSNR, SSIM, FLIP, edge crawl and flicker of an image sequence against a reference sequence, "
+        "score-seq", "PSNR, SSIM, ColorVideoVDP (JOD), FLIP, edge crawl and flicker of an image sequence against a reference sequence, "
                      "per frame, with a report; exit 0 pass, 1 --warn crossed, 2 --fail crossed, 3 sizes differ, "
                      "4 a file missing or unreadable, 5 a bad option (idiff's convention)");
     auto seq = std::make_shared<ScoreSeqOptions>();
-    seq->flip_ppd = metrics::kFlipDefaultPpd;
     cli->add_option("REFERENCE", seq->reference, "reference frames: a folder (natural name order) or a pattern "
                                                  "such as ref/frame_%04d.png")->required();
     cli->add_option("TEST", seq->test, "frames to score, the same way (two patterns: matched by frame number, "
@@ -291,6 +292,9 @@ Command scoreSeqCommand(CLI::App& app, const std::vector<std::string>& argv) {
         ->delimiter(',');
     cli->add_option("--name", seq->name, "label of the test sequence (default: its folder's name)");
     cli->add_option("--out", seq->out, "output folder, must not exist (default out/score-seq-<date-time>)");
+    cli->add_option("--display", seq->display, kDisplayHelp)->capture_default_str();
+    cli->add_option("--fps", seq->fps, "frames per second the sequence stands for (ColorVideoVDP's temporal channels)")
+        ->capture_default_str();
     cli->add_option("--flip-ppd", seq->flip_ppd, kFlipPpdHelp)->capture_default_str();
     cli->add_option("--exposure", seq->exposure, "exposure of the display transform for linear (float) inputs")
         ->capture_default_str();

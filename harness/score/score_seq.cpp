@@ -19,9 +19,11 @@
 #include "harness/core/progress.h"
 #include "harness/core/quality.h"
 #include "harness/score/sequence_files.h"
+#include "metrics/cvvdp.h"
 #include "metrics/image_io.h"
 #include "metrics/temporal.h"
 #include "renderer/variants/variants.h"
+#include "settings/table.h"
 #include "reports/csv.h"
 #include "reports/output_dir.h"
 #include "reports/report.h"
@@ -176,7 +178,8 @@ Scored scoreFrames(const ScoreSeqOptions& o, const SeqInputs& in, SeqRows& rows,
         if (i == 0) {
             s.width = ref.image.width;
             s.height = ref.image.height;
-            scorer = std::make_unique<QualityScorer>(s.width, s.height, o.flip_ppd, workers);
+            scorer = std::make_unique<QualityScorer>(s.width, s.height, settings::flipPpd(o.tune), workers);
+            scorer->enableCvvdp(o.tune.display, n > 1 ? o.fps : 0.0);
         }
         checkSize(ref.image, s.width, s.height, rf.file, "REFERENCE");
         checkSize(img.image, s.width, s.height, in.test_files[i], "TEST");
@@ -233,7 +236,8 @@ SeqThreshold parseSeqThreshold(const std::string& spec, const std::string& optio
         const char* column;
         bool higher_is_worse;
     };
-    static const Known kKnown[] = {{"psnr", "psnr_db", false}, {"ssim", "ssim", false}, {"flip", "flip_mean", true},
+    static const Known kKnown[] = {{"psnr", "psnr_db", false}, {"ssim", "ssim", false}, {"jod", "cvvdp_jod", false},
+                                   {"flip", "flip_mean", true},
                                    {"eci", "eci", true},       {"flicker", "flicker_ratio", true}};
     const auto eq = spec.find('=');
     SeqThreshold t;
@@ -251,7 +255,8 @@ SeqThreshold parseSeqThreshold(const std::string& spec, const std::string& optio
     if (!k || !std::isfinite(v))
         throw SequenceError(kSeqBadOption, option + " " + spec +
                                                ": accepted: METRIC=VALUE with METRIC psnr (dB; crossed below), ssim "
-                                               "(below), flip, eci or flicker (above), e.g. " + option + " psnr=30");
+                                               "or jod (below), flip, eci or flicker (above), e.g. " + option +
+                                               " psnr=30");
     t.column = k->column;
     t.value = v;
     t.higher_is_worse = k->higher_is_worse;
@@ -264,7 +269,7 @@ namespace {
 void writeSeqFramesCsv(const fs::path& file, const SeqRows& rows, const std::vector<SeqFrameInfo>& infos,
                        bool motion_files) {
     reports::CsvTable t({"variant", "repeat", "frame", "frame_number", "reference_file", "test_file", "psnr_db", "mse",
-                         "ssim", "ssim_luma", "flip_mean", "flip_q1", "flip_median", "flip_q3", "eci",
+                         "ssim", "ssim_luma", "flip_mean", "flip_q1", "flip_median", "flip_q3", "cvvdp_jod", "eci",
                          "flicker_ratio", "crawl_valid_fraction", "motion", "shift_dx", "shift_dy",
                          "shift_response", "global_shift_rejected", "cut", "note"});
     for (size_t i = 0; i < rows.size(); ++i) {
@@ -286,6 +291,7 @@ void writeSeqFramesCsv(const fs::path& file, const SeqRows& rows, const std::vec
         m["flip_q1"] = optional(q.flip_q1);
         m["flip_median"] = optional(q.flip_median);
         m["flip_q3"] = optional(q.flip_q3);
+        if (q.cvvdp_q) m["cvvdp_jod"] = metrics::cvvdpJod(*q.cvvdp_q);
         m["eci"] = optional(q.eci);
         m["flicker_ratio"] = optional(q.flicker_ratio);
         m["crawl_valid_fraction"] = optional(q.crawl_valid_fraction);
@@ -340,6 +346,7 @@ std::vector<Crossing> judge(const std::vector<SeqThreshold>& warn, const std::ve
         if (column == "psnr_db") return q.psnr_db;
         if (column == "ssim") return q.ssim;
         if (column == "flip_mean") return q.flip_mean;
+        if (column == "cvvdp_jod") return q.cvvdp_q ? std::optional<double>(metrics::cvvdpJod(*q.cvvdp_q)) : std::nullopt;
         if (column == "eci") return q.eci;
         return q.flicker_ratio;
     };
@@ -368,7 +375,12 @@ json runJson(const ScoreSeqOptions& o, const SeqInputs& in, const Scored& s, con
     j["command_line"] = o.argv;
     j["host"] = hostJson();
     j["wall_seconds"] = seconds;
-    j["settings"] = {{"width", s.width}, {"height", s.height}, {"flip_ppd", o.flip_ppd}, {"exposure", o.exposure}};
+    j["settings"] = {{"width", s.width},
+                     {"height", s.height},
+                     {"flip_ppd", settings::flipPpd(o.tune)},
+                     {"display", settings::toJson(*settings::find("display"), o.tune)},
+                     {"cvvdp_fps", in.reference.frames.size() > 1 ? o.fps : 0.0},
+                     {"exposure", o.exposure}};
     j["scene"] = {{"name", "captured sequence"}};
     j["path"] = {{"name", in.name}};
     json motion = {{"source", in.motion_files.empty() ? "global shift" : "files"}};
@@ -404,6 +416,7 @@ json runJson(const ScoreSeqOptions& o, const SeqInputs& in, const Scored& s, con
                     {"psnr_db_is_inf", sum.psnr_db && std::isinf(*sum.psnr_db)},
                     {"ssim_mean", finiteOrNull(sum.ssim_mean)},
                     {"flip_mean", finiteOrNull(sum.flip_mean)},
+                    {"cvvdp_jod", finiteOrNull(sum.cvvdp_jod)},
                     {"eci", finiteOrNull(sum.eci)},
                     {"flicker_ratio_mean", finiteOrNull(sum.flicker_ratio_mean)}};
     j["variants"] = json::array({{{"name", in.name}, {"status", "ok"}}});
@@ -421,9 +434,18 @@ std::string fmtValue(const std::optional<double>& v, int digits) {
 
 }  // namespace
 
-int runScoreSeq(const ScoreSeqOptions& o) {
+int runScoreSeq(const ScoreSeqOptions& given) {
+    ScoreSeqOptions o = given;
     const auto start = std::chrono::steady_clock::now();
     checkFlipPpd(o.flip_ppd);
+    if (!(o.fps > 0 && std::isfinite(o.fps)))
+        throw SequenceError(kSeqBadOption, "--fps " + std::to_string(o.fps) + ": accepted: a number > 0 (frames per second)");
+    try {
+        settings::setText(*settings::find("display"), o.tune, o.display);
+    } catch (const std::invalid_argument& e) {
+        throw SequenceError(kSeqBadOption, e.what());
+    }
+    o.tune.flip_ppd = o.flip_ppd;
     std::vector<SeqThreshold> warn, fail;
     for (const auto& w : o.warn) warn.push_back(parseSeqThreshold(w, "--warn"));
     for (const auto& f : o.fail) fail.push_back(parseSeqThreshold(f, "--fail"));
@@ -459,9 +481,10 @@ int runScoreSeq(const ScoreSeqOptions& o) {
 
     std::printf("score-seq: %zu frames of %dx%d, %s against %s\n", rows.size(), s.width, s.height,
                 in.name.c_str(), o.reference.c_str());
-    std::printf("psnr_db %s (min %s)\nssim %s (min %s)\nflip_mean %s\neci %s (p95 %s, max %s)\nflicker_ratio %s\n",
+    std::printf("psnr_db %s (min %s)\nssim %s (min %s)\ncvvdp_jod %s\nflip_mean %s\neci %s (p95 %s, max %s)\n"
+                "flicker_ratio %s\n",
                 fmtValue(sum.psnr_db, 3).c_str(), fmtValue(sum.psnr_db_min, 3).c_str(),
-                fmtValue(sum.ssim_mean, 5).c_str(), fmtValue(sum.ssim_min, 5).c_str(),
+                fmtValue(sum.ssim_mean, 5).c_str(), fmtValue(sum.ssim_min, 5).c_str(), fmtValue(sum.cvvdp_jod, 4).c_str(),
                 fmtValue(sum.flip_mean, 5).c_str(), fmtValue(sum.eci, 5).c_str(), fmtValue(sum.eci_p95, 5).c_str(),
                 fmtValue(sum.eci_max, 5).c_str(), fmtValue(sum.flicker_ratio_mean, 4).c_str());
     bool any_fail = false, any_warn = false;

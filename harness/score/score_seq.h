@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "settings/settings.h"
+
 namespace cbr::harness {
 
 struct ScoreSeqOptions {
@@ -14,10 +16,13 @@ struct ScoreSeqOptions {
     std::string name;             // the test sequence's label (default: TEST's folder name)
     std::string out;              // "" -> out/score-seq-<date-time>
     std::vector<long> cuts;       // frame numbers that start a new shot: no edge-crawl pair across them
-    double flip_ppd = 67.0;  // set from metrics::kFlipDefaultPpd by the command line
+    double flip_ppd = 0;          // FLIP's pixels per degree; 0: the display model's
+    std::string display = "standard_4k";  // ColorVideoVDP's display model (settings table's --display)
+    double fps = 30;              // the frame rate the sequence stands for (ColorVideoVDP's temporal channels)
     float exposure = 1.0f;        // display transform of linear (float) inputs
     std::vector<std::string> warn, fail;  // METRIC=VALUE thresholds on the worst frame
     std::vector<std::string> argv;
+    settings::Tunables tune;      // display and flip_ppd as the run's settings hold them (set by runScoreSeq)
 };
 
 // Scores every frame pair, writes frames.csv, summary.csv, run.json, worst/ and report.html
@@ -26,8 +31,8 @@ struct ScoreSeqOptions {
 // throws SequenceError carrying its code.
 int runScoreSeq(const ScoreSeqOptions& options);
 
-// A threshold of --warn / --fail: METRIC=VALUE with METRIC psnr (dB), ssim, flip, eci or
-// flicker; psnr and ssim are crossed below VALUE, the others above.
+// A threshold of --warn / --fail: METRIC=VALUE with METRIC psnr (dB), ssim, jod, flip, eci or
+// flicker; psnr, ssim and jod are crossed below VALUE, the others above.
 struct SeqThreshold {
     std::string metric;  // as given
     std::string column;  // frames.csv column judged
