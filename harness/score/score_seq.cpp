@@ -312,7 +312,7 @@ void writeSeqFramesCsv(const fs::path& file, const SeqRows& rows, const std::vec
 
 void writeSeqSummaryCsv(const fs::path& file, const VariantSummary& s, int width, int height) {
     reports::CsvTable t({"variant", "status", "frames", "repeats", "width", "height", "psnr_db_mean", "psnr_db_min",
-                         "psnr_db_p5", "ssim_mean", "ssim_min", "ssim_luma_mean", "flip_mean", "eci", "eci_p95",
+                         "psnr_db_p5", "ssim_mean", "ssim_min", "ssim_luma_mean", "flip_mean", "cvvdp_jod", "eci", "eci_p95",
                          "eci_max", "flicker_ratio_mean", "note"});
     std::map<std::string, reports::Cell> m;
     m["variant"] = s.variant;
