@@ -198,7 +198,8 @@ TEST(Quality, StaticPathGivesFiniteCrawlAndReferenceIsExact) {
             << name;
     }
     auto run = readJson(out / "run.json");
-    EXPECT_NEAR(run["metrics"]["flip_ppd"].get<double>(), 67.0206, 1e-4);
+    // FLIP sees what ColorVideoVDP sees: the default display model, standard_4k (75.40 pixels per degree).
+    EXPECT_NEAR(run["metrics"]["flip_ppd"].get<double>(), 75.4024, 1e-4);
     EXPECT_TRUE(std::filesystem::exists(out / worstFile(run, "cbr-cso", "ssim", "flip_map")));
     EXPECT_NE(slurp(out / "report.html").find("FLIP error map"), std::string::npos);
 }
