@@ -23,6 +23,7 @@
 #include "harness/score/sequence_files.h"
 #include "harness/stress/stress.h"
 #include "harness/sweep/sweep.h"
+#include "metrics/cvvdp.h"
 #include "metrics/flip.h"
 #include "renderer/scene/scene.h"
 #include "renderer/variants/variants.h"
@@ -431,6 +432,12 @@ std::vector<Command> addCommands(CLI::App& app, const std::vector<std::string>& 
     }));
     c.push_back(listing(app, "paths", "list the built-in camera paths", [] {
         for (const auto& p : paths::builtinPaths()) std::printf("%-16s %s\n", p.name.c_str(), p.description.c_str());
+    }));
+    c.push_back(listing(app, "displays", "list the display models of --display (ColorVideoVDP's viewing conditions)", [] {
+        for (const auto& name : metrics::displayNames()) {
+            const auto d = metrics::parseDisplay(name);
+            std::printf("%-22s %5.1f ppd  %s\n", name.c_str(), d.ppd(), metrics::displayDescription(name).c_str());
+        }
     }));
     c.push_back(listing(app, "variants", "list the rendering variants", [] {
         for (const auto& v : variants::allVariants())
