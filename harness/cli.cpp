@@ -242,12 +242,14 @@ Command calibrateCommand(CLI::App& app, const std::vector<std::string>& argv) {
 }
 
 Command metricCostCommand(CLI::App& app) {
-    auto* cli = app.add_subcommand("metric-cost", "benchmark: PSNR, SSIM, ECI and FLIP milliseconds per frame, on the "
+    auto* cli = app.add_subcommand("metric-cost", "benchmark: PSNR, SSIM, ECI, FLIP and ColorVideoVDP milliseconds per frame, on the "
                                                    "CPU and on the device");
     auto a = std::make_shared<MetricCostOptions>();
     cli->add_option("--res", a->res, "frame size WIDTHxHEIGHT")->capture_default_str();
     cli->add_option("--frames", a->frames, "timed frames (median reported)")->capture_default_str();
     cli->add_option("--flip-ppd", a->flip_ppd, kFlipPpdHelp);
+    cli->add_option("--display", a->display, kDisplayHelp)->capture_default_str();
+    cli->add_option("--fps", a->fps, "ColorVideoVDP's frame rate (its temporal window)")->capture_default_str();
     cli->add_option("--scorer", a->scorer, "which scorers: cpu, device, or all")
         ->capture_default_str()
         ->check(CLI::IsMember({"all", "cpu", "device"}));

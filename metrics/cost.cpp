@@ -94,7 +94,8 @@ struct Stopwatch {
 
 }  // namespace
 
-MetricCost measureMetricCost(int width, int height, int frames, double flip_ppd) {
+MetricCost measureMetricCost(int width, int height, int frames, double flip_ppd, const DisplayModel& display,
+                             double fps) {
     if (width < 11 || height < 11)
         throw std::invalid_argument("measureMetricCost: size " + std::to_string(width) + "x" +
                                     std::to_string(height) + " is below SSIM's 11x11 window");
@@ -107,7 +108,8 @@ MetricCost measureMetricCost(int width, int height, int frames, double flip_ppd)
     const MotionField motion = uniformMotion(width, height, kPanX, kPanY);
 
     CrawlTracker tracker;
-    enum { kPsnr, kSsim, kEci, kFlip, kMetrics };
+    CvvdpTracker cvvdp(width, height, display, fps);
+    enum { kPsnr, kSsim, kEci, kFlip, kCvvdp, kMetrics };
     std::vector<double> wall_ms[kMetrics], cpu_ms[kMetrics];
     // Frame 0 is untimed: first touch of the allocations, and the tracker's first frame.
     for (int t = 0; t <= frames; ++t) {
@@ -125,6 +127,8 @@ MetricCost measureMetricCost(int width, int height, int frames, double flip_ppd)
         watch.lap(wall[kEci], cpu[kEci]);
         sink = flipRgba8(r, v, width, height, flip_ppd).mean;
         watch.lap(wall[kFlip], cpu[kFlip]);
+        sink = cvvdp.addRgba8(r, v).q;
+        watch.lap(wall[kCvvdp], cpu[kCvvdp]);
         (void)sink;
         if (t == 0) continue;
         for (int m = 0; m < kMetrics; ++m) {
@@ -137,6 +141,8 @@ MetricCost measureMetricCost(int width, int height, int frames, double flip_ppd)
     cost.ssim_ms = median(wall_ms[kSsim]);
     cost.eci_ms = median(wall_ms[kEci]);
     cost.flip_ms = median(wall_ms[kFlip]);
+    cost.cvvdp_ms = median(wall_ms[kCvvdp]);
+    cost.cvvdp_cpu_ms = median(cpu_ms[kCvvdp]);
     cost.psnr_cpu_ms = median(cpu_ms[kPsnr]);
     cost.ssim_cpu_ms = median(cpu_ms[kSsim]);
     cost.eci_cpu_ms = median(cpu_ms[kEci]);

@@ -10,7 +10,9 @@ namespace cbr::harness {
 struct MetricCostOptions {
     std::string res = "1920x1080";
     int frames = 10;
-    double flip_ppd = metrics::kFlipDefaultPpd;
+    double flip_ppd = 0;  // 0: the display's
+    std::string display = "standard_4k";
+    double fps = 30;      // ColorVideoVDP's frame rate (its window: 9 frames at 30)
     std::string scorer = "all";  // cpu, device or all
     std::string device;          // the device scorer's device ("": lavapipe, else the first)
 };
