@@ -70,8 +70,12 @@ Growth growth(const MemoryPlan& plan) {
         // The CPU scorer (quality.h): the frames it holds, with what scoring them takes; each
         // scored configuration's edge-crawl state; the frame being handed in (its heap copy);
         // the metrics' tiles on every thread (under 1 MB each). Its worst frames wait on disk.
+        // ColorVideoVDP: each configuration's window (kCvvdpWindowBytesPerPixel a frame of it), and
+        // on each thread scoring a frame its pyramids and masks (kCvvdpWorkBytesPerPixel).
         scoring = double(scorerFrames(plan.width, plan.height)) * kScoredFrameBytesPerPixel * px +
                   scored * kCrawlStateBytesPerPixel * px + readback +
+                  scored * double(plan.cvvdp_window) * kCvvdpWindowBytesPerPixel * px +
+                  double(scorerFrames(plan.width, plan.height)) * kCvvdpWorkBytesPerPixel * px +
                   double(std::thread::hardware_concurrency()) * 1024 * 1024;
         // The worst frames' SSIM and FLIP maps, computed from the images one frame at a time:
         // two RGB images of doubles (48 bytes a pixel), the maps and their colours (12); FLIP's

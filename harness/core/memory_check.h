@@ -21,6 +21,7 @@ struct MemoryPlan {
     int repeat = 1;
     bool device_scorer = false;
     bool analysis = false;   // quality frames also read back motion and depths
+    int cvvdp_window = 0;    // ColorVideoVDP's temporal window, frames (the CPU scorer keeps it per configuration)
     double host_limit_mib = 0, device_limit_mib = 0;  // the options; 0: what the machine has
 };
 

@@ -43,6 +43,11 @@ struct QualityFrame {
 // variant's edge-crawl state between frames (blurred lumas and depth: 12 bytes a pixel).
 inline constexpr double kScoredFrameBytesPerPixel = 45;
 inline constexpr double kCrawlStateBytesPerPixel = 12;
+// ColorVideoVDP (metrics/cvvdp.h): its window keeps RGB of the reference and the variant (6 bytes a
+// pixel a frame); scoring a frame holds eight float channel images with their pyramids (43 bytes a
+// pixel), then per band the expanded levels, masks and differences of the band (about 64).
+inline constexpr double kCvvdpWindowBytesPerPixel = 6;
+inline constexpr double kCvvdpWorkBytesPerPixel = 110;
 inline constexpr double kScorerBudgetBytes = 768e6;
 // How many frames the CPU scorer holds at once for w x h frames: as many as kScorerBudgetBytes
 // holds (2 at 4K, 8 at 1080p), at least 1, at most 16.

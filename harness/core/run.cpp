@@ -10,6 +10,7 @@
 #include "harness/core/run_internal.h"
 #include "harness/core/memory_check.h"
 #include "harness/core/table_roles.h"
+#include "metrics/cvvdp.h"
 #include "renderer/vk/bandwidth.h"
 #include "reports/output_dir.h"
 #include "reports/report.h"
@@ -53,6 +54,8 @@ MemoryPlan memoryPlan(const RunState& s) {
     plan.repeat = s.options.repeat;
     plan.device_scorer = s.results.scorer == "device";
     for (const auto& c : s.p.configs) plan.analysis |= c.settings.analysis;
+    const auto cvvdp = metrics::makeCvvdpModel(s.w, s.h, s.options.tune.display, s.p.cvvdp_fps);
+    plan.cvvdp_window = cvvdp.image ? 1 : cvvdp.filterFrames();
     plan.host_limit_mib = s.options.control.host_memory_limit_mib;
     plan.device_limit_mib = s.options.control.device_memory_limit_mib;
     return plan;
