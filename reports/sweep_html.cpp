@@ -52,7 +52,7 @@ const std::vector<Metric>& metrics() {
     static const std::vector<Metric> m = {
         {"GPU frame time, median (ms)", [](const SweepPoint& p) { return p.gpu_ms; }},
         {"sequence PSNR (dB)", [](const SweepPoint& p) { return p.psnr_db; }},
-        {"ColorVideoVDP (JOD, higher is better)", [](const SweepPoint& p) { return p.jod; }, true},
+        {"ColorVideoVDP (JOD)", [](const SweepPoint& p) { return p.jod; }, true},
         {"SSIM", [](const SweepPoint& p) { return p.ssim; }},
         {"edge crawl index ECI", [](const SweepPoint& p) { return p.eci; }}};
     return m;
@@ -290,7 +290,7 @@ std::string planeSection(const std::vector<SweepPoint>& points, const VariantRol
         html += "<p class=\"note\">Pareto front (no other configuration has both a lower median GPU time and a higher " +
                 q.brief() + "): " + esc(list) + ". Only the front is labelled (every point has a tooltip). " +
                 esc(roles.reference) +
-                (q.jod ? "'s JOD is 10 (it is the reference). " + esc(kJodMeaning) + "</p>"
+                (q.jod ? "'s JOD is 10 (it is the reference): higher is better, up to no visible difference.</p>"
                        : "'s PSNR is infinite (it is the reference); it and anything above 50 dB sit on the lane above "
                          "the plot.</p>");
     }
