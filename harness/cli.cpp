@@ -156,6 +156,8 @@ Command compareCommand(CLI::App& app) {
     cli->add_option("--psnr-threshold", cmp->psnr_db, "PSNR change that counts, dB")->capture_default_str();
     cli->add_option("--ssim-threshold", cmp->ssim, "SSIM change that counts")->capture_default_str();
     cli->add_option("--eci-threshold", cmp->eci, "relative ECI change that counts")->capture_default_str();
+    cli->add_option("--jod-threshold", cmp->jod, "ColorVideoVDP JOD change that counts (a larger drop is WORSE), JOD")
+        ->capture_default_str();
     cli->add_option("--junit", cmp->junit,
                     "also write the verdicts as JUnit XML to FILE (SLOWER/WORSE: failures, UNKNOWN: skipped)");
     cli->add_flag("--strict", cmp->strict, "UNKNOWN cells give exit code 2");

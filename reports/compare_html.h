@@ -21,6 +21,8 @@ struct CompareRow {
     std::string time_verdict;
     std::optional<double> psnr_delta, ssim_delta, eci_change;  // dB, absolute, fraction
     std::string psnr_verdict, ssim_verdict, eci_verdict;
+    std::optional<double> jod_delta;  // ColorVideoVDP, JOD (reports/jod.h)
+    std::string jod_verdict;          // empty or n/a in every row: no JOD columns (ab; runs before it)
     std::string note;
 };
 
@@ -29,6 +31,7 @@ struct ComparePage {
     std::string outcome;  // "regression", "no regression", ...
     std::string baseline_dir, current_dir, device;
     double threshold = 0, alpha = 0, psnr_db = 0, ssim = 0, eci_threshold = 0;  // as judged
+    double jod = 0;  // --jod-threshold, JOD (shown only beside rows with a JOD verdict)
     std::string time_rule;  // the time verdicts' rule in words
     std::string settle_rule;  // ab: the looks and the budget in words (empty for compare)
     std::string exit_rule = "Exit code 1 for any SLOWER or WORSE cell.";

@@ -88,7 +88,7 @@ std::optional<double> parseNumberCell(std::string_view cell, bool& ok) {
 
 bool isReportNumericColumn(const std::string& name) {
     static const char* kPrefixes[] = {"gpu_ms", "psnr", "ssim", "flip", "eci", "flicker", "crawl", "px_", "speedup",
-                                      "mse", "fs_invocations", "render_", "time_s", "width", "height", "shift_"};
+                                      "mse", "fs_invocations", "render_", "time_s", "width", "height", "shift_", "cvvdp"};
     for (const char* p : kPrefixes)
         if (name.rfind(p, 0) == 0) return true;
     return name == "frames" || name == "repeats" || name == "repeat" || name == "frame" || name == "frame_number";

@@ -45,7 +45,7 @@ private:
     size_t pending_ = 0;          // cells of the row being added
 };
 
-// The columns the report reads as numbers: gpu_ms*, psnr*, ssim*, eci*, px_*, ...
+// The columns the report reads as numbers: gpu_ms*, psnr*, ssim*, eci*, cvvdp*, px_*, ...
 bool isReportNumericColumn(const std::string& name);
 
 // Parses RFC 4180 CSV (quoted cells may hold commas, quotes and newlines). Throws

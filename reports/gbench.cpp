@@ -73,10 +73,11 @@ nlohmann::json gbenchJson(const RunData& d) {
         const std::string name = prefix + v;
         nlohmann::json counters = nlohmann::json::object();
         for (auto [counter, column] : {std::pair{"psnr_db", "psnr_db_mean"}, {"ssim", "ssim_mean"}, {"flip", "flip_mean"},
-                                       {"eci", "eci"}, {"speedup_vs_full", "speedup_vs_full"},
+                                       {"cvvdp_jod", kJodColumn}, {"eci", "eci"}, {"speedup_vs_full", "speedup_vs_full"},
                                        {"speedup_ci_low", "speedup_ci_low"}, {"speedup_ci_high", "speedup_ci_high"}}) {
             auto x = summaryNum(d, v, column);
-            if (x && std::isfinite(*x)) counters[counter] = *x;  // PSNR inf (full) has no JSON number
+            // PSNR inf (full) has no JSON number; runs without ColorVideoVDP have no cvvdp_jod.
+            if (x && std::isfinite(*x)) counters[counter] = *x;
         }
         auto entry = [&](double ms) {
             nlohmann::json b = {{"name", name},           {"family_index", family}, {"per_family_instance_index", 0},

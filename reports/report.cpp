@@ -6,6 +6,7 @@
 
 #include "reports/csv.h"
 #include "reports/html.h"
+#include "reports/jod.h"
 #include "reports/report_sections.h"
 #include "reports/status.h"
 
@@ -120,6 +121,7 @@ std::string summarySection(const RunData& d) {
     std::string out = "<section id=\"summary\"><h2>Summary per variant</h2>";
     const bool eci = d.summary.has("eci");
     const bool flip = d.summary.has("flip_mean");  // runs before FLIP have no column
+    const bool jod = hasJod(d);                      // nor before ColorVideoVDP (reports/jod.h)
     bool any_cbr = false;
     for (const auto& v : d.variants) any_cbr |= isCheckerboard(d, v);
 
@@ -128,6 +130,7 @@ std::string summarySection(const RunData& d) {
            "<th class=\"num\">speed-up vs full [95% CI]</th><th class=\"num\">PSNR (dB)</th>"
            "<th class=\"num\">PSNR min (dB)</th><th class=\"num\">SSIM mean</th><th class=\"num\">SSIM min</th>";
     if (flip) out += "<th class=\"num\">FLIP mean</th>";
+    if (jod) out += "<th class=\"num\">ColorVideoVDP</th>";
     if (eci) out += "<th class=\"num\">ECI</th>";
     out += "</tr>";
 
@@ -146,6 +149,7 @@ std::string summarySection(const RunData& d) {
         out += td(fmt(n("psnr_db_mean"), 2)) + td(fmt(n("psnr_db_min"), 2)) + td(fmt(n("ssim_mean"), 4)) +
                td(fmt(n("ssim_min"), 4));
         if (flip) out += td(fmt(n("flip_mean"), 4));
+        if (jod) out += td(jodText(n(kJodColumn), kDash));
         if (eci) out += td(fmt(n("eci"), 4));
         out += "</tr>";
     }
@@ -165,8 +169,11 @@ std::string summarySection(const RunData& d) {
            "percentile-bootstrap interval resamples whole repetitions" +
            std::string(repeats < 2 ? " (none with one repetition)" : "") +
            ". PSNR: sequence PSNR from the mean per-frame MSE; \u221e means identical to the reference. FLIP: mean "
-           "of the per-frame LDR-FLIP means (0: no visible difference, 1: the largest). Pixel-class "
-           "shares: mean over frames, checkerboard variants only. \u2013: no value.</p>";
+           "of the per-frame LDR-FLIP means (0: no visible difference, 1: the largest). " +
+           std::string(jod ? "ColorVideoVDP: the sequence's JOD against the full-resolution reference on the display "
+                             "model of the provenance; " + std::string(kJodMeaning) + " "
+                           : "") +
+           "Pixel-class shares: mean over frames, checkerboard variants only. \u2013: no value.</p>";
     if (any_cbr) {
         out += "<h3>Checkerboard pixel classes (mean share of the frame's pixels, %)</h3><table><tr><th>variant</th>";
         for (const auto& pc : kPixelClasses) out += "<th class=\"num\">" + std::string(pc.label) + " (%)</th>";
@@ -259,7 +266,9 @@ std::string reportHtml(const std::filesystem::path& run_dir) {
     html += "<nav><a href=\"#summary\">summary</a><a href=\"#pareto\">error vs time</a><a href=\"#time\">GPU time</a>"
             "<a href=\"#quality\">quality</a><a href=\"#classes\">pixel classes</a><a href=\"#images\">worst frames</a>"
             "<a href=\"#passes\">passes</a><a href=\"#provenance\">provenance</a></nav>";
-    html += "<p class=\"answer\"><b>Answer:</b> " + esc(paretoSentence(d)) + "</p>";
+    html += "<p class=\"answer\"><b>Answer:</b> " + esc(paretoSentence(d));
+    if (answersInJod(d)) html += "<br><span class=\"muted\">" + esc(kJodMeaning) + "</span>";
+    html += "</p>";
     html += summarySection(d);
     html += paretoSection(d);
     html += timeSection(d);

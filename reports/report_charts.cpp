@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "reports/html.h"
+#include "reports/jod.h"
 #include "reports/report_sections.h"
 
 namespace cbr::reports {
@@ -120,11 +121,13 @@ std::string qualitySection(const RunData& d) {
         const char* column;
         const char* title;
         const char* y_label;
+        bool only_where_scored = false;  // no chart nor mention without values (ColorVideoVDP)
     };
     const Metric metrics[] = {
         {"psnr_db", "PSNR", "PSNR (dB)"},
         {"ssim", "SSIM", "SSIM (unitless)"},
         {"flip_mean", "FLIP, mean of the error map (lower is better)", "FLIP (unitless, [0,1])"},
+        {kJodColumn, "ColorVideoVDP, the frame's JOD (higher is better)", "JOD (10: no visible difference)", true},
         {"eci", "Edge crawl index (ECI), lower is better", "ECI (luma, [0,1] units)"},
         {"flicker_ratio", "Flicker ratio (1: changes like the reference)", "flicker ratio (x)"},
         {"crawl_valid_fraction", "Share of pixels scored by ECI", "valid fraction (unitless)"},
@@ -132,6 +135,7 @@ std::string qualitySection(const RunData& d) {
     out += "<div class=\"grid2\">";
     std::vector<std::string> absent;
     for (const auto& m : metrics) {
+        if (m.only_where_scored && !hasJod(d)) continue;
         if (!d.frames.has(m.column)) {
             absent.push_back(m.column);
             continue;
@@ -196,114 +200,35 @@ std::string pixelClassSection(const RunData& d) {
     return out + "</div></section>";
 }
 
-namespace {
-
-// The Pareto front of speed-up (higher better) against PSNR (higher better), as indices into
-// `pts`; paretoFront minimises x, so x is the speed-up negated.
-std::vector<size_t> speedFront(const std::vector<const CostQuality*>& who, const std::vector<double>& psnr) {
-    std::vector<ScatterPoint> pts;
-    for (size_t i = 0; i < who.size(); ++i) pts.push_back({who[i]->name, "", -*who[i]->speedup.value, psnr[i]});
-    return paretoFront(pts, /*y_higher_is_better=*/true);
-}
-
-}  // namespace
-
-std::string paretoSentence(const std::vector<CostQuality>& all, const std::string& reference) {
-    const CostQuality* ref = nullptr;
-    for (const auto& v : all)
-        if (v.name == reference) ref = &v;
-    const std::string& full = reference;
-    if (!ref || !ref->gpu_ms || !std::isfinite(*ref->gpu_ms) || *ref->gpu_ms <= 0)
-        return "No timed reference (" + full + ") in this run, so no variant's cost can be compared with " + full + "'s.";
-
-    // The variants with a paired speed-up and a PSNR (the reference's PSNR is infinite).
-    std::vector<const CostQuality*> who;
-    std::vector<double> psnr;
-    for (const auto& v : all) {
-        std::optional<double> y = v.name == reference ? std::optional<double>(INFINITY) : v.psnr_db;
-        if (!v.speedup.value || !std::isfinite(*v.speedup.value) || !y || std::isnan(*y)) continue;
-        who.push_back(&v);
-        psnr.push_back(*y);
-    }
-    if (who.size() <= 1)
-        return "Only the reference (" + full + ") has a speed-up and quality here, so there is nothing to compare.";
-    const auto front = speedFront(who, psnr);
-    auto onFront = [&](size_t i) { return std::find(front.begin(), front.end(), i) != front.end(); };
-    auto speed = [&](size_t i) { return speedupText(who[i]->speedup, kDash); };
-    auto sp = [&](size_t i) { return *who[i]->speedup.value; };
-    auto psnrText = [&](double p) { return std::isinf(p) ? "identical to " + full : fmt(p, 2) + " dB"; };
-
-    std::optional<size_t> best;
-    for (size_t i = 0; i < who.size(); ++i) {
-        if (who[i]->name == reference || !onFront(i) || !measurablyFaster(who[i]->speedup)) continue;
-        if (!best || psnr[i] > psnr[*best] || (psnr[i] == psnr[*best] && sp(i) > sp(*best))) best = i;
-    }
-    std::vector<size_t> others;
-    for (size_t i = 0; i < who.size(); ++i)
-        if (who[i]->name != reference && (!best || i != *best)) others.push_back(i);
-    std::sort(others.begin(), others.end(), [&](size_t a, size_t b) { return sp(a) > sp(b); });
-
-    const std::string why = " (speed-ups: medians of the paired per-frame ratios " + full +
-                            "/variant, with 95% intervals).";
-    std::string s;
-    if (!best) {
-        s = "No variant is both on the Pareto front and measurably faster than " + full + ", so " + full +
-            " gives the best quality for its cost here";
-        for (size_t i : others)
-            s += "; " + who[i]->name + " runs at " + speed(i) + " the speed of " + full + " with PSNR " + psnrText(psnr[i]);
-        return s + why;
-    }
-    s = who[*best]->name + " gives the best quality for its cost: it is on the Pareto front with PSNR " +
-        psnrText(psnr[*best]);
-    if (who[*best]->ssim) s += " (SSIM " + fmt(*who[*best]->ssim, 4) + ")";
-    s += " at " + speed(*best) + " the speed of " + full;
-    for (size_t i : others) {
-        const bool faster = sp(i) > sp(*best);
-        const bool better = psnr[i] > psnr[*best];
-        s += "; " + who[i]->name;
-        if (!measurablyFaster(who[i]->speedup))
-            s += " is not measurably faster than " + full + " (" + speed(i) + ") at PSNR " + psnrText(psnr[i]);
-        else if (faster && better)
-            s += " is faster (" + speed(i) + ") and higher quality (" + psnrText(psnr[i]) + ")";
-        else if (faster)
-            s += " is faster (" + speed(i) + ") but lower quality (" + psnrText(psnr[i]) + ")";
-        else if (better)
-            s += " is higher quality (" + psnrText(psnr[i]) + ") but slower (" + speed(i) + ")";
-        else
-            s += " is dominated: slower (" + speed(i) + ") and no better (" + psnrText(psnr[i]) + ")";
-    }
-    return s + why;
-}
-
-std::string paretoSentence(const RunData& d) {
-    std::vector<CostQuality> cq;
-    for (const auto& v : d.variants) {
-        if (!variantOk(d, v)) continue;
-        cq.push_back({v, summaryNum(d, v, "gpu_ms_median"), summaryNum(d, v, "psnr_db_mean"),
-                      summaryNum(d, v, "ssim_mean"), summarySpeedup(d, v)});
-    }
-    return paretoSentence(cq, d.reference);
-}
+// One axis of the error-against-run-time charts: a summary.csv column, and the reference's
+// value of that column where it has none (no error: SSIM 1, PSNR infinite, ECI 0, 10 JOD).
+struct ErrorAxis {
+    const char* column;
+    const char* title;
+    const char* label;
+    bool higher;
+    bool one_minus;
+    double reference;
+};
 
 std::string paretoSection(const RunData& d) {
+    const bool jod = hasJod(d);
     std::string out = "<section id=\"pareto\"><h2>Error against run time</h2>";
     out += "<p class=\"note\">One point per variant that ran: x is the median GPU frame time (summary.csv "
            "<code>gpu_ms_median</code>), y the sequence error. The dashed line joins the Pareto front (no other variant "
            "has both a higher paired speed-up and a lower error); ringed points lie on it. A point's tooltip gives its "
            "paired speed-up, the one of the summary table. The reference has no error: PSNR \u221e, 1\u2212SSIM 0"
-           ", ECI 0. The answer at the top of the page reads the PSNR panel.</p>";
-    struct Axis {
-        const char* column;
-        const char* title;
-        const char* label;
-        bool higher;
-        bool one_minus;
+           ", ECI 0" + std::string(jod ? ", " + jodText(kJodNoDifference, kDash) : "") +
+           ". The answer at the top of the page reads the " + (answersInJod(d) ? "JOD" : "PSNR") + " panel.</p>";
+    std::vector<ErrorAxis> axes = {
+        {"ssim_mean", "1 \u2212 SSIM (lower is better)", "1 \u2212 SSIM", false, true, 1.0},
+        {"psnr_db_mean", "PSNR (higher is better)", "PSNR (dB)", true, false, INFINITY},
+        {"eci", "ECI (lower is better)", "ECI", false, false, 0.0},
     };
-    const Axis axes[] = {
-        {"ssim_mean", "1 \u2212 SSIM (lower is better)", "1 \u2212 SSIM", false, true},
-        {"psnr_db_mean", "PSNR (higher is better)", "PSNR (dB)", true, false},
-        {"eci", "ECI (lower is better)", "ECI", false, false},
-    };
+    // ColorVideoVDP only where the run scored it: older runs keep their three panels.
+    if (jod)
+        axes.insert(axes.begin() + 2, {kJodColumn, "ColorVideoVDP JOD (higher is better)", "ColorVideoVDP (JOD)",
+                                       true, false, kJodNoDifference});
     out += "<div class=\"row\">";
     for (const auto& a : axes) {
         if (!d.summary.has(a.column)) {
@@ -322,7 +247,7 @@ std::string paretoSection(const RunData& d) {
             auto x = summaryNum(d, v, "gpu_ms_median");
             if (!x || !std::isfinite(*x)) continue;
             auto y = summaryNum(d, v, a.column);
-            if (v == d.reference && !y) y = a.higher ? INFINITY : 0.0;
+            if (v == d.reference && !y) y = a.reference;
             if (y && a.one_minus) y = 1.0 - *y;
             const Speedup s = summarySpeedup(d, v);
             all_paired = all_paired && s.value && std::isfinite(*s.value);

@@ -153,6 +153,12 @@ Speedup summarySpeedup(const RunData& d, const std::string& variant) {
             summaryNum(d, variant, "speedup_ci_high")};
 }
 
+bool hasJod(const RunData& d) {
+    for (const auto& v : d.variants)
+        if (auto jod = summaryNum(d, v, kJodColumn); jod && std::isfinite(*jod)) return true;
+    return false;
+}
+
 const nlohmann::json* variantJson(const RunData& d, const std::string& variant) {
     auto it = d.run.find("variants");
     if (it == d.run.end() || !it->is_array()) return nullptr;

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "reports/csv_read.h"
+#include "reports/jod.h"
 #include "reports/speedup.h"
 
 namespace cbr::reports {
@@ -42,6 +43,9 @@ bool variantOk(const RunData& d, const std::string& variant);
 // A variant's speed-up against the reference with its 95% interval (summary.csv
 // speedup_vs_full, speedup_ci_low, speedup_ci_high), the one every page prints.
 Speedup summarySpeedup(const RunData& d, const std::string& variant);
+// The run scored ColorVideoVDP: summary.csv has a `cvvdp_jod` value (reports/jod.h). Runs
+// from before it, or that did not score it (empty cells), read as they did without it.
+bool hasJod(const RunData& d);
 // A checkerboard variant: summary.csv has its pixel-class shares, or run.json a route.
 bool isCheckerboard(const RunData& d, const std::string& variant);
 // run.json's variants[] entry of a variant, or nullptr.

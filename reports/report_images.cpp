@@ -1,4 +1,4 @@
-// Report section with the worst frames: reference/variant wipe, error, SSIM, FLIP, crawl and class maps.
+// Report section with the worst frames: reference/variant wipe, error, SSIM, FLIP, ColorVideoVDP, crawl and class maps.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -173,6 +173,7 @@ std::string fromWorstDir(const RunData& d, const std::string& v) {
         Embedded ref = get("reference"), var = get("variant");
         Embedded err = get("error"), ssim = get("ssim_map");
         Embedded flip = get("flip_map");  // absent in runs before FLIP
+        Embedded cvvdp = get("cvvdp_map");  // absent in runs before ColorVideoVDP (or without it)
         Embedded crawl = get("crawl_map");
         Embedded cls = cbr ? get("class_map") : Embedded{};
         bool any = !ref.uri.empty() || !var.uri.empty() || !err.uri.empty() || !ssim.uri.empty() ||
@@ -194,6 +195,7 @@ std::string fromWorstDir(const RunData& d, const std::string& v) {
         out += mapFigure(err, "error |variant \u2212 reference|", file("error"));
         out += mapFigure(ssim, "1 \u2212 SSIM map", file("ssim_map"));
         if (!flip.uri.empty()) out += mapFigure(flip, "FLIP error map", file("flip_map"));
+        if (!cvvdp.uri.empty()) out += mapFigure(cvvdp, "ColorVideoVDP difference map", file("cvvdp_map"));
         if (eci_kind || !crawl.uri.empty())
             out += mapFigure(crawl, "edge crawl |e\u209c \u2212 warp(e\u209c\u208b\u2081)|", file("crawl_map"));
         if (cbr) out += mapFigure(cls, "pixel classes", file("class_map")) + classLegend();

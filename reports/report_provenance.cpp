@@ -3,6 +3,7 @@
 #include <set>
 
 #include "reports/html.h"
+#include "reports/jod.h"
 #include "reports/report_sections.h"
 
 namespace cbr::reports {
@@ -47,6 +48,19 @@ void flatten(const nlohmann::json& j, const std::string& prefix, const std::set<
         if (it->is_object()) flatten(*it, key, skip, rows);
         else rows.push_back({key, jsonText(&*it)});
     }
+}
+
+// The display model ColorVideoVDP's JODs hold for (run.json settings.display); nothing in runs
+// from before it.
+std::string displayTable(const RunData& d) {
+    const auto* display = jsonAt(d.run, "/settings/display");
+    if (!display || !display->is_object()) return {};
+    Rows rows = {{"display", displayModelText(display)},
+                 {"description", at(d, "/settings/display/description")},
+                 {"frames per second scored", at(d, "/settings/cvvdp_fps")},
+                 {"metric", at(d, "/quality_metrics/cvvdp")},
+                 {"JOD", kJodMeaning}};
+    return kvTable("Display model (ColorVideoVDP)", rows);
 }
 
 // Key-value tables of where and how the run ran: device, build and run, benchmark settings.
@@ -94,10 +108,11 @@ std::string runTables(const RunData& d) {
                                     {"shading cost (x)", at(d, "/settings/shading_cost")},
                                     {"checkerboard route (requested)", at(d, "/settings/cbr_route")},
                                 });
+    out += displayTable(d);
     Rows other;
     if (const auto* s = jsonAt(d.run, "/settings"); s && s->is_object())
         flatten(*s, "", {"pipeline", "width", "height", "frames", "repeat", "warmup_frames", "warmup_rule",
-                         "variant_order", "shading_cost", "cbr_route"},
+                         "variant_order", "shading_cost", "cbr_route", "display", "cvvdp_fps"},
                 other);
     if (!other.empty()) out += kvTable("Other settings", other);
     return out;

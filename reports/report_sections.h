@@ -41,15 +41,19 @@ struct CostQuality {
     std::optional<double> psnr_db;  // sequence PSNR (+inf: identical to the reference)
     std::optional<double> ssim;
     Speedup speedup;  // paired speed-up vs the reference and its 95% interval (reports/speedup.h)
+    std::optional<double> jod;  // ColorVideoVDP's sequence JOD (reports/jod.h); the reference's is 10
 };
-// ONE sentence: which variant gives the best quality (PSNR) for its cost. The front is that
-// of the paired speed-up against PSNR (the plot's ringed points), every speed printed is the
-// paired speed-up with its interval, and a variant counts as faster than the reference only
-// where that interval, when there is one, lies above 1 (measurablyFaster; timing.md: report
-// only significant differences).
+// report_answer.cpp: ONE sentence: which variant gives the best quality for its cost. Quality
+// is the JOD where a variant other than the reference has one, else the PSNR. The front is that
+// of the paired speed-up against that quality (the plot's ringed points), every speed printed
+// is the paired speed-up with its interval, and a variant counts as faster than the reference
+// only where that interval, when there is one, lies above 1 (measurablyFaster; timing.md:
+// report only significant differences).
 std::string paretoSentence(const std::vector<CostQuality>& variants, const std::string& reference);
 // The sentence for a loaded run.
 std::string paretoSentence(const RunData& d);
+// The run's sentence speaks in JOD (the page then says what a JOD is).
+bool answersInJod(const RunData& d);
 
 // Colour chips with names, above a chart.
 std::string legendHtml(const std::vector<Series>& series, const std::string& extra = {});

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "reports/html.h"
+#include "reports/jod.h"
 #include "reports/report.h"
 #include "reports/report_sections.h"
 
@@ -21,7 +22,8 @@ std::string verdictBox(const RunData& d, const std::string& name) {
                        " frames: PSNR " + fmt(summaryNum(d, name, "psnr_db_mean"), 2) + " dB (worst frame " +
                        fmt(summaryNum(d, name, "psnr_db_min"), 2) + "), SSIM " +
                        fmt(summaryNum(d, name, "ssim_mean"), 4) + ", FLIP " + fmt(summaryNum(d, name, "flip_mean"), 4) +
-                       ", ECI " + fmt(summaryNum(d, name, "eci"), 4) + ".";
+                       ", ECI " + fmt(summaryNum(d, name, "eci"), 4) +
+                       (hasJod(d) ? ", ColorVideoVDP " + jodText(summaryNum(d, name, kJodColumn), kDash) : "") + ".";
     const auto* crossed = jsonAt(d.run, "/thresholds/crossed");
     const bool judged = jsonAt(d.run, "/thresholds/warn") && (!jsonAt(d.run, "/thresholds/warn")->empty() ||
                                                               !jsonAt(d.run, "/thresholds/fail")->empty());
@@ -41,22 +43,28 @@ std::string verdictBox(const RunData& d, const std::string& name) {
 std::string summaryTable(const RunData& d, const std::string& name) {
     auto n = [&](const char* c) { return summaryNum(d, name, c); };
     auto td = [](const std::string& t) { return "<td class=\"num\">" + esc(t) + "</td>"; };
+    const bool jod = hasJod(d);  // sequences scored before ColorVideoVDP have no column
     std::string out = "<section id=\"summary\"><h2>Sequence figures</h2><div class=\"scroll\"><table><tr>"
                       "<th>sequence</th><th class=\"num\">frames</th><th class=\"num\">PSNR (dB)</th>"
                       "<th class=\"num\">PSNR min</th><th class=\"num\">PSNR p5</th><th class=\"num\">SSIM mean</th>"
-                      "<th class=\"num\">SSIM min</th><th class=\"num\">FLIP mean</th><th class=\"num\">ECI</th>"
-                      "<th class=\"num\">ECI p95</th><th class=\"num\">ECI max</th>"
+                      "<th class=\"num\">SSIM min</th><th class=\"num\">FLIP mean</th>" +
+                      std::string(jod ? "<th class=\"num\">ColorVideoVDP</th>" : "") +
+                      "<th class=\"num\">ECI</th><th class=\"num\">ECI p95</th><th class=\"num\">ECI max</th>"
                       "<th class=\"num\">flicker ratio</th></tr>";
     out += "<tr><td class=\"variant\" style=\"color:" + esc(variantColor(d, name)) + "\">" + esc(name) + "</td>" +
            td(fmt(n("frames"), 0)) + td(fmt(n("psnr_db_mean"), 2)) + td(fmt(n("psnr_db_min"), 2)) +
            td(fmt(n("psnr_db_p5"), 2)) + td(fmt(n("ssim_mean"), 4)) + td(fmt(n("ssim_min"), 4)) +
-           td(fmt(n("flip_mean"), 4)) + td(fmt(n("eci"), 4)) + td(fmt(n("eci_p95"), 4)) + td(fmt(n("eci_max"), 4)) +
+           td(fmt(n("flip_mean"), 4)) + (jod ? td(jodText(n(kJodColumn), kDash)) : std::string()) +
+           td(fmt(n("eci"), 4)) + td(fmt(n("eci_p95"), 4)) + td(fmt(n("eci_max"), 4)) +
            td(fmt(n("flicker_ratio_mean"), 3)) + "</tr></table></div>";
     out += "<p class=\"note\">Metrics on the 8-bit display images (method/metrics.md): sequence PSNR from the mean "
            "per-frame MSE (\u221e: identical), SSIM per Wang et al. (11\u00d711 Gaussian, \u03c3 1.5), LDR-FLIP mean, "
            "and the edge crawl index pooled over frame pairs, with the reference's motion from the motion "
            "files or, without them, one translation per frame pair (see Inputs). Flicker ratio: how much the test "
-           "sequence changes at the reference's edges against how much the reference does (1: alike).</p>";
+           "sequence changes at the reference's edges against how much the reference does (1: alike)." +
+           (jod ? " ColorVideoVDP: the sequence's JOD on the display model of Inputs; " + std::string(kJodMeaning)
+                : std::string()) +
+           "</p>";
     return out + "</section>";
 }
 
@@ -72,6 +80,10 @@ std::string inputsSection(const RunData& d) {
     out += row("cuts", runText(d, "/sequence/cuts"));
     out += row("display conversion", runText(d, "/sequence/conversions"));
     out += row("FLIP pixels per degree", runText(d, "/settings/flip_ppd"));
+    if (const auto* display = jsonAt(d.run, "/settings/display"); display && display->is_object()) {
+        out += row("ColorVideoVDP display model", displayModelText(display));
+        if (const auto* fps = jsonAt(d.run, "/settings/cvvdp_fps")) out += row("ColorVideoVDP frames per second", jsonText(fps));
+    }
     out += row("command line", runText(d, "/command_line"));
     out += row("cbrbench", runText(d, "/tool/version") + ", commit " + runText(d, "/tool/commit"));
     out += row("host", runText(d, "/host/name") + ", " + runText(d, "/host/cpus") + " CPUs");

@@ -11,6 +11,7 @@
 #include "reports/csv.h"
 #include "reports/csv_read.h"
 #include "reports/html.h"
+#include "reports/jod.h"
 #include "reports/report_sections.h"
 #include "reports/sweep_detail.h"
 
@@ -45,6 +46,11 @@ const SweepPoint* findVariant(const std::vector<SweepPoint>& points, const std::
 
 double psnrKey(const SweepPoint& p) { return p.psnr_db ? *p.psnr_db : -1e300; }
 
+double Quality::tie() const { return jod ? kJodTie : 0.02; }
+std::string Quality::text(std::optional<double> v) const { return jod ? jodText(v, kDash) : fmtDb(v); }
+std::string Quality::diff(double d) const { return jod ? jodDiffText(d) : fmt(std::abs(d), 2) + " dB"; }
+Quality qualityOf(const std::vector<SweepPoint>& points) { return {sweepRanksByJod(points)}; }
+
 std::string costSuffix(const std::vector<SweepPoint>& points, double cost) {
     return shadingCosts(points).size() > 1 ? " at shading cost " + fmtShort(cost) : "";
 }
@@ -76,6 +82,11 @@ std::string groupName(const Group& g, bool paths_vary, bool references_vary) {
 
 }  // namespace sweep_detail
 
+bool sweepRanksByJod(const std::vector<SweepPoint>& points) {
+    return std::any_of(points.begin(), points.end(),
+                       [](const SweepPoint& p) { return p.hasTimes() && p.jod && std::isfinite(*p.jod); });
+}
+
 const std::vector<SweepSettingField>& sweepSettingFields() {
     static const std::vector<SweepSettingField> fields = [] {
         std::vector<SweepSettingField> out;
@@ -93,7 +104,7 @@ const std::vector<std::string>& sweepColumns() {
         for (const auto& f : sweepSettingFields()) out.push_back(f.column);
         for (const char* c : {"status", "note", "frames", "repeats", "gpu_ms_median", "gpu_ms_ci_low", "gpu_ms_ci_high",
                               "noise_cv", "speedup_vs_full", "speedup_ci_low", "speedup_ci_high", "psnr_db", "ssim", "eci",
-                              "flicker_ratio", "px_shaded", "px_reused", "px_missing_parity", "px_occluded",
+                              "flicker_ratio", kJodColumn, "px_shaded", "px_reused", "px_missing_parity", "px_occluded",
                               "px_offscreen", "px_reset", "px_clipped"})
             out.push_back(c);
         return out;
@@ -161,6 +172,7 @@ SweepData loadSweep(const std::filesystem::path& dir) {
         p.ssim = csv.num(r, "ssim");
         p.eci = csv.num(r, "eci");
         p.flicker = csv.num(r, "flicker_ratio");
+        p.jod = csv.num(r, kJodColumn);  // absent in sweeps from before ColorVideoVDP
         for (const auto& pc : kPixelClasses)
             if (auto v = csv.num(r, pc.column)) p.classes[pc.column] = *v;
         d.points.push_back(std::move(p));

@@ -35,6 +35,7 @@ struct SweepPoint {
     std::optional<double> gpu_ms, gpu_ms_low, gpu_ms_high;
     Speedup speedup;  // paired against the full configuration at its shading cost (reports/speedup.h)
     std::optional<double> psnr_db, ssim, eci, flicker;
+    std::optional<double> jod;  // ColorVideoVDP's sequence JOD (cvvdp_jod, reports/jod.h); older sweeps: none
     std::map<std::string, double> classes;  // px_* mean shares
 };
 
@@ -67,11 +68,16 @@ struct SweepData {
 };
 SweepData loadSweep(const std::filesystem::path& dir);
 
+// The quality every recommendation and equal-cost comparison of a sweep ranks by, higher
+// being better: ColorVideoVDP's JOD where any configuration has one (reports/jod.h), else
+// the sequence PSNR (a sweep from before ColorVideoVDP, or one that did not score it).
+bool sweepRanksByJod(const std::vector<SweepPoint>& points);
+
 // The recommended CSO tolerance at one shading cost, with one sentence why: of the
 // tolerances (cbr-cso's) whose median GPU time stays within `margin` of the time of the
 // variant's cost bound (VariantRole::cost_bound, cbr-aso), those within
-// 0.02 dB of the best sequence PSNR, of these the lowest ECI (within 1e-4), of these the
-// loosest tolerance (the edge of the quality plateau).
+// 0.02 dB of the best sequence PSNR (0.02 JOD of the best JOD), of these the lowest ECI
+// (within 1e-4), of these the loosest tolerance (the edge of the quality plateau).
 struct ToleranceChoice {
     double shading_cost = 1;
     std::optional<double> tolerance;  // nullopt: no cbr-cso configuration ran
@@ -91,7 +97,7 @@ struct SettingChoice {
     std::string config;    // the configuration it was read from
     std::string sentence;  // one sentence why
 };
-std::string settingRule(const VariantRoles& roles);
+std::string settingRule(const VariantRoles& roles, bool jod = false);
 std::vector<SettingChoice> recommendSettings(const std::vector<SweepPoint>& points, const VariantRoles& roles,
                                              double margin = kCostMargin);
 
@@ -106,14 +112,15 @@ std::vector<std::string> sweepSummaryLines(const std::vector<SweepPoint>& points
 
 // Quality at equal cost: for each variant whose VariantRole::equal_cost_with names a scaled
 // variant (drr), the scale whose GPU time matches its configuration's, interpolated linearly
-// in time between the two swept scales around it.
+// in time between the two swept scales around it. The verdict compares JODs where the sweep
+// has them (sweepRanksByJod), else PSNRs.
 struct EqualCost {
     std::string config;  // the checkerboard configuration
     double shading_cost = 1;
     double cbr_ms = 0;
-    std::optional<double> cbr_psnr, cbr_ssim, cbr_eci;
+    std::optional<double> cbr_psnr, cbr_ssim, cbr_eci, cbr_jod;
     bool matched = false;  // its time lies within the swept drr times
-    std::optional<double> drr_scale, drr_ms, drr_psnr, drr_ssim, drr_eci;
+    std::optional<double> drr_scale, drr_ms, drr_psnr, drr_ssim, drr_eci, drr_jod;
     std::string verdict;   // one sentence
 };
 std::vector<EqualCost> equalCost(const std::vector<SweepPoint>& points, const std::vector<ToleranceChoice>& choices,

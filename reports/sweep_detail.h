@@ -18,6 +18,20 @@ std::vector<double> shadingCosts(const std::vector<SweepPoint>& points);
 // The first ok configuration of a variant at a cost, with a time.
 const SweepPoint* findVariant(const std::vector<SweepPoint>& points, const std::string& variant, double cost);
 double psnrKey(const SweepPoint& p);
+
+// What a sweep ranks its configurations by (sweepRanksByJod): the JOD or the sequence PSNR,
+// higher being better either way, with the words and figures the sentences print.
+struct Quality {
+    bool jod = false;
+    std::optional<double> of(const SweepPoint& p) const { return jod ? p.jod : p.psnr_db; }
+    double key(const SweepPoint& p) const { return of(p).value_or(-1e300); }
+    double tie() const;                              // 0.02 dB or 0.02 JOD: the best's plateau
+    std::string text(std::optional<double> v) const;  // "25.80 dB" or "9.42 JOD"
+    std::string diff(double d) const;                 // "0.28 dB" or "0.28 JOD"
+    std::string name() const { return jod ? "JOD" : "sequence PSNR"; }  // "the best ..."
+    std::string brief() const { return jod ? "JOD" : "PSNR"; }          // "... tied"
+};
+Quality qualityOf(const std::vector<SweepPoint>& points);
 // " at shading cost K" when the sweep has more than one cost, else "".
 std::string costSuffix(const std::vector<SweepPoint>& points, double cost);
 

@@ -9,6 +9,7 @@
 
 #include "reports/csv.h"
 #include "reports/html.h"
+#include "reports/jod.h"
 #include "reports/report_data.h"
 #include "reports/report_sections.h"
 #include "reports/svg.h"
@@ -42,6 +43,7 @@ std::string jsonString(const nlohmann::json& j, const char* ptr) {
 struct Metric {
     const char* label;
     std::function<std::optional<double>(const SweepPoint&)> value;
+    bool jod = false;  // charted only where the sweep has JODs (sweepRanksByJod)
 };
 std::optional<double> classShare(const SweepPoint& p, const char* cls) {
     return p.classes.count(cls) ? std::optional<double>(p.classes.at(cls)) : std::nullopt;
@@ -50,6 +52,7 @@ const std::vector<Metric>& metrics() {
     static const std::vector<Metric> m = {
         {"GPU frame time, median (ms)", [](const SweepPoint& p) { return p.gpu_ms; }},
         {"sequence PSNR (dB)", [](const SweepPoint& p) { return p.psnr_db; }},
+        {"ColorVideoVDP (JOD)", [](const SweepPoint& p) { return p.jod; }, true},
         {"SSIM", [](const SweepPoint& p) { return p.ssim; }},
         {"edge crawl index ECI", [](const SweepPoint& p) { return p.eci; }}};
     return m;
@@ -139,7 +142,9 @@ std::string paramCharts(const std::vector<SweepPoint>& points, const std::string
             }
         return "<div class=\"chart-block\">" + lineChartSvg(c) + "</div>";
     };
-    for (const auto& m : metrics()) out += chart(m);
+    const bool jod = sweepRanksByJod(points);
+    for (const auto& m : metrics())
+        if (!m.jod || jod) out += chart(m);
     // Where the reconstruction's pixels come from, against the setting (checkerboard only).
     if (with_classes)
         for (const auto& m : classMetrics()) out += chart(m);
@@ -184,6 +189,7 @@ std::string paramsSection(const std::vector<SweepPoint>& points, const VariantRo
 }
 
 std::string answerSection(const std::vector<SweepPoint>& points, const VariantRoles& roles) {
+    const Quality q = qualityOf(points);
     const auto choices = recommendTolerance(points, roles);
     const auto settings = recommendSettings(points, roles);
     const VariantRole* bounded = roles.bounded();
@@ -196,18 +202,20 @@ std::string answerSection(const std::vector<SweepPoint>& points, const VariantRo
     for (const auto& c : choices) html += "<p class=\"answer\"><b>Recommended:</b> " + esc(c.sentence) + "</p>";
     if (!choices.empty() || !others)
         html += "<p class=\"note\">Rule: among the " + esc(tuned) + " tolerances whose median GPU time stays within " +
-                fmtShort(kCostMargin * 100) + "% of " + esc(bound) + "'s at the same shading cost, those within 0.02 dB of the "
-                "best sequence PSNR; of these the lowest edge crawl index (within 1e-4); of these the loosest "
-                "tolerance: the edge of the quality plateau, before more reuse starts to cost quality.</p>";
+                fmtShort(kCostMargin * 100) + "% of " + esc(bound) + "'s at the same shading cost, those within " +
+                esc(q.diff(q.tie())) + " of the best " + esc(q.name()) + "; of these the lowest edge crawl index (within "
+                "1e-4); of these the loosest tolerance: the edge of the quality plateau, before more reuse starts to "
+                "cost quality.</p>";
     bool any = false;
     for (const auto& c : settings)
         if (c.setting != "cso-tolerance")
             html += "<p class=\"answer\"><b>Recommended:</b> " + esc(c.sentence) + "</p>", any = true;
     if (any) {
-        std::string rule = settingRule(roles);
+        std::string rule = settingRule(roles, q.jod);
         rule[0] = char(std::toupper(static_cast<unsigned char>(rule[0])));
         html += "<p class=\"note\">Rule for every other swept setting: " + esc(rule) + ".</p>";
     }
+    if (q.jod) html += "<p class=\"note\">" + esc(kJodMeaning) + "</p>";
     return html + "</section>";
 }
 
@@ -216,6 +224,24 @@ std::string listed(const std::vector<std::string>& names) {
     std::string s;
     for (size_t i = 0; i < names.size(); ++i) s += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
     return s;
+}
+
+// The equal-cost comparisons side by side, with each side's JOD where the sweep has them.
+std::string equalTable(const std::vector<EqualCost>& equal, const std::string& scaled, bool jod) {
+    auto num = [](const std::string& text) { return "<td class=\"num\">" + text + "</td>"; };
+    const std::string jod_head = jod ? "<th class=\"num\">JOD</th>" : "";
+    std::string html = "<div class=\"scroll\"><table><tr><th>configuration</th><th class=\"num\">cost</th><th "
+                       "class=\"num\">GPU ms</th>" + jod_head + "<th class=\"num\">PSNR dB</th><th class=\"num\">SSIM</th>"
+                       "<th class=\"num\">ECI</th><th>" + esc(scaled) + " at that cost</th><th class=\"num\">scale</th>"
+                       "<th class=\"num\">GPU ms</th>" + jod_head + "<th class=\"num\">PSNR dB</th>"
+                       "<th class=\"num\">SSIM</th><th class=\"num\">ECI</th></tr>";
+    for (const auto& e : equal)
+        html += "<tr><td>" + esc(e.config) + "</td>" + num(fmtShort(e.shading_cost)) + num(fmt(e.cbr_ms, 2)) +
+                (jod ? num(jodText(e.cbr_jod, kDash)) : "") + num(fmt(e.cbr_psnr, 2)) + num(fmt(e.cbr_ssim, 4)) +
+                num(fmt(e.cbr_eci, 4)) + "<td>" + (e.matched ? "interpolated" : "nearest (no match)") + "</td>" +
+                num(fmt(e.drr_scale, 3)) + num(fmt(e.drr_ms, 2)) + (jod ? num(jodText(e.drr_jod, kDash)) : "") +
+                num(fmt(e.drr_psnr, 2)) + num(fmt(e.drr_ssim, 4)) + num(fmt(e.drr_eci, 4)) + "</tr>";
+    return html + "</table></div>";
 }
 
 std::string equalSection(const std::vector<SweepPoint>& points, const VariantRoles& roles) {
@@ -228,61 +254,55 @@ std::string equalSection(const std::vector<SweepPoint>& points, const VariantRol
     std::string html = "<section id=\"equal\"><h2>Quality at equal cost: " + esc(listed(peers)) + " against " +
                        esc(scaled) + "</h2>";
     for (const auto& e : equal) html += "<p class=\"answer\">" + esc(e.verdict) + "</p>";
-    if (!equal.empty()) {
-        html += "<div class=\"scroll\"><table><tr><th>configuration</th><th class=\"num\">cost</th><th class=\"num\">GPU ms"
-                "</th><th class=\"num\">PSNR dB</th><th class=\"num\">SSIM</th><th class=\"num\">ECI</th><th>" + esc(scaled) + " at that "
-                "cost</th><th class=\"num\">scale</th><th class=\"num\">GPU ms</th><th class=\"num\">PSNR dB</th>"
-                "<th class=\"num\">SSIM</th><th class=\"num\">ECI</th></tr>";
-        for (const auto& e : equal)
-            html += "<tr><td>" + esc(e.config) + "</td><td class=\"num\">" + fmtShort(e.shading_cost) +
-                    "</td><td class=\"num\">" + fmt(e.cbr_ms, 2) + "</td><td class=\"num\">" + fmt(e.cbr_psnr, 2) +
-                    "</td><td class=\"num\">" + fmt(e.cbr_ssim, 4) + "</td><td class=\"num\">" + fmt(e.cbr_eci, 4) +
-                    "</td><td>" + (e.matched ? "interpolated" : "nearest (no match)") + "</td><td class=\"num\">" +
-                    fmt(e.drr_scale, 3) + "</td><td class=\"num\">" + fmt(e.drr_ms, 2) + "</td><td class=\"num\">" +
-                    fmt(e.drr_psnr, 2) + "</td><td class=\"num\">" + fmt(e.drr_ssim, 4) + "</td><td class=\"num\">" +
-                    fmt(e.drr_eci, 4) + "</td></tr>";
-        html += "</table></div>";
-    }
+    if (!equal.empty()) html += equalTable(equal, scaled, sweepRanksByJod(points));
     return html + "<p class=\"note\">The " + esc(scaled) + " scale whose median GPU time equals the configuration's, "
                   "with its quality, interpolated linearly in time between the two swept scales around it (their times "
                   "sorted). Without a swept scale on both sides the nearest is shown and no equal-cost claim is made.</p>"
                   "</section>";
 }
 
+// The plane of the quality the sweep ranks by (sweep_detail.h, Quality) against time, per cost.
 std::string planeSection(const std::vector<SweepPoint>& points, const VariantRoles& roles) {
+    const Quality q = qualityOf(points);
     std::string html = "<section id=\"plane\"><h2>Error against run time</h2>";
     std::vector<Series> legend;
     const std::vector<std::string> variants = variantsOf(points);
     for (const auto& v : variants) legend.push_back({v, variantColor(variants, v, roles.reference), {}});
     for (double cost : shadingCosts(points)) {
         ScatterChart sc;
-        sc.title = "PSNR against GPU time" + costSuffix(points, cost);
+        sc.title = q.brief() + " against GPU time" + costSuffix(points, cost);
         sc.width = 560;
         sc.label_front_only = true;
-        sc.lane_above = 50.0;  // drr at scale 1 is nearly the reference: on the lane, not squashing the rest
+        // drr at scale 1 is nearly the reference: on the lane, not squashing the rest (a JOD ends at 10).
+        if (!q.jod) sc.lane_above = 50.0;
         sc.x_label = "GPU frame time, median (ms)";
-        sc.y_label = "sequence PSNR (dB)";
+        sc.y_label = q.jod ? "ColorVideoVDP (JOD, higher is better)" : "sequence PSNR (dB)";
         sc.y_higher_is_better = true;
         for (const auto& p : points)
             if (p.shading_cost == cost && p.hasTimes() && p.gpu_ms)
-                sc.points.push_back({p.config, variantColor(variants, p.variant, roles.reference), *p.gpu_ms, p.psnr_db,
+                sc.points.push_back({p.config, variantColor(variants, p.variant, roles.reference), *p.gpu_ms, q.of(p),
                                      std::nullopt, "speed-up " + speedupText(p.speedup, kDash)});
-        html += "<h3>Sequence PSNR against median GPU time" + esc(costSuffix(points, cost)) + "</h3>" +
-                legendHtml(legend) +
+        html += "<h3>" + std::string(q.jod ? "JOD" : "Sequence PSNR") + " against median GPU time" +
+                esc(costSuffix(points, cost)) + "</h3>" + legendHtml(legend) +
                 "<div class=\"chart-block\" style=\"max-width:900px\">" + scatterChartSvg(sc) + "</div>";
         std::string list;
         for (size_t i : paretoFront(sc.points, true)) list += (list.empty() ? "" : ", ") + sc.points[i].label;
-        html += "<p class=\"note\">Pareto front (no other configuration has both a lower median GPU time and a higher PSNR): " + esc(list) +
-                ". Only the front is labelled (every point has a tooltip). " + esc(roles.reference) +
-                "'s PSNR is infinite (it is the reference); it and anything above 50 dB sit on the lane above the plot.</p>";
+        html += "<p class=\"note\">Pareto front (no other configuration has both a lower median GPU time and a higher " +
+                q.brief() + "): " + esc(list) + ". Only the front is labelled (every point has a tooltip). " +
+                esc(roles.reference) +
+                (q.jod ? "'s JOD is 10 (it is the reference): higher is better, up to no visible difference.</p>"
+                       : "'s PSNR is infinite (it is the reference); it and anything above 50 dB sit on the lane above "
+                         "the plot.</p>");
     }
     return html + "</section>";
 }
 
 std::string tableSection(const std::vector<SweepPoint>& points, const VariantRoles& roles) {
     std::string html = "<section id=\"table\"><h2>Configurations</h2><div class=\"scroll\"><table><tr>";
-    const char* head[] = {"config", "status", "GPU ms", "95% CI", "speed-up [95% CI]", "PSNR dB", "SSIM", "ECI", "reused %",
-                          "occluded %"};
+    const bool jod = sweepRanksByJod(points);  // sweeps from before ColorVideoVDP: no column
+    std::vector<const char*> head = {"config", "status", "GPU ms", "95% CI", "speed-up [95% CI]", "PSNR dB", "SSIM",
+                                     "ECI", "reused %", "occluded %"};
+    if (jod) head.insert(head.begin() + 5, "ColorVideoVDP");
     for (const char* h : head) html += std::string("<th") + (h == head[0] || h == head[1] ? ">" : " class=\"num\">") + h + "</th>";
     html += "</tr>";
     const std::vector<std::string> variants = variantsOf(points);
@@ -290,7 +310,9 @@ std::string tableSection(const std::vector<SweepPoint>& points, const VariantRol
         html += "<tr><td class=\"variant\" style=\"color:" + variantColor(variants, p.variant, roles.reference) + "\">" + esc(p.config) +
                 "</td><td>" + esc(p.status) + "</td><td class=\"num\">" + fmt(p.gpu_ms, 2) + "</td><td class=\"num\">" +
                 (p.gpu_ms_low ? fmt(p.gpu_ms_low, 2) + "\u2013" + fmt(p.gpu_ms_high, 2) : std::string(kDash)) +
-                "</td><td class=\"num\">" + speedupText(p.speedup, kDash) + "</td><td class=\"num\">" + fmt(p.psnr_db, 2) +
+                "</td><td class=\"num\">" + speedupText(p.speedup, kDash) +
+                (jod ? "</td><td class=\"num\">" + jodText(p.jod, kDash) : std::string()) + "</td><td class=\"num\">" +
+                fmt(p.psnr_db, 2) +
                 "</td><td class=\"num\">" + fmt(p.ssim, 4) + "</td><td class=\"num\">" + fmt(p.eci, 4) +
                 "</td><td class=\"num\">" + fmtPct(classShare(p, "px_reused"), 1) + "</td><td class=\"num\">" +
                 fmtPct(classShare(p, "px_occluded"), 1) + "</td></tr>";
@@ -363,7 +385,7 @@ std::string sweepIndexHtml(const std::filesystem::path& dir, const VariantRoles&
         }
         html += "</tr>";
     }
-    std::string rule = settingRule(roles);
+    std::string rule = settingRule(roles, sweepRanksByJod(d.points));
     rule[0] = char(std::toupper(static_cast<unsigned char>(rule[0])));
     html += "</table></div><p class=\"note\">Rule: " + esc(rule) + ". Hover a value for its sentence.</p>";
     for (const auto& g : gs) {

@@ -54,6 +54,7 @@ struct Cell {
     std::string note;  // unmatched cells
     using Quality = QualityVerdict;
     Quality psnr, ssim, eci;
+    Quality jod;  // ColorVideoVDP (summary.csv cvvdp_jod); n/a where a side predates it
 };
 
 
@@ -121,7 +122,14 @@ const std::vector<std::string> kCsvColumns = {
     "change_low_pct", "change_high_pct", "interval_confidence_pct", "detectable_change_pct", "resolvable_change_pct", "reps_to_settle",
     "noise_cv_pct",   "p_value",        "q_value",        "time_verdict",  "baseline_psnr_db", "current_psnr_db", "psnr_delta_db",
     "psnr_verdict",   "baseline_ssim",  "current_ssim",  "ssim_delta",   "ssim_verdict",  "baseline_eci",
-    "current_eci",    "eci_change_pct", "eci_verdict",   "note"};
+    "current_eci",    "eci_change_pct", "eci_verdict",   "baseline_cvvdp_jod", "current_cvvdp_jod", "jod_delta",
+    "jod_verdict",    "note"};
+
+// Some cell has JODs on both sides: the table, the page and the JUnit detail show them (a
+// comparison of runs from before ColorVideoVDP reads as it did).
+bool anyJod(const std::vector<Cell>& cells) {
+    return std::any_of(cells.begin(), cells.end(), [](const Cell& c) { return c.jod.verdict != "n/a"; });
+}
 
 std::optional<double> pct(std::optional<double> fraction) {
     if (!fraction) return std::nullopt;
@@ -148,7 +156,7 @@ reports::ComparePage comparePage(const CompareOptions& o, const Side& base, cons
     reports::ComparePage page{.outcome = outcome, .baseline_dir = base.data.dir.string(),
                               .current_dir = cur.data.dir.string(), .device = deviceText(cur.data),
                               .threshold = threshold, .alpha = o.alpha, .psnr_db = o.psnr_db, .ssim = o.ssim,
-                              .eci_threshold = eci_threshold, .time_rule = kTimeRule};
+                              .eci_threshold = eci_threshold, .jod = o.jod, .time_rule = kTimeRule};
     page.exit_rule = "Exit code 1 for any SLOWER or WORSE cell; 2 when no cell was decided (or, with --strict, any "
                      "cell is UNKNOWN).";
     for (const auto& c : cells) {
@@ -159,7 +167,8 @@ reports::ComparePage comparePage(const CompareOptions& o, const Side& base, cons
                              .noise = t.noise, .p = t.p, .q = t.q, .interval = intervalText(t),
                              .time_verdict = t.verdict, .psnr_delta = c.psnr.delta, .ssim_delta = c.ssim.delta,
                              .eci_change = c.eci.delta, .psnr_verdict = c.psnr.verdict,
-                             .ssim_verdict = c.ssim.verdict, .eci_verdict = c.eci.verdict, .note = noteOf(c)});
+                             .ssim_verdict = c.ssim.verdict, .eci_verdict = c.eci.verdict,
+                             .jod_delta = c.jod.delta, .jod_verdict = c.jod.verdict, .note = noteOf(c)});
     }
     return page;
 }
@@ -200,10 +209,13 @@ std::string compareJunit(const std::vector<Cell>& cells, double threshold, const
         quality("PSNR", c.psnr, "%.3f -> %.3f dB");
         quality("SSIM", c.ssim, "%.5f -> %.5f");
         quality("ECI", c.eci, "%.5f -> %.5f");
+        if (c.jod.verdict == "WORSE")
+            failed.push_back("JOD WORSE: " + reports::jodText(c.jod.base, "-") + " -> " + reports::jodText(c.jod.cur, "-"));
         std::snprintf(b, sizeof b, "baseline %s ms (%zu reps), current %s ms (%zu reps)", num(c.base_ms).c_str(),
                       c.base_reps.size(), num(c.cur_ms).c_str(), c.cur_reps.size());
         jc.detail = std::string(b) + "; time " + t.verdict + " " + timeEvidence(t) + "; PSNR " + c.psnr.verdict +
-                    ", SSIM " + c.ssim.verdict + ", ECI " + c.eci.verdict;
+                    ", SSIM " + c.ssim.verdict + ", ECI " + c.eci.verdict +
+                    (c.jod.verdict == "n/a" ? "" : ", JOD " + c.jod.verdict);
         if (!noteOf(c).empty()) jc.detail += "; " + noteOf(c);
         if (!failed.empty()) {
             jc.failure_type = t.verdict == "SLOWER" ? "SLOWER" : "WORSE";
@@ -263,6 +275,10 @@ std::string compareCsv(const std::vector<Cell>& cells) {
                     {"current_eci", num(c.eci.cur)},
                     {"eci_change_pct", num(pct(c.eci.delta))},
                     {"eci_verdict", c.eci.verdict},
+                    {"baseline_cvvdp_jod", num(c.jod.base)},
+                    {"current_cvvdp_jod", num(c.jod.cur)},
+                    {"jod_delta", num(c.jod.delta)},
+                    {"jod_verdict", c.jod.verdict},
                     {"note", noteOf(c)}});
     }
     return csv.str();
@@ -270,8 +286,9 @@ std::string compareCsv(const std::vector<Cell>& cells) {
 
 // The short table on stdout: a line per cell.
 void printCompareTable(const std::vector<Cell>& cells) {
-    std::printf("%-10s %6s %10s %10s %8s %-22s %7s %7s %-8s %-7s %-7s %-7s\n", "variant", "reps", "base_ms", "cur_ms",
-                "change", "interval", "noise", "q", "time", "psnr", "ssim", "eci");
+    const bool jod = anyJod(cells);  // the jod column only beside runs that scored it
+    std::printf("%-10s %6s %10s %10s %8s %-22s %7s %7s %-8s %-7s %-7s %-7s%s\n", "variant", "reps", "base_ms", "cur_ms",
+                "change", "interval", "noise", "q", "time", "psnr", "ssim", "eci", jod ? " jod    " : "");
     for (const auto& c : cells) {
         auto p2 = [](std::optional<double> v) {
             char b[32];
@@ -288,10 +305,12 @@ void printCompareTable(const std::vector<Cell>& cells) {
         std::string reps = std::to_string(c.base_reps.size()) + "/" + std::to_string(c.cur_reps.size());
         const TimeVerdict& t = c.time;
         const std::string note = noteOf(c);
-        std::printf("%-10s %6s %10s %10s %8s %-22s %7s %7s %-8s %-7s %-7s %-7s%s%s\n", c.variant.c_str(), reps.c_str(),
+        char jod_cell[16] = "";
+        if (jod) std::snprintf(jod_cell, sizeof jod_cell, " %-7s", c.jod.verdict.c_str());
+        std::printf("%-10s %6s %10s %10s %8s %-22s %7s %7s %-8s %-7s %-7s %-7s%s%s%s\n", c.variant.c_str(), reps.c_str(),
                     f(c.base_ms, "%.4f").c_str(), f(c.cur_ms, "%.4f").c_str(), p2(t.change).c_str(),
                     intervalText(t).c_str(), f(pct(t.noise), "%.1f%%").c_str(), f(t.q, "%.3f").c_str(),
-                    t.verdict.c_str(), c.psnr.verdict.c_str(), c.ssim.verdict.c_str(), c.eci.verdict.c_str(),
+                    t.verdict.c_str(), c.psnr.verdict.c_str(), c.ssim.verdict.c_str(), c.eci.verdict.c_str(), jod_cell,
                     note.empty() ? "" : "  ", note.c_str());
     }
 }
@@ -303,7 +322,7 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
     bool regression = false, unknown = false, matched = false, decided = false;
     for (const auto& c : cells) {
         regression |= c.time.verdict == "SLOWER" || c.psnr.verdict == "WORSE" || c.ssim.verdict == "WORSE" ||
-                      c.eci.verdict == "WORSE";
+                      c.eci.verdict == "WORSE" || c.jod.verdict == "WORSE";
         unknown |= c.time.verdict == "UNKNOWN";
         matched |= c.base && c.cur;
         decided |= c.base && c.cur && c.time.verdict != "UNKNOWN";
@@ -337,8 +356,8 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
 void checkCompareOptions(const CompareOptions& o) {
     if (!(o.alpha > 0 && o.alpha < 1))
         throw std::invalid_argument("compare: --alpha " + std::to_string(o.alpha) + ": accepted: 0 < alpha < 1");
-    if (!(o.psnr_db >= 0) || !(o.ssim >= 0))
-        throw std::invalid_argument("compare: --psnr-threshold and --ssim-threshold must be >= 0");
+    if (!(o.psnr_db >= 0) || !(o.ssim >= 0) || !(o.jod >= 0))
+        throw std::invalid_argument("compare: --psnr-threshold, --ssim-threshold and --jod-threshold must be >= 0");
     if (!o.junit.empty()) {
         fs::path dir = fs::absolute(o.junit).parent_path();
         if (!fs::is_directory(dir) || fs::is_directory(o.junit))
@@ -386,9 +405,11 @@ std::vector<Cell> compareCells(const CompareOptions& o, const Side& base, const 
             quality(cell.psnr, "psnr_db_mean");
             quality(cell.ssim, "ssim_mean");
             quality(cell.eci, "eci");
+            quality(cell.jod, reports::kJodColumn);
             judgeQuality(cell.psnr, true, o.psnr_db, false);
             judgeQuality(cell.ssim, true, o.ssim, false);
             judgeQuality(cell.eci, false, eci_threshold, true);
+            judgeQuality(cell.jod, true, o.jod, false);  // a drop beyond --jod-threshold is WORSE
             cells.push_back(cell);
         }
     }

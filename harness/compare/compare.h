@@ -4,6 +4,7 @@
 #include <string>
 
 #include "harness/core/exit_codes.h"
+#include "reports/jod.h"
 
 namespace cbr::harness {
 
@@ -15,6 +16,7 @@ struct CompareOptions {
     double psnr_db = 0.1;          // PSNR change that counts, dB
     double ssim = 0.001;           // SSIM change that counts, absolute
     std::string eci = "5%";        // ECI change that counts, relative to the baseline
+    double jod = reports::kJodThreshold;  // ColorVideoVDP JOD change that counts, absolute (higher is better)
     bool strict = false;           // UNKNOWN cells make the exit code 2
     std::string junit;             // --junit FILE: the verdicts as JUnit XML (empty: none)
 };

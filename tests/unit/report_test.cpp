@@ -443,3 +443,103 @@ TEST(Report, ShowsFlipWhereTheRunHasIt) {
     EXPECT_NE(html.find("FLIP error map</figcaption>"), std::string::npos);
     EXPECT_EQ(html.find("flip_map.png absent"), std::string::npos);
 }
+
+namespace {
+
+// A run that scored ColorVideoVDP (reports/jod.h): summary.csv and frames.csv `cvvdp_jod`,
+// run.json's display model, and cbr-cso's worst frame with its cvvdp_map. The JODs rank drr
+// above cbr-cso, the other way round from PSNR, so the answer shows which one it read.
+fs::path makeJodRun(const std::string& name) {
+    fs::path dir = makeRun(name);
+    spit(dir / "summary.csv", withColumn(summaryCsv(), "cvvdp_jod", {"10", "9.6", "9.42", ""}));
+    std::vector<std::string> frame_cells;
+    for (int rep = 0; rep < 2; ++rep)
+        for (int f = 0; f < 3; ++f)
+            for (const char* v : {"10", "9.5", "9.4"}) frame_cells.push_back(rep ? "" : v);
+    frame_cells.push_back("");  // the skipped cbr-aso row
+    spit(dir / "frames.csv", withColumn(framesCsv(), "cvvdp_jod", frame_cells));
+    auto run = nlohmann::json::parse(kRunJson);
+    run["settings"]["display"] = {{"name", "standard_4k"}, {"spec", "standard_4k"}, {"ppd", 75.4}, {"peak", 200},
+                                  {"contrast", 1000}, {"ambient_lux", 250}, {"description", "a 4K monitor at 0.7 m"}};
+    run["settings"]["cvvdp_fps"] = 30;
+    run["quality_metrics"] = {{"cvvdp", "ColorVideoVDP v0.4.2, JOD against the full-resolution reference"}};
+    spit(dir / "run.json", run.dump(2));
+    cbr::metrics::Rgba8Image img{4, 2, std::vector<uint8_t>(4 * 2 * 4, 60)};
+    cbr::metrics::writePng(dir / "worst" / "cbr-cso_ssim_cvvdp_map.png", img);
+    return dir;
+}
+
+}  // namespace
+
+// One way to print a JOD, everywhere (reports/jod.h).
+TEST(Jod, OneTextAndTheDisplayModel) {
+    EXPECT_EQ(jodText(9.4249, "-"), "9.42 JOD");
+    EXPECT_EQ(jodText(std::nullopt, "-"), "-");
+    EXPECT_EQ(jodText(NAN, "-"), "-");
+    EXPECT_EQ(jodDiffText(-0.314), "0.31 JOD");
+    const auto display = nlohmann::json::parse(
+        R"({"name": "standard_4k", "spec": "standard_4k", "ppd": 75.4, "peak": 200, "contrast": 1000, "ambient_lux": 250})");
+    EXPECT_EQ(displayModelText(&display),
+              "standard_4k: 75.40 pixels per degree, peak 200 cd/m\u00b2, contrast 1000:1, ambient 250 lux");
+    EXPECT_EQ(displayModelText(nullptr), "");
+}
+
+// ColorVideoVDP: a column in the summary, a panel of the error-against-time chart, the answer
+// in JOD with what a JOD is, a per-frame chart, the difference map beside FLIP's, the display
+// model in the provenance.
+TEST(Report, ShowsJodWhereTheRunHasIt) {
+    fs::path dir = makeJodRun("jod");
+    const RunData d = loadRun(dir);
+    EXPECT_TRUE(hasJod(d));
+    EXPECT_TRUE(answersInJod(d));
+    const std::string answer = paretoSentence(d);
+    EXPECT_EQ(answer, "drr gives the best quality for its cost: it is on the Pareto front with 9.60 JOD (PSNR 25.30 dB) "
+                      "at 2.00x [1.90, 2.10] the speed of full; cbr-cso is dominated: slower (1.60x [1.50, 1.70]) and "
+                      "no better (9.42 JOD) (speed-ups: medians of the paired per-frame ratios full/variant, with 95% "
+                      "intervals).");
+    writeReport(dir);
+    const std::string html = withoutPayloads(slurp(dir / "report.html"));
+    EXPECT_NE(html.find("<b>Answer:</b> " + answer + "<br><span class=\"muted\">" + kJodMeaning + "</span></p>"),
+              std::string::npos);
+    for (const char* needle :
+         {"<th class=\"num\">ColorVideoVDP</th>", "<td class=\"num\">9.42 JOD</td>", "<td class=\"num\">10.00 JOD</td>",
+          "ColorVideoVDP JOD (higher is better)", "reads the JOD panel", "ColorVideoVDP, the frame",
+          "ColorVideoVDP difference map</figcaption>", "Display model (ColorVideoVDP)",
+          "standard_4k: 75.40 pixels per degree, peak 200 cd/m\u00b2, contrast 1000:1, ambient 250 lux",
+          "a 4K monitor at 0.7 m", "ColorVideoVDP v0.4.2, JOD against the full-resolution reference"})
+        EXPECT_NE(html.find(needle), std::string::npos) << needle;
+    EXPECT_EQ(html.find("cvvdp_map.png absent"), std::string::npos);
+    EXPECT_EQ(html.find("display.ppd"), std::string::npos) << "the display model has a table of its own";
+    fs::remove_all(dir);
+}
+
+// A run without JODs (from before ColorVideoVDP, or one that left the cells empty) reads as
+// before: the answer in PSNR, no JOD anywhere, and empty cells change nothing at all.
+TEST(Report, WithoutJodReadsAsBefore) {
+    fs::path old_run = makeRun("jod-none");
+    const std::string old_html = reportHtml(old_run);
+    EXPECT_EQ(withoutPayloads(old_html).find("JOD"), std::string::npos);
+    EXPECT_EQ(withoutPayloads(old_html).find("ColorVideoVDP"), std::string::npos);
+    EXPECT_NE(old_html.find("it is on the Pareto front with PSNR 26.10 dB (SSIM 0.9300)"), std::string::npos);
+    fs::path empty = makeRun("jod-empty");
+    spit(empty / "summary.csv", withColumn(summaryCsv(), "cvvdp_jod", {"", "", "", ""}));
+    std::vector<std::string> frame_cells(19, "");
+    spit(empty / "frames.csv", withColumn(framesCsv(), "cvvdp_jod", frame_cells));
+    EXPECT_FALSE(hasJod(loadRun(empty)));
+    EXPECT_EQ(reportHtml(empty), old_html);
+    fs::remove_all(old_run);
+    fs::remove_all(empty);
+}
+
+// score-seq's page: the JOD beside the other sequence figures.
+TEST(Report, SequencePageShowsJod) {
+    fs::path dir = makeJodRun("jod-seq");
+    auto run = nlohmann::json::parse(slurp(dir / "run.json"));
+    run["kind"] = "score-seq";
+    spit(dir / "run.json", run.dump());
+    const std::string html = withoutPayloads(reportHtml(dir));
+    EXPECT_NE(html.find("ECI 0.0000, ColorVideoVDP 10.00 JOD."), std::string::npos);
+    EXPECT_NE(html.find("<th class=\"num\">ColorVideoVDP</th>"), std::string::npos);
+    EXPECT_NE(html.find("ColorVideoVDP display model"), std::string::npos);
+    fs::remove_all(dir);
+}

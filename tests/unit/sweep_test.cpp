@@ -1,11 +1,18 @@
 // Sweep specs, their expansion, outer dimensions, the recommendations and quality at equal cost.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include "harness/core/sweep_configs.h"
 #include "harness/core/table_roles.h"
+#include "reports/csv.h"
+#include "reports/html.h"
+#include "reports/jod.h"
 #include "reports/sweep.h"
 
 using cbr::harness::expandSweep;
@@ -361,6 +368,130 @@ TEST(SweepEqualCost, OneConfigurationPerCheckerboardVariantItsBestPsnr) {
     auto eq = cbr::reports::equalCost(pts, {}, kRoles);
     ASSERT_EQ(eq.size(), 1u);
     EXPECT_EQ(eq[0].config, "cbr-aso_lod=-1");
+}
+
+namespace {
+
+SweepPoint withJod(SweepPoint p, double jod) {
+    p.jod = jod;
+    return p;
+}
+
+}  // namespace
+
+// ColorVideoVDP (reports/jod.h): where sweep.csv has JODs the recommendation ranks by them,
+// higher being better; without them it ranks by PSNR as before.
+TEST(SweepJod, SettingsRankByJodWherePresent) {
+    std::vector<SweepPoint> pts{lodPoint("a", -1, 5.0, 30.6), lodPoint("a", 0, 5.05, 30.0)};
+    EXPECT_EQ(cbr::reports::recommendSettings(pts, kRoles)[0].value, "-1");  // by PSNR
+    EXPECT_FALSE(cbr::reports::sweepRanksByJod(pts));
+    pts[0].jod = 9.1, pts[1].jod = 9.5;
+    ASSERT_TRUE(cbr::reports::sweepRanksByJod(pts));
+    const auto c = cbr::reports::recommendSettings(pts, kRoles);
+    ASSERT_EQ(c.size(), 1u);
+    EXPECT_EQ(c[0].value, "0");
+    EXPECT_NE(c[0].sentence.find("(cbr-aso_lod=0: 5.05 ms, 9.50 JOD, 30.00 dB, SSIM 0.9000, ECI 0.0200): the highest JOD"),
+              std::string::npos) << c[0].sentence;
+    EXPECT_NE(c[0].sentence.find("cbr-aso_lod=-1 scores 0.40 JOD less"), std::string::npos) << c[0].sentence;
+    EXPECT_NE(cbr::reports::settingRule(kRoles, true).find("the highest JOD, a JOD within 0.02 JOD counting as a tie"),
+              std::string::npos);
+    bool rule = false, meaning = false;
+    for (const auto& line : cbr::reports::sweepSummaryLines(pts, kRoles)) {
+        rule = rule || (line.rfind("rule: ", 0) == 0 && line.find("against JOD (ColorVideoVDP") != std::string::npos);
+        meaning = meaning || line == "quality: " + std::string(cbr::reports::kJodMeaning);
+    }
+    EXPECT_TRUE(rule);
+    EXPECT_TRUE(meaning);
+}
+
+TEST(SweepJod, ToleranceRanksByJodWherePresent) {
+    std::vector<SweepPoint> pts{point("cbr-aso", 6, 30, 0.02), point("cbr-cso", 6.0, 30.5, 0.02, 0.01),
+                                point("cbr-cso", 6.1, 30.0, 0.02, 0.1)};
+    EXPECT_DOUBLE_EQ(*cbr::reports::recommendTolerance(pts, kRoles)[0].tolerance, 0.01);  // by PSNR
+    pts[0].jod = 9.3, pts[1].jod = 9.2, pts[2].jod = 9.4;
+    const auto c = cbr::reports::recommendTolerance(pts, kRoles);
+    ASSERT_EQ(c.size(), 1u);
+    EXPECT_DOUBLE_EQ(*c[0].tolerance, 0.1);
+    EXPECT_NE(c[0].sentence.find("the best JOD, 9.40 JOD against cbr-aso's 9.30 JOD"), std::string::npos)
+        << c[0].sentence;
+    EXPECT_NE(c[0].sentence.find("while tolerance 0.01 loses 0.20 JOD"), std::string::npos) << c[0].sentence;
+}
+
+TEST(SweepJod, EqualCostComparesJods) {
+    std::vector<SweepPoint> pts{withJod(point("drr", 4, 26, 0.05, {}, 0.5), 8.5),
+                                withJod(point("drr", 8, 30, 0.03, {}, 1.0), 9.5),
+                                withJod(point("cbr-aso", 6, 29, 0.02), 8.8)};
+    auto eq = cbr::reports::equalCost(pts, {}, kRoles);
+    ASSERT_EQ(eq.size(), 1u);
+    EXPECT_NEAR(*eq[0].drr_jod, 9.0, 1e-12);
+    // By PSNR checkerboard wins by 1 dB; by JOD it loses.
+    EXPECT_NE(eq[0].verdict.find("with 9.00 JOD, PSNR 28.00 dB, SSIM 0.9000, ECI 0.0400, against 8.80 JOD, 29.00 dB"),
+              std::string::npos) << eq[0].verdict;
+    EXPECT_NE(eq[0].verdict.find(": checkerboard is worse by 0.20 JOD at equal cost."), std::string::npos)
+        << eq[0].verdict;
+    pts[2].jod = 8.95;
+    eq = cbr::reports::equalCost(pts, {}, kRoles);
+    EXPECT_NE(eq[0].verdict.find(": the same JOD at equal cost (within 0.10 JOD)."), std::string::npos) << eq[0].verdict;
+}
+
+namespace {
+
+// A sweep's directory with only sweep.csv: the checkerboard variants, drr at two scales and
+// full; `column`: sweep.csv has cvvdp_jod (sweeps from before ColorVideoVDP do not), `jods`: its cells.
+std::filesystem::path sweepDir(const std::string& name, bool column, bool jods) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / ("cbr-sweep-jod-" + name + "-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::vector<std::string> columns = cbr::reports::sweepColumns();
+    if (!column) std::erase(columns, std::string(cbr::reports::kJodColumn));
+    cbr::reports::CsvTable table(columns);
+    struct Row {
+        const char *config, *variant;
+        double ms, psnr, jod;
+        const char* setting;
+        double value;
+    };
+    const Row rows[] = {{"full", "full", 10, INFINITY, 10, nullptr, 0},
+                        {"drr_scale=0.5", "drr", 4, 26, 8.5, "drr_scale", 0.5},
+                        {"drr_scale=1", "drr", 8, 30, 9.5, "drr_scale", 1},
+                        {"cbr-aso", "cbr-aso", 6, 30, 9.3, nullptr, 0},
+                        {"cbr-cso_tol=0.01", "cbr-cso", 6.0, 30.5, 9.2, "cso_tolerance", 0.01},
+                        {"cbr-cso_tol=0.1", "cbr-cso", 6.1, 30.0, 9.4, "cso_tolerance", 0.1}};
+    for (const auto& r : rows) {
+        std::map<std::string, cbr::reports::Cell> row = {
+            {"config", r.config}, {"variant", r.variant}, {"path", "orbit"},   {"reference", "full"},
+            {"status", "ok"},     {"shading_cost", 1},    {"gpu_ms_median", r.ms}, {"psnr_db", r.psnr},
+            {"ssim", 0.9},        {"eci", 0.02}};
+        if (r.setting) row[r.setting] = r.value;
+        if (jods) row[cbr::reports::kJodColumn] = r.jod;
+        table.addRow(row);
+    }
+    std::ofstream(dir / "sweep.csv") << table.str();
+    std::ofstream(dir / "run.json") << R"({"scene": {"name": "blocks"}, "path": {"name": "orbit"}})";
+    return dir;
+}
+
+}  // namespace
+
+// sweep.html: a JOD column, the JOD plane and rule where sweep.csv has JODs; a sweep.csv
+// without the column, or with it empty, renders as before.
+TEST(SweepJod, PageShowsJodWherePresentAndElseReadsAsBefore) {
+    const auto old_dir = sweepDir("old", false, false), empty = sweepDir("empty", true, false);
+    const std::string old_html = cbr::reports::sweepHtml(old_dir, kRoles);
+    EXPECT_EQ(old_html.find("JOD"), std::string::npos);
+    EXPECT_NE(old_html.find("cso-tolerance 0.01"), std::string::npos);  // by PSNR
+    EXPECT_EQ(cbr::reports::sweepHtml(empty, kRoles), old_html);
+    const auto dir = sweepDir("jod", true, true);
+    const std::string html = cbr::reports::sweepHtml(dir, kRoles);
+    for (const char* needle : {"cso-tolerance 0.1: the best JOD, 9.40 JOD against cbr-aso&#39;s 9.30 JOD",
+                               "<th class=\"num\">ColorVideoVDP</th>", "<td class=\"num\">9.40 JOD</td>",
+                               "JOD against median GPU time", "a higher JOD)", "those within 0.02 JOD of the best JOD",
+                               "ColorVideoVDP (JOD, higher is better)", "checkerboard is better by 0.30 JOD at equal cost",
+                               "<th class=\"num\">JOD</th>"})
+        EXPECT_NE(html.find(needle), std::string::npos) << needle;
+    EXPECT_NE(html.find(cbr::reports::esc(cbr::reports::kJodMeaning)), std::string::npos);
+    for (const auto& d : {old_dir, empty, dir}) std::filesystem::remove_all(d);
 }
 
 namespace cbr::harness {
