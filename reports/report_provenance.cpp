@@ -58,7 +58,7 @@ std::string displayTable(const RunData& d) {
     Rows rows = {{"display", displayModelText(display)},
                  {"description", at(d, "/settings/display/description")},
                  {"frames per second scored", at(d, "/settings/cvvdp_fps")},
-                 {"metric", at(d, "/quality_metrics/cvvdp")},
+                 {"metric", at(d, "/metrics/cvvdp")},
                  {"JOD", kJodMeaning}};
     return kvTable("Display model (ColorVideoVDP)", rows);
 }

@@ -134,6 +134,7 @@ void writeSweepCsv(const std::filesystem::path& dir, const RunContext& rc) {
             row["speedup_ci_high"] = optional(sm.speedup_high);
             row["psnr_db"] = optional(sm.psnr_db);
             row["ssim"] = optional(sm.ssim_mean);
+            row["cvvdp_jod"] = optional(sm.cvvdp_jod);
             row["eci"] = optional(sm.eci);
             row["flicker_ratio"] = optional(sm.flicker_ratio_mean);
             for (const auto& [name, value] : sm.stats_mean)

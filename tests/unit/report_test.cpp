@@ -462,7 +462,7 @@ fs::path makeJodRun(const std::string& name) {
     run["settings"]["display"] = {{"name", "standard_4k"}, {"spec", "standard_4k"}, {"ppd", 75.4}, {"peak", 200},
                                   {"contrast", 1000}, {"ambient_lux", 250}, {"description", "a 4K monitor at 0.7 m"}};
     run["settings"]["cvvdp_fps"] = 30;
-    run["quality_metrics"] = {{"cvvdp", "ColorVideoVDP v0.4.2, JOD against the full-resolution reference"}};
+    run["metrics"] = {{"cvvdp", "ColorVideoVDP v0.4.2, JOD against the full-resolution reference"}};
     spit(dir / "run.json", run.dump(2));
     cbr::metrics::Rgba8Image img{4, 2, std::vector<uint8_t>(4 * 2 * 4, 60)};
     cbr::metrics::writePng(dir / "worst" / "cbr-cso_ssim_cvvdp_map.png", img);
