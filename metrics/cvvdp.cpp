@@ -29,12 +29,19 @@ constexpr float kExpandK[5] = {2 * kBandK[0], 2 * kBandK[1], 2 * kBandK[2], 2 * 
 
 float safePowF(float x, float p) { return std::pow(x + kEps, p) - std::pow(kEps, p); }
 
-// 2^y, y in double (so that the reduction to |r| <= 1/2 is exact to float precision), the
-// fraction by its Taylor series to r^7 (truncation below 6e-9 relative) in float.
-[[gnu::always_inline]] inline float exp2d(double y) {
-    y = y < -126.0 ? -126.0 : (y > 128.0 ? 128.0 : y);
-    const double n = (y + 6755399441055744.0) - 6755399441055744.0;  // round to nearest
-    const float r = float(y - n);
+// Float-only exp2 and log2 that vectorise (IEEE operations only, no table), for the powers.
+// Rounds to the nearest integer (ties to even) for |x| < 2^22.
+[[gnu::always_inline]] inline float roundF(float x) { return (x + 12582912.f) - 12582912.f; }
+
+// 2^(a + b) where a - round(a) is exact (a has few significant bits) and |b| is small: the
+// integer part is taken from a first so that the fraction keeps float precision; 2^fraction by
+// its Taylor series to r^7 (truncation below 6e-9 relative). Results past float's range give
+// 0 or infinity.
+[[gnu::always_inline]] inline float exp2Split(float a, float b) {
+    const float n1 = roundF(a);
+    const float r1 = (a - n1) + b;
+    const float n2 = roundF(r1);
+    const float r = r1 - n2;
     float p = 1.52527338040598e-05f;
     p = p * r + 1.54035303933816e-04f;
     p = p * r + 1.33335581464284e-03f;
@@ -43,13 +50,18 @@ float safePowF(float x, float p) { return std::pow(x + kEps, p) - std::pow(kEps,
     p = p * r + 2.40226506959101e-01f;
     p = p * r + 6.93147180559945e-01f;
     p = p * r + 1.f;
-    return p * std::bit_cast<float>((int(n) + 127) << 23);
+    int e = int(n1) + int(n2) + 127;
+    e = e < 0 ? 0 : (e > 255 ? 255 : e);
+    return p * std::bit_cast<float>(e << 23);
 }
+
+// The high half of a float: its 12 leading significant bits (hi * k is exact for k of up to 12 bits).
+constexpr float highBits(float x) { return std::bit_cast<float>(std::bit_cast<uint32_t>(x) & 0xfffff000u); }
 
 // log2 of a positive normal float: the exponent, and log2 of the mantissa m in [sqrt(1/2), sqrt(2))
 // from its series in t = (m - 1) / (m + 1) (truncation below 4e-10 relative).
 struct Log2Parts {
-    float e, m;  // log2 x = e + m
+    float e, m;  // log2 x = e + m, e an integer
 };
 [[gnu::always_inline]] inline Log2Parts log2Parts(float x) {
     const int bits = std::bit_cast<int>(x);
@@ -67,18 +79,37 @@ struct Log2Parts {
     return {float(e), p * t};
 }
 
-// (x + eps)^p - eps^p for x >= 0, eps^p computed the same way (x = 0 gives 0).
+// 10^v: v * log2(10) split so that its integer part is exact (v and the constant each cut in
+// two halves of 12 bits, Dekker's product without FMA).
+[[gnu::always_inline]] inline float pow10F(float v) {
+    constexpr float kL = 3.32192809488736235f;  // log2(10)
+    constexpr float kLHi = std::bit_cast<float>(std::bit_cast<uint32_t>(kL) & 0xfffff000u);  // 12 leading bits
+    constexpr float kLLo = kL - kLHi;
+    const float c = v * 4097.f;
+    const float v_hi = c - (c - v), v_lo = v - v_hi;
+    return exp2Split(v_hi * kLHi, v_hi * kLLo + v_lo * kL);
+}
+
+// (x + eps)^p - eps^p for x >= 0, eps^p computed the same way (x = 0 gives 0). Within about
+// 3e-7 (relative) of powf.
 struct SafePow {
-    float p = 1, eps_p = 0;
-    bool square = false;  // p == 2: a product
+    float p = 1, p_hi = 1, p_lo = 0;
+    float eps_pow = 0, eps_sq = 0;  // eps^p as pow() and as sq() compute it
+    bool square = false;             // p == 2: sq() gives it as a product
     SafePow() = default;
-    explicit SafePow(float p_) : p(p_), square(p_ == 2.f) { eps_p = (*this)(0.f); }  // eps_p is 0 here
-    [[gnu::always_inline]] float operator()(float x) const {
-        const float v = x + kEps;
-        if (square) return v * v - eps_p;
-        const Log2Parts l = log2Parts(v);
-        return exp2d(double(p) * (double(l.e) + double(l.m))) - eps_p;
+    explicit SafePow(float p_) : p(p_), p_hi(highBits(p_)), p_lo(p_ - highBits(p_)), square(p_ == 2.f) {
+        eps_pow = pow(0.f);  // with eps_pow still 0
+        eps_sq = kEps * kEps;
     }
+    [[gnu::always_inline]] float pow(float x) const {
+        const Log2Parts l = log2Parts(x + kEps);
+        return exp2Split(p_hi * l.e, p_lo * l.e + p * l.m) - eps_pow;
+    }
+    [[gnu::always_inline]] float sq(float x) const {  // only for p == 2
+        const float v = x + kEps;
+        return v * v - eps_sq;
+    }
+    float operator()(float x) const { return square ? sq(x) : pow(x); }
 };
 
 struct Plane {
@@ -242,40 +273,49 @@ double meanClamped(const Plane& p) {
 }
 
 // The temporal channels of one row: planes out[c * 2 + s] (s 0: test, 1: reference), from the
-// window's rows (oldest first) of packed RGB.
+// window's rows (oldest first) of packed RGB. lum: 3 * w floats of scratch.
 CBR_SIMD_CLONES
 void channelsRow(const CvvdpModel& m, const uint8_t* const* test, const uint8_t* const* ref, int n, int w,
-                 float* const* out) {
+                 float* const* out, float* __restrict lum) {
     const float* __restrict lut = m.lum_lut;
     const float m00 = m.rgb_to_dkl[0][0], m01 = m.rgb_to_dkl[0][1], m02 = m.rgb_to_dkl[0][2];
     const float m10 = m.rgb_to_dkl[1][0], m11 = m.rgb_to_dkl[1][1], m12 = m.rgb_to_dkl[1][2];
     const float m20 = m.rgb_to_dkl[2][0], m21 = m.rgb_to_dkl[2][1], m22 = m.rgb_to_dkl[2][2];
+    float* __restrict lr = lum;
+    float* __restrict lg = lum + w;
+    float* __restrict lb = lum + 2 * w;
     for (int s = 0; s < 2; ++s) {
         const uint8_t* const* src = s == 0 ? test : ref;
         float* __restrict o0 = out[s];
         float* __restrict o1 = out[2 + s];
         float* __restrict o2 = out[4 + s];
-        if (m.image) {
-            const uint8_t* __restrict p = src[0];
-            for (int x = 0; x < w; ++x) {
-                const float r = lut[p[3 * x]], g = lut[p[3 * x + 1]], b = lut[p[3 * x + 2]];
-                o0[x] = m00 * r + m01 * g + m02 * b;
-                o1[x] = m10 * r + m11 * g + m12 * b;
-                o2[x] = m20 * r + m21 * g + m22 * b;
-            }
-            continue;
-        }
-        float* __restrict o3 = out[6 + s];
-        std::fill(o0, o0 + w, 0.f);
-        std::fill(o1, o1 + w, 0.f);
-        std::fill(o2, o2 + w, 0.f);
-        std::fill(o3, o3 + w, 0.f);
+        float* __restrict o3 = m.image ? nullptr : out[6 + s];
         for (int j = 0; j < n; ++j) {
             const uint8_t* __restrict p = src[j];
+            for (int x = 0; x < w; ++x) {  // the look-up, scalar
+                lr[x] = lut[p[3 * x]];
+                lg[x] = lut[p[3 * x + 1]];
+                lb[x] = lut[p[3 * x + 2]];
+            }
+            if (m.image) {
+                for (int x = 0; x < w; ++x) {
+                    const float r = lr[x], g = lg[x], b = lb[x];
+                    o0[x] = m00 * r + m01 * g + m02 * b;
+                    o1[x] = m10 * r + m11 * g + m12 * b;
+                    o2[x] = m20 * r + m21 * g + m22 * b;
+                }
+                continue;
+            }
             const auto& t = m.taps[size_t(j)];
             const float t0 = t[0], t1 = t[1], t2 = t[2], t3 = t[3];
+            if (j == 0) {
+                std::fill(o0, o0 + w, 0.f);
+                std::fill(o1, o1 + w, 0.f);
+                std::fill(o2, o2 + w, 0.f);
+                std::fill(o3, o3 + w, 0.f);
+            }
             for (int x = 0; x < w; ++x) {
-                const float r = lut[p[3 * x]], g = lut[p[3 * x + 1]], b = lut[p[3 * x + 2]];
+                const float r = lr[x], g = lg[x], b = lb[x];
                 const float d0 = m00 * r + m01 * g + m02 * b;
                 const float d1 = m10 * r + m11 * g + m12 * b;
                 const float d2 = m20 * r + m21 * g + m22 * b;
@@ -305,6 +345,32 @@ struct BandConsts {
     bool blur = false;
 };
 
+// One channel of contrastRow (a function of its own, with every row a restrict pointer, so that
+// the loop vectorises).
+[[gnu::always_inline]] inline void contrastChannel(int w, const float* __restrict s, const int* __restrict idx,
+                                                   const float* __restrict frac, const float* __restrict et,
+                                                   const float* __restrict er, const float* __restrict gt,
+                                                   const float* __restrict xt, const float* __restrict gr,
+                                                   const float* __restrict xr, float sg, float cg, float mul,
+                                                   float* __restrict d, float* __restrict mk) {
+    for (int x = 0; x < w; ++x) {
+        const int i0 = idx[x];
+        const int i1 = i0 + 1 > 31 ? 31 : i0 + 1;
+        const float f = frac[x];
+        const float gain = pow10F(s[i0] * (1 - f) + s[i1] * f) * sg * cg;
+        const float lt = et[x] < 0.01f ? 0.01f : et[x];
+        const float lr = er[x] < 0.01f ? 0.01f : er[x];
+        float t = (gt[x] - xt[x]) / lt;
+        t = 1000.f < t ? 1000.f : t;
+        float r = (gr[x] - xr[x]) / lr;
+        r = 1000.f < r ? 1000.f : r;
+        const float tp = t * mul * gain, rp = r * mul * gain;
+        d[x] = std::abs(tp - rp);
+        const float at = std::abs(tp), ar = std::abs(rp);
+        mk[x] = ar < at ? ar : at;
+    }
+}
+
 // Contrast of one row of a band (not the baseband): test and reference against the reference's
 // expanded coarser level, times the CSF; writes the channel's difference and masking signal.
 // g, ex: 2 * nch rows; idx, frac: w of scratch.
@@ -312,7 +378,6 @@ CBR_SIMD_CLONES
 void contrastRow(const BandConsts& k, int w, const float* const* g, const float* const* ex, float* const* diff,
                  float* const* mask, int* __restrict idx, float* __restrict frac) {
     constexpr float kLog10Of2 = 0.30102999566398120f;
-    constexpr double kLog2Of10 = 3.32192809488736235;
     {
         const float* __restrict er = ex[1];
         for (int x = 0; x < w; ++x) {
@@ -326,34 +391,26 @@ void contrastRow(const BandConsts& k, int w, const float* const* g, const float*
             frac[x] = ind - float(i0);
         }
     }
-    const float* __restrict et = ex[0];
-    const float* __restrict er = ex[1];
-    for (int c = 0; c < k.nch; ++c) {
-        const float* __restrict s = k.csf[c];
-        const float* __restrict gt = g[2 * c];
-        const float* __restrict gr = g[2 * c + 1];
-        const float* __restrict xt = ex[2 * c];
-        const float* __restrict xr = ex[2 * c + 1];
-        float* __restrict d = diff[c];
-        float* __restrict mk = mask[c];
-        const float sg = k.sens_gain, cg = k.ch_gain[c], mul = k.mul;
-        for (int x = 0; x < w; ++x) {
-            const int i0 = idx[x];
-            const int i1 = i0 + 1 > 31 ? 31 : i0 + 1;
-            const float f = frac[x];
-            const float e = s[i0] * (1 - f) + s[i1] * f;
-            const float gain = exp2d(double(e) * kLog2Of10) * sg * cg;
-            const float lt = et[x] < 0.01f ? 0.01f : et[x];
-            const float lr = er[x] < 0.01f ? 0.01f : er[x];
-            float t = (gt[x] - xt[x]) / lt;
-            t = 1000.f < t ? 1000.f : t;
-            float r = (gr[x] - xr[x]) / lr;
-            r = 1000.f < r ? 1000.f : r;
-            const float tp = t * mul * gain, rp = r * mul * gain;
-            d[x] = std::abs(tp - rp);
-            const float at = std::abs(tp), ar = std::abs(rp);
-            mk[x] = ar < at ? ar : at;
-        }
+    for (int c = 0; c < k.nch; ++c)
+        contrastChannel(w, k.csf[c], idx, frac, ex[0], ex[1], g[2 * c], ex[2 * c], g[2 * c + 1], ex[2 * c + 1], k.sens_gain,
+                        k.ch_gain[c], k.mul, diff[c], mask[c]);
+}
+
+// The masking of one channel in maskRow: the masking signals mixed (four rows; a channel that
+// is not there is a row of zeros), the difference raised to mask_p over one plus it, saturated.
+[[gnu::always_inline]] inline void mixChannel(int w, const float* __restrict p0, const float* __restrict p1,
+                                              const float* __restrict p2, const float* __restrict p3,
+                                              const float* __restrict d, float x0, float x1, float x2, float x3,
+                                              const SafePow& dp, float d_max, float* __restrict out) {
+    const SafePow sp = dp;
+    for (int x = 0; x < w; ++x) {
+        float mc = 0;
+        mc += p0[x] * x0;
+        mc += p1[x] * x1;
+        mc += p2[x] * x2;
+        mc += p3[x] * x3;
+        const float du = sp.pow(d[x]) / (1 + mc);
+        out[x] = d_max * du / (d_max + du);
     }
 }
 
@@ -361,14 +418,14 @@ void contrastRow(const BandConsts& k, int w, const float* const* g, const float*
 // uncertainty: 13-tap Gaussian, edges mirrored without repeating the edge), raised to each
 // channel's power, mixed across channels; the difference raised to mask_p over one plus it,
 // saturated, then raised to beta and summed per channel into sums (the saturated difference into
-// d_out[c] when d_out is given). scratch: (w + 12) + (nch + 1) * w floats.
+// d_out[c] when d_out is given). scratch: (w + 12) + 5 * w floats.
 CBR_SIMD_CLONES
 void maskRow(const BandConsts& k, int w, int h, int y, const Plane* mask, const float* const* diff, float* const* d_out,
              float* __restrict scratch, double* sums) {
     const int nch = k.nch;
     float* __restrict vb = scratch;              // the vertical blur, 6 mirrored columns each side
     float* __restrict pm = scratch + (w + 12);   // nch rows: the masking signal
-    float* __restrict pw = pm + size_t(nch) * w;  // one row: the pooled powers
+    float* __restrict pw = pm + size_t(4) * w;    // one row: the pooled powers
     for (int c = 0; c < nch; ++c) {
         float* __restrict m = pm + size_t(c) * w;
         if (k.blur) {
@@ -383,10 +440,25 @@ void maskRow(const BandConsts& k, int w, int h, int y, const Plane* mask, const 
                 vb[6 - j] = v[j];
                 vb[6 + w - 1 + j] = v[w - 1 - j];
             }
-            const float* __restrict pu = k.pu;
+            const float k0 = k.pu[0], k1 = k.pu[1], k2 = k.pu[2], k3 = k.pu[3], k4 = k.pu[4], k5 = k.pu[5],
+                        k6 = k.pu[6], k7 = k.pu[7], k8 = k.pu[8], k9 = k.pu[9], k10 = k.pu[10], k11 = k.pu[11],
+                        k12 = k.pu[12];
             for (int x = 0; x < w; ++x) {
+                const float* __restrict in = vb + x;
                 float s = 0;
-                for (int i = 0; i < 13; ++i) s += pu[i] * vb[x + i];
+                s += k0 * in[0];
+                s += k1 * in[1];
+                s += k2 * in[2];
+                s += k3 * in[3];
+                s += k4 * in[4];
+                s += k5 * in[5];
+                s += k6 * in[6];
+                s += k7 * in[7];
+                s += k8 * in[8];
+                s += k9 * in[9];
+                s += k10 * in[10];
+                s += k11 * in[11];
+                s += k12 * in[12];
                 m[x] = s;
             }
         } else {
@@ -394,24 +466,21 @@ void maskRow(const BandConsts& k, int w, int h, int y, const Plane* mask, const 
         }
         const SafePow sp = k.mask_pow[c];
         const float gain = k.mask_c_gain;
-        for (int x = 0; x < w; ++x) m[x] = sp(std::abs(m[x] * gain));
+        if (sp.square)
+            for (int x = 0; x < w; ++x) m[x] = sp.sq(std::abs(m[x] * gain));
+        else
+            for (int x = 0; x < w; ++x) m[x] = sp.pow(std::abs(m[x] * gain));
     }
+    if (nch == 3) std::fill(pm + size_t(3) * w, pm + size_t(4) * w, 0.f);  // adds +0: no change
     for (int c = 0; c < nch; ++c) {
-        const float* __restrict d = diff[c];
-        float* __restrict o = d_out ? d_out[c] : nullptr;
-        const SafePow dp = k.d_pow, bp = k.beta_pow;
-        const float d_max = k.d_max;
-        float xc[4];
-        for (int j = 0; j < 4; ++j) xc[j] = k.xcm[j][c];
-        for (int x = 0; x < w; ++x) {
-            float mc = 0;
-            for (int j = 0; j < nch; ++j) mc += pm[size_t(j) * w + x] * xc[j];
-            const float du = dp(d[x]) / (1 + mc);
-            const float dd = d_max * du / (d_max + du);
-            pw[x] = dd;
-        }
-        if (o) std::memcpy(o, pw, size_t(w) * sizeof(float));
-        for (int x = 0; x < w; ++x) pw[x] = bp(pw[x]);
+        mixChannel(w, pm, pm + w, pm + 2 * size_t(w), pm + 3 * size_t(w), diff[c], k.xcm[0][c], k.xcm[1][c], k.xcm[2][c],
+                   k.xcm[3][c], k.d_pow, k.d_max, pw);
+        if (d_out) std::memcpy(d_out[c], pw, size_t(w) * sizeof(float));
+        const SafePow bp = k.beta_pow;
+        if (bp.square)
+            for (int x = 0; x < w; ++x) pw[x] = bp.sq(pw[x]);
+        else
+            for (int x = 0; x < w; ++x) pw[x] = bp.pow(pw[x]);
         sums[c] = rowSum(pw, w);
     }
 }
@@ -437,6 +506,7 @@ std::vector<Plane> CvvdpTracker::State::channels() const {
     const int n = m.image ? 1 : m.filterFrames();
     rowRanges(h, [&](int y0, int y1) {
         std::vector<const uint8_t*> test(static_cast<size_t>(n)), ref(static_cast<size_t>(n));
+        std::vector<float> lum(size_t(w) * 3);
         float* rows[8] = {};
         for (int y = y0; y < y1; ++y) {
             const size_t off = size_t(y) * size_t(w) * 3;
@@ -446,7 +516,7 @@ std::vector<Plane> CvvdpTracker::State::channels() const {
                 ref[size_t(j)] = ref_ring[slot].data() + off;
             }
             for (int i = 0; i < nch * 2; ++i) rows[i] = out[size_t(i)].row(y);
-            channelsRow(m, test.data(), ref.data(), n, w, rows);
+            channelsRow(m, test.data(), ref.data(), n, w, rows, lum.data());
         }
     });
     return out;
@@ -529,7 +599,7 @@ std::array<double, 4> CvvdpTracker::State::band(const std::vector<std::vector<Pl
         });
         // Masking and pooling (the saturated differences kept only for a map).
         rowRanges(h, [&](int y0, int y1) {
-            std::vector<float> scratch(size_t(w) + 12 + size_t(nch + 1) * size_t(w));
+            std::vector<float> scratch(size_t(w) + 12 + 5 * size_t(w));
             const float* drow[4];
             float* orow[4];
             for (int y = y0; y < y1; ++y) {
