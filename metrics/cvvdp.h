@@ -61,7 +61,8 @@ double cvvdpImageQ(double frame_q);
 struct CvvdpFrame {
     double q = 0;     // this frame's pooled difference
     double jod = 10;  // cvvdpJod(q): the JOD a sequence of such frames would get
-    // Per-pixel difference in [0, 1] (1 - JOD/10 of the reconstructed difference pyramid), on request.
+    // Per-pixel difference, 1 - JOD/10 of the reconstructed difference pyramid (0: none; not clamped:
+    // strong flicker passes 1), on request.
     std::optional<Image> map;
 };
 
