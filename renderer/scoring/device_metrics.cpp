@@ -174,8 +174,14 @@ DeviceMetrics::DeviceMetrics(vk::Context& ctx, const DeviceMetricsSettings& s) :
     cp.jod_a10 = float(mp.jod_a / 10);
     cp.jod_exp = float(mp.jod_exp);
     cp.jod_slope10 = float(mp.jod_a * std::pow(0.1, mp.jod_exp - 1) / 10);
+    auto epsPow = [](float p) { return std::pow(1e-5f, p); };
+    cp.eps_mask_p = epsPow(mp.mask_p);
+    cp.eps_beta = epsPow(mp.beta);
+    cp.eps_beta_tch = epsPow(mp.beta_tch);
+    cp.eps_inv_beta_tch = epsPow(1 / mp.beta_tch);
     for (int i = 0; i < 4; ++i) {
         cp.mask_q[i] = mp.mask_q[i];
+        cp.eps_mask_q[i] = epsPow(mp.mask_q[i]);
         cp.ch_gain[i] = mp.ch_gain[i];
         cp.ch_weight[i] = mp.ch_weight[i];
         cp.baseband_weight[i] = mp.baseband_weight[i];
@@ -362,12 +368,17 @@ void DeviceMetrics::dispatchCvvdp(VkCommandBuffer cmd, const vk::ComputeKernel& 
 void DeviceMetrics::recordCvvdp(VkCommandBuffer cmd, const Chain& chain, int maps) const {
     const int last = cvvdp_.bands - 1;
     auto level = [&](int b) { return levels_[size_t(b)]; };
+    auto stamp = [&](uint32_t i) {
+        if (time_pool_) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, time_pool_, time_first_ + i);
+    };
+    stamp(0);
     dispatchCvvdp(cmd, cv_channels_, chain, 0, maps, level(0).groups_x, level(0).groups_y);
     computeBarrier(cmd);
     for (int b = 0; b < last; ++b) {
         dispatchCvvdp(cmd, cv_reduce_, chain, b, maps, level(b + 1).groups_x, level(b + 1).groups_y, CVVDP_PLANES);
         computeBarrier(cmd);
     }
+    stamp(1);
     for (int b = 0; b < last; ++b) {
         dispatchCvvdp(cmd, cv_band_, chain, b, maps, level(b).groups_x, level(b).groups_y);
         computeBarrier(cmd);
@@ -375,11 +386,14 @@ void DeviceMetrics::recordCvvdp(VkCommandBuffer cmd, const Chain& chain, int map
     }
     dispatchCvvdp(cmd, cv_base_, chain, last, maps, 1, 1);
     computeBarrier(cmd);
-    if (!(maps & SCORE_MAP_CVVDP)) return;
-    for (int b = last - 1; b >= 0; --b) {
-        dispatchCvvdp(cmd, cv_expand_, chain, b, maps, level(b).groups_x, level(b).groups_y);
-        computeBarrier(cmd);
+    stamp(2);
+    if (maps & SCORE_MAP_CVVDP) {
+        for (int b = last - 1; b >= 0; --b) {
+            dispatchCvvdp(cmd, cv_expand_, chain, b, maps, level(b).groups_x, level(b).groups_y);
+            computeBarrier(cmd);
+        }
     }
+    stamp(3);
 }
 
 void DeviceMetrics::record(VkCommandBuffer cmd, VkBuffer reference, VkBuffer variant, VkBuffer analysis, Chain& chain,

@@ -103,6 +103,13 @@ public:
     VkDeviceSize scratchBytes() const;
     VkDeviceSize chainBytes() const;
     const metrics::CvvdpModel& cvvdpModel() const { return cvvdp_; }
+    // For timing (tests, cost measurements): later record()s write timestamps first .. first + 3
+    // of `pool` before ColorVideoVDP's passes, after its pyramid, after its bands and after its
+    // map (the last with or without a map); VK_NULL_HANDLE stops them.
+    void timeCvvdp(VkQueryPool pool, uint32_t first) {
+        time_pool_ = pool;
+        time_first_ = first;
+    }
     // Each band's per-channel q (metrics/cvvdp.cpp State::band's figures) from a result, the
     // baseband last: what read() pools into cvvdp_q.
     std::vector<std::array<double, 4>> cvvdpBands(const void* mapped_result) const;
@@ -139,6 +146,8 @@ private:
     std::vector<shaders::CvvdpLevel> levels_;
     vk::ComputeKernel cv_channels_, cv_reduce_, cv_band_, cv_pool_, cv_base_, cv_expand_;
     vk::Buffer cv_params_, pyramid_, cvvdp_map_;
+    VkQueryPool time_pool_ = VK_NULL_HANDLE;
+    uint32_t time_first_ = 0;
 };
 
 struct DeviceMetrics::Chain {

@@ -22,37 +22,40 @@ layout(push_constant) uniform Push { CvvdpPush push; };
 const float kBandK[5] = float[5](0.05, 0.25, 0.4, 0.25, 0.05);
 const float kEps = 1e-5;
 
-// (x + eps)^p - eps^p
-float safePow(float x, float p) { return pow(x + kEps, p) - pow(kEps, p); }
+// pow with the exponents the model uses most (beta 2, beta_tch 4 and its inverse) as products
+// and roots: the squares correctly rounded, as the CPU's powf rounds them.
+float powP(float x, float p) {
+    if (p == 2.0) return x * x;
+    if (p == 4.0) {
+        const float y = x * x;
+        return y * y;
+    }
+    if (p == 0.25) return sqrt(sqrt(x));
+    return pow(x, p);
+}
+
+// The model's power function, (x + eps)^p - eps^p, with eps^p as the CPU rounds it.
+float safePow(float x, float p, float eps_p) { return powP(x + kEps, p) - eps_p; }
 
 uint planeAt(int level, int plane) {
     const CvvdpLevel l = C.level[level];
     return l.offset + uint(plane) * uint(l.w * l.h);
 }
 
-// expand()'s taps at output index o of n (the source line `len` long): slot j = o + k of the
-// zero-interleaved line, padded as expandTap() pads it; the slots that hold a sample, in k order
-// (at most 3), their source index and weight 2 kBandK[k].
-int expandTaps(int o, int n, int len, out ivec3 src, out vec3 weight) {
-    int m = 0;
-    src = ivec3(0);
-    weight = vec3(0.0);
-    for (int k = 0; k < 5; ++k) {
-        const int j = o + k;
-        int s = -1;
-        if (j == 0)
-            s = 0;
-        else if (j >= 2 && j < n + 2 && (j & 1) == 0)
-            s = (j - 2) / 2;
-        else if (j == n + 2 + (n & 1))
-            s = len - 1;
-        if (s >= 0) {
-            src[m] = s;
-            weight[m] = 2.0 * kBandK[k];
-            ++m;
-        }
+// expand()'s taps at output index o of n (the source line `len` long), in the order the CPU adds
+// them: the samples of the zero-interleaved, padded line (expandTap()) under the kernel doubled.
+// Even o = 2m: slots 2m, 2m + 2, 2m + 4 hold sources m - 1 (0 at o = 0), m, and m + 1 (the
+// last source past the end); odd o: slots 2m + 2 and 2m + 4, sources m and m + 1 (the last past
+// the end), the third weight 0 (adding +0 leaves the CPU's sum as it is).
+void expandTaps(int o, int n, int len, out ivec3 src, out vec3 weight) {
+    const int m = o >> 1;
+    if ((o & 1) == 0) {
+        src = ivec3(o == 0 ? 0 : m - 1, m, o + 2 < n ? m + 1 : len - 1);
+        weight = vec3(2.0 * kBandK[0], 2.0 * kBandK[2], 2.0 * kBandK[4]);
+    } else {
+        src = ivec3(m, o + 1 < n ? m + 1 : len - 1, m);
+        weight = vec3(2.0 * kBandK[1], 2.0 * kBandK[3], 0.0);
     }
-    return m;
 }
 
 // sensitivity(): the CSF of band b and channel c at log10 luminance log_l (table interpolated

@@ -6,6 +6,7 @@
 // level's 8 Gaussian planes (each invocation reads only its own pixel of them): D_c = |test -
 // reference| on planes 0-3 and the masking input min(|test|, |reference|) on planes 4-7.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 #include "score_cvvdp.glsl"
 layout(local_size_x = SCORE_GROUP, local_size_y = SCORE_GROUP) in;
 
@@ -21,12 +22,20 @@ void main() {
     const ivec2 out0 = ivec2(gl_WorkGroupID.xy) * SCORE_GROUP;
     const ivec2 in0 = out0 / 2 - 1;
     const uint next_planes = planeAt(b + 1, 0), next_plane = uint(xw * xh);
-    for (uint t = gl_LocalInvocationIndex; t < uint(CVVDP_PLANES * kIn * kIn); t += CVVDP_THREADS) {
-        const int plane = int(t) / (kIn * kIn), at = int(t) % (kIn * kIn);
+    // Every load of the invocation issued before any store (one memory latency).
+    const int kLoads = (CVVDP_PLANES * kIn * kIn + CVVDP_THREADS - 1) / CVVDP_THREADS;
+    float v[kLoads];
+    [[unroll]] for (int k = 0; k < kLoads; ++k) {
+        const int t = int(gl_LocalInvocationIndex) + k * CVVDP_THREADS;
+        const int plane = t / (kIn * kIn), at = t % (kIn * kIn);
         const ivec2 p = in0 + ivec2(at % kIn, at / kIn);
-        next[t] = all(greaterThanEqual(p, ivec2(0))) && p.x < xw && p.y < xh
-                      ? pyr[next_planes + uint(plane) * next_plane + uint(p.y * xw + p.x)]
-                      : 0.0;
+        v[k] = t < CVVDP_PLANES * kIn * kIn && all(greaterThanEqual(p, ivec2(0))) && p.x < xw && p.y < xh
+                   ? pyr[next_planes + uint(plane) * next_plane + uint(p.y * xw + p.x)]
+                   : 0.0;
+    }
+    [[unroll]] for (int k = 0; k < kLoads; ++k) {
+        const int t = int(gl_LocalInvocationIndex) + k * CVVDP_THREADS;
+        if (t < CVVDP_PLANES * kIn * kIn) next[t] = v[k];
     }
     barrier();
     const int x = out0.x + int(gl_LocalInvocationID.x), y = out0.y + int(gl_LocalInvocationID.y);
@@ -34,13 +43,16 @@ void main() {
     // expand(): the vertical pass at each source column the horizontal pass reads, then that pass.
     ivec3 sy, sx;
     vec3 wy, wx;
-    const int ny = expandTaps(y, h, xh, sy, wy), nx = expandTaps(x, w, xw, sx, wx);
+    expandTaps(y, h, xh, sy, wy);
+    expandTaps(x, w, xw, sx, wx);
+    sy -= in0.y;
+    sx -= in0.x;
     float ex[CVVDP_PLANES];
     for (int p = 0; p < CVVDP_PLANES; ++p) {
         float s = 0.0;
-        for (int i = 0; i < nx; ++i) {
+        for (int i = 0; i < 3; ++i) {
             float v = 0.0;
-            for (int j = 0; j < ny; ++j) v += wy[j] * next[(p * kIn + sy[j] - in0.y) * kIn + sx[i] - in0.x];
+            for (int j = 0; j < 3; ++j) v += wy[j] * next[(p * kIn + sy[j]) * kIn + sx[i]];
             s += wx[i] * v;
         }
         ex[p] = s;

@@ -33,20 +33,23 @@ void main() {
     const float lt = mean.x / float(n), lr = mean.y / float(n);
     const float log_l = log10f(lr);
     vec4 s = vec4(0.0);
-    for (int c = 0; c < nch; ++c) s[c] = sensitivity(b, c, log_l);
+    for (int c = 0; c < 4; ++c)
+        if (c < nch) s[c] = sensitivity(b, c, log_l);
     vec4 part = vec4(0.0);
     for (uint i = gl_LocalInvocationIndex; i < n; i += CVVDP_THREADS) {
-        float d[4];
-        for (int c = 0; c < nch; ++c) {
+        vec4 d = vec4(0.0);
+        for (int c = 0; c < 4; ++c) {
+            if (c >= nch) continue;
             const float tp = pyr[level + uint(2 * c) * n + i], rp = pyr[level + uint(2 * c + 1) * n + i];
             d[c] = abs(min(tp / lt, 1000.0) - min(rp / lr, 1000.0)) * s[c];
-            part[c] += safePow(d[c], C.beta);
+            part[c] += safePow(d[c], C.beta, C.eps_beta);
         }
         if ((push.maps & SCORE_MAP_CVVDP) != 0) {
             float m = 0.0;
-            for (int c = 0; c < nch; ++c)
-                m += safePow(d[c] * (C.ch_weight[c] * C.t_int * C.baseband_weight[c]), C.beta_tch);
-            pyr[level + i] = safePow(m, 1.0 / C.beta_tch);
+            for (int c = 0; c < 4; ++c)
+                if (c < nch)
+                    m += safePow(d[c] * (C.ch_weight[c] * C.t_int * C.baseband_weight[c]), C.beta_tch, C.eps_beta_tch);
+            pyr[level + i] = safePow(m, 1.0 / C.beta_tch, C.eps_inv_beta_tch);
         }
     }
     part = total(part);

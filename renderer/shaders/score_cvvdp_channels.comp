@@ -8,14 +8,20 @@
 #include "score_cvvdp.glsl"
 layout(local_size_x = SCORE_GROUP, local_size_y = SCORE_GROUP) in;
 
+shared float lut[256];  // display luminance per sRGB code (C.lum_lut)
+float m[9];             // linear RGB to DKL
+
 vec3 dkl(uint v) {
-    const float r = C.lum_lut[v & 0xFFu], g = C.lum_lut[(v >> 8) & 0xFFu], b = C.lum_lut[(v >> 16) & 0xFFu];
+    const float r = lut[v & 0xFFu], g = lut[(v >> 8) & 0xFFu], b = lut[(v >> 16) & 0xFFu];
     vec3 o;
-    for (int i = 0; i < 3; ++i) o[i] = C.rgb_to_dkl[3 * i] * r + C.rgb_to_dkl[3 * i + 1] * g + C.rgb_to_dkl[3 * i + 2] * b;
+    for (int i = 0; i < 3; ++i) o[i] = m[3 * i] * r + m[3 * i + 1] * g + m[3 * i + 2] * b;
     return o;
 }
 
 void main() {
+    lut[gl_LocalInvocationIndex] = C.lum_lut[gl_LocalInvocationIndex];  // 256 invocations
+    for (int i = 0; i < 9; ++i) m[i] = C.rgb_to_dkl[i];
+    barrier();
     const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
     const int w = C.width, h = C.height;
     if (x >= w || y >= h) return;

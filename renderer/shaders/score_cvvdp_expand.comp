@@ -16,11 +16,12 @@ void main() {
     const uint next = planeAt(b + 1, 0), i = planeAt(b, 0) + uint(y * w + x);
     ivec3 sy, sx;
     vec3 wy, wx;
-    const int ny = expandTaps(y, h, xh, sy, wy), nx = expandTaps(x, w, xw, sx, wx);
+    expandTaps(y, h, xh, sy, wy);
+    expandTaps(x, w, xw, sx, wx);
     float s = 0.0;
-    for (int k = 0; k < nx; ++k) {
+    for (int k = 0; k < 3; ++k) {
         float v = 0.0;
-        for (int j = 0; j < ny; ++j) v += wy[j] * pyr[next + uint(sy[j] * xw + sx[k])];
+        for (int j = 0; j < 3; ++j) v += wy[j] * pyr[next + uint(sy[j] * xw + sx[k])];
         s += wx[k] * v;
     }
     const float q = s + pyr[i];

@@ -4,6 +4,7 @@
 // pass first, then the horizontal, each with the reference's folded edges: the horizontal pass
 // folds its last column by the parity of the ROW count, as the reference does.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 #include "score_cvvdp.glsl"
 layout(local_size_x = SCORE_GROUP, local_size_y = SCORE_GROUP) in;
 
@@ -18,9 +19,18 @@ void main() {
     const uint src = planeAt(from, plane), dst = planeAt(from + 1, plane);
     const ivec2 out0 = ivec2(gl_WorkGroupID.xy) * SCORE_GROUP;
     const ivec2 in0 = 2 * out0 - 2;
-    for (uint t = gl_LocalInvocationIndex; t < uint(kIn * kIn); t += CVVDP_THREADS) {
-        const ivec2 p = in0 + ivec2(int(t) % kIn, int(t) / kIn);
-        tile[t] = all(greaterThanEqual(p, ivec2(0))) && p.x < w && p.y < h ? pyr[src + uint(p.y * w + p.x)] : 0.0;
+    // Every load of the invocation issued before any store (one memory latency).
+    const int kLoads = (kIn * kIn + CVVDP_THREADS - 1) / CVVDP_THREADS;
+    float v[kLoads];
+    [[unroll]] for (int k = 0; k < kLoads; ++k) {
+        const int t = int(gl_LocalInvocationIndex) + k * CVVDP_THREADS;
+        const ivec2 p = in0 + ivec2(t % kIn, t / kIn);
+        v[k] = t < kIn * kIn && all(greaterThanEqual(p, ivec2(0))) && p.x < w && p.y < h ? pyr[src + uint(p.y * w + p.x)]
+                                                                                          : 0.0;
+    }
+    [[unroll]] for (int k = 0; k < kLoads; ++k) {
+        const int t = int(gl_LocalInvocationIndex) + k * CVVDP_THREADS;
+        if (t < kIn * kIn) tile[t] = v[k];
     }
     barrier();
     const bool odd_rows = (h & 1) == 1;

@@ -88,6 +88,9 @@ struct CvvdpShaderParams {
     float mask_p, mask_c_gain, d_max_gain, sensitivity_gain;
     float t_int, beta, beta_tch, csf_log_l0;
     float csf_log_l1, jod_a10, jod_exp, jod_slope10;  // the map: jod_a / 10 q^jod_exp, jod_slope / 10 q at q <= 0.1
+    // eps^p of the power function's exponents, as the CPU rounds them (powf(1e-5f, p)).
+    float eps_mask_p, eps_beta, eps_beta_tch, eps_inv_beta_tch;
+    float eps_mask_q[4];
     float mask_q[4];
     float xcm[16];  // xcm[k * 4 + c]: mask channel k's weight on channel c
     float ch_gain[4];
@@ -110,7 +113,7 @@ struct CvvdpPush {
 
 #ifdef __cplusplus
 static_assert(sizeof(CvvdpLevel) == 32);
-static_assert(sizeof(CvvdpShaderParams) == 4 * (20 + 4 + 16 + 12 + 16 + 12 + 256) + 32 * CVVDP_MAX_BANDS);
+static_assert(sizeof(CvvdpShaderParams) == 4 * (28 + 4 + 16 + 12 + 16 + 12 + 256) + 32 * CVVDP_MAX_BANDS);
 static_assert(sizeof(CvvdpPush) == 16);
 static_assert(sizeof(ScoreParams) == 4 * (30 + 3 + 3 + 9 + 9 + 256));
 static_assert(sizeof(ScorePush) == 32);

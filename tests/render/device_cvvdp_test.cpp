@@ -342,5 +342,179 @@ TEST_F(DeviceCvvdpTest, VariantsShareOneCommandBuffer) {
     }
 }
 
+// Not a check (timing is measured, never asserted): GPU time of record() and of its ColorVideoVDP
+// passes (DeviceMetrics::timeCvvdp) at 1080p and 4K (CBR_TIME_SIZES=WxH,... for others) at 15 fps
+// (CBR_TIME_FPS), with the maps as a run asks for them, and the device memory; no validation
+// layer (it would be timed too). Run with --gtest_also_run_disabled_tests.
+TEST(DeviceCvvdpTiming, DISABLED_TimeFrames) {
+    const char* device_name = std::getenv("CBR_TEST_DEVICE");
+    std::unique_ptr<vk::Context> ctx;
+    try {
+        ctx = std::make_unique<vk::Context>(vk::ContextOptions{/* validate= */ false, device_name ? device_name : ""});
+    } catch (const vk::Unsupported& e) {
+        GTEST_SKIP() << e.what();
+    }
+    std::vector<std::pair<int, int>> sizes = {{1920, 1080}, {3840, 2160}};
+    if (const char* list = std::getenv("CBR_TIME_SIZES")) {
+        sizes.clear();
+        for (const char* p = list; *p;) {
+            int w = 0, h = 0, n = 0;
+            if (std::sscanf(p, "%dx%d%n", &w, &h, &n) != 2) break;
+            sizes.push_back({w, h});
+            p += n + (p[n] == ',' ? 1 : 0);
+        }
+    }
+    const double fps = std::getenv("CBR_TIME_FPS") ? std::atof(std::getenv("CBR_TIME_FPS")) : 15.0;
+    constexpr uint32_t kStamps = 6;  // record() begins, ColorVideoVDP's 4 (timeCvvdp), record() ends
+    VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO, nullptr, 0, VK_QUERY_TYPE_TIMESTAMP, kStamps};
+    VkQueryPool pool;
+    VK_CHECK(vkCreateQueryPool(ctx->device, &info, nullptr, &pool));
+    for (auto [width, height] : sizes) {
+        DeviceMetricsSettings settings;
+        settings.width = uint32_t(width);
+        settings.height = uint32_t(height);
+        settings.cvvdp_fps = fps;
+        DeviceMetrics device(*ctx, settings);
+        device.timeCvvdp(pool, 1);
+        auto chain = device.makeChain();
+        const size_t pixels = size_t(width) * size_t(height);
+        constexpr VkBufferUsageFlags kIn = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        // Two frames of a pattern moving by a pixel, the variant a few codes off the reference.
+        vk::Buffer inputs[2][3];
+        const std::vector<float> no_surface(4 * pixels, 0.0f);
+        for (int k = 0; k < 2; ++k) {
+            std::vector<uint8_t> ref(4 * pixels, 255), var(4 * pixels, 255);
+            for (size_t i = 0; i < pixels; ++i) {
+                const int x = int(i % size_t(width)) + k, y = int(i / size_t(width));
+                for (int c = 0; c < 3; ++c) {
+                    const double v = 128 + 60 * std::sin(0.05 * x + c) * std::cos(0.031 * y) + ((x / 37 + y / 23) % 2) * 40;
+                    ref[4 * i + size_t(c)] = uint8_t(std::clamp(v, 0.0, 255.0));
+                    var[4 * i + size_t(c)] =
+                        uint8_t(std::clamp(v + int(hash(uint32_t(4 * i + size_t(c)) + uint32_t(k)) % 9) - 4, 0.0, 255.0));
+                }
+            }
+            inputs[k][0] = vk::uploadBuffer(*ctx, ref.data(), 4 * pixels, kIn);
+            inputs[k][1] = vk::uploadBuffer(*ctx, var.data(), 4 * pixels, kIn);
+            inputs[k][2] = vk::uploadBuffer(*ctx, no_surface.data(), 16 * pixels, kIn);
+        }
+        vk::Buffer result = vk::createReadbackBuffer(*ctx, device.resultBytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+        vk::Buffer maps[4];
+        for (vk::Buffer& m : maps) m = vk::createBuffer(*ctx, 4 * pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+        const int frames = ctx->description.is_lavapipe ? 3 : 60;
+        std::vector<std::array<double, kStamps - 1>> ms;  // per frame: the intervals between stamps
+        for (int i = 0; i < frames; ++i) {
+            const vk::Buffer* in = inputs[i % 2];
+            ctx->immediate([&](VkCommandBuffer cmd) {
+                vkCmdResetQueryPool(cmd, pool, 0, kStamps);
+                vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool, 0);
+                device.record(cmd, in[0].buffer, in[1].buffer, in[2].buffer, *chain, false, result.buffer,
+                              maps[0].buffer, maps[1].buffer, maps[2].buffer, maps[3].buffer);
+                vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool, kStamps - 1);
+            });
+            uint64_t ticks[kStamps] = {};
+            VK_CHECK(vkGetQueryPoolResults(ctx->device, pool, 0, kStamps, sizeof(ticks), ticks, sizeof(uint64_t),
+                                           VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+            std::array<double, kStamps - 1> d{};
+            for (uint32_t s = 0; s + 1 < kStamps; ++s)
+                d[s] = double(ticks[s + 1] - ticks[s]) * ctx->caps.timestamp_period_ns * 1e-6;
+            ms.push_back(d);
+        }
+        const DeviceScores s = device.read(result.mapped, *chain);
+        // Medians over the last third (clocks up).
+        auto median = [&](auto f) {
+            std::vector<double> v;
+            for (size_t i = ms.size() - ms.size() / 3 - 1; i < ms.size(); ++i) v.push_back(f(ms[i]));
+            std::sort(v.begin(), v.end());
+            return v[v.size() / 2];
+        };
+        using D = std::array<double, kStamps - 1>;
+        std::printf("%dx%d at %.0f fps (%s), %d bands: GPU ms per frame: all %.3f, cvvdp %.3f (channels + pyramid %.3f, "
+                    "bands %.3f, map %.3f), the other metrics %.3f; cvvdp_q %.5f\n",
+                    width, height, fps, ctx->description.name.c_str(), device.cvvdpModel().bands,
+                    median([](const D& d) { return d[0] + d[1] + d[2] + d[3] + d[4]; }),
+                    median([](const D& d) { return d[1] + d[2] + d[3]; }), median([](const D& d) { return d[1]; }),
+                    median([](const D& d) { return d[2]; }), median([](const D& d) { return d[3]; }),
+                    median([](const D& d) { return d[0] + d[4]; }), s.cvvdp_q);
+        std::printf("%dx%d: scratch %.1f MB, chain %.1f MB (window %d frames), result %.1f KB\n", width, height,
+                    double(device.scratchBytes()) / 1e6, double(device.chainBytes()) / 1e6,
+                    device.cvvdpModel().filterFrames(), double(device.resultBytes()) / 1e3);
+        for (auto& k : inputs)
+            for (vk::Buffer& b : k) vk::destroyBuffer(*ctx, b);
+        for (vk::Buffer& m : maps) vk::destroyBuffer(*ctx, m);
+        vk::destroyBuffer(*ctx, result);
+    }
+    vkDestroyQueryPool(ctx->device, pool, nullptr);
+}
+
+// Not run by default (no validation layer; the CPU model of a large frame takes seconds): the
+// device against CvvdpTracker on 6 frames of a moving synthetic pattern at the CBR_TIME_SIZES
+// (default 1920x1080), on the device CBR_TEST_DEVICE names, e.g. a discrete GPU's own rounding.
+TEST(DeviceCvvdpTiming, DISABLED_AgreesAtSize) {
+    const char* device_name = std::getenv("CBR_TEST_DEVICE");
+    std::unique_ptr<vk::Context> ctx;
+    try {
+        ctx = std::make_unique<vk::Context>(vk::ContextOptions{/* validate= */ false, device_name ? device_name : ""});
+    } catch (const vk::Unsupported& e) {
+        GTEST_SKIP() << e.what();
+    }
+    int width = 1920, height = 1080;
+    if (const char* size = std::getenv("CBR_TIME_SIZES")) std::sscanf(size, "%dx%d", &width, &height);
+    DeviceMetricsSettings settings;
+    settings.width = uint32_t(width);
+    settings.height = uint32_t(height);
+    settings.cvvdp_fps = 15;
+    DeviceMetrics device(*ctx, settings);
+    auto chain = device.makeChain();
+    metrics::CvvdpTracker tracker(width, height, settings.display, settings.cvvdp_fps);
+    const size_t pixels = size_t(width) * size_t(height);
+    constexpr VkBufferUsageFlags kIn = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    const std::vector<float> no_surface(4 * pixels, 0.0f);
+    vk::Buffer field = vk::uploadBuffer(*ctx, no_surface.data(), 16 * pixels, kIn);
+    vk::Buffer result = vk::createReadbackBuffer(*ctx, device.resultBytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    vk::Buffer map = vk::createReadbackBuffer(*ctx, 4 * pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    double worst_jod = 0, worst_map = 0;
+    std::vector<double> q_device, q_cpu;
+    for (int t = 0; t < 6; ++t) {
+        std::vector<uint8_t> ref(4 * pixels, 255), var(4 * pixels, 255);
+        for (size_t i = 0; i < pixels; ++i) {
+            const int x = int(i % size_t(width)) + 2 * t, y = int(i / size_t(width)) + t;
+            for (int c = 0; c < 3; ++c) {
+                const double v = 128 + 60 * std::sin(0.05 * x + c) * std::cos(0.031 * y) + ((x / 37 + y / 23) % 2) * 40;
+                ref[4 * i + size_t(c)] = uint8_t(std::clamp(v, 0.0, 255.0));
+                const int noise = t % 3 == 2 ? int(hash(uint32_t(4 * i + size_t(c) + 7 * size_t(t))) % 9) - 4 : (x / 5 + y / 3) % 3 - 1;
+                var[4 * i + size_t(c)] = uint8_t(std::clamp(v + noise, 0.0, 255.0));
+            }
+        }
+        vk::Buffer r = vk::uploadBuffer(*ctx, ref.data(), 4 * pixels, kIn);
+        vk::Buffer v = vk::uploadBuffer(*ctx, var.data(), 4 * pixels, kIn);
+        ctx->immediate([&](VkCommandBuffer cmd) {
+            device.record(cmd, r.buffer, v.buffer, field.buffer, *chain, false, result.buffer, VK_NULL_HANDLE,
+                          VK_NULL_HANDLE, VK_NULL_HANDLE, map.buffer);
+        });
+        vk::destroyBuffer(*ctx, r);
+        vk::destroyBuffer(*ctx, v);
+        const DeviceScores s = device.read(result.mapped, *chain);
+        const metrics::CvvdpFrame c = tracker.addRgba8(ref.data(), var.data(), true);
+        const double d = std::abs(metrics::cvvdpJod(s.cvvdp_q) - c.jod);
+        const auto* m = static_cast<const float*>(map.mapped);
+        double dm = 0;
+        for (size_t i = 0; i < pixels; ++i) dm = std::max(dm, std::abs(double(m[i]) - c.map->data[i]));
+        std::printf("frame %d: JOD device %.6f cpu %.6f, max map difference %.3g\n", t, metrics::cvvdpJod(s.cvvdp_q),
+                    c.jod, dm);
+        worst_jod = std::max(worst_jod, d);
+        worst_map = std::max(worst_map, dm);
+        q_device.push_back(s.cvvdp_q);
+        q_cpu.push_back(c.q);
+        EXPECT_LE(d, kJod) << "frame " << t;
+        EXPECT_LE(dm, kMap) << "frame " << t;
+    }
+    const double pooled = std::abs(metrics::cvvdpJod(metrics::cvvdpPoolFrames(q_device)) -
+                                   metrics::cvvdpJod(metrics::cvvdpPoolFrames(q_cpu)));
+    std::printf("%dx%d on %s: max |JOD device - cpu| per frame %.3g, pooled %.3g; map %.3g\n", width, height,
+                ctx->description.name.c_str(), worst_jod, pooled, worst_map);
+    EXPECT_LE(pooled, kJod);
+    for (vk::Buffer* b : {&field, &result, &map}) vk::destroyBuffer(*ctx, *b);
+}
+
 }  // namespace
 }  // namespace cbr::test
