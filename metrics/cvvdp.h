@@ -95,6 +95,7 @@ struct CvvdpParams {
     float mask_q[4], xcm[4][4], ch_gain[4], ch_weight[4], baseband_weight[4];
     float pu_kernel[13];
     float beta, beta_sch, beta_tch, beta_t;
+    double jod_a, jod_exp;  // cvvdpJod's figures (above q = 0.1: 10 - jod_a q^jod_exp)
 };
 const CvvdpParams& cvvdpParams();
 

@@ -239,6 +239,8 @@ const CvvdpParams& cvvdpParams() {
         c.beta_sch = float(T::k_beta_sch);
         c.beta_tch = float(T::k_beta_tch);
         c.beta_t = float(T::k_beta_t);
+        c.jod_a = T::k_jod_a;
+        c.jod_exp = T::k_jod_exp;
         return c;
     }();
     return p;

@@ -94,6 +94,7 @@ struct FrameResult {
     std::vector<float> crawl_map;      // width * height, with a new worst frame by edge crawl: |crawl|, 0 where not scored
     // width * height, with a new worst frame (either kind): metrics::ssimMap, metrics::flip's map
     std::vector<float> ssim_map, flip_map;
+    std::vector<float> cvvdp_map;  // width * height, with a new worst frame (either kind): metrics::CvvdpFrame::map
     std::vector<std::pair<std::string, double>> stats;  // e.g. px_shaded: fraction of the frame's pixels
     std::vector<std::pair<std::string, std::string>> left_out;  // (pass, reason)
 };

@@ -1,5 +1,6 @@
 // The device scorer: records the score_*.comp passes (MSE + SSIM, FLIP in bands of rows, edge
-// crawl) over copies of the caller's buffers, and reads their partial sums back in double.
+// crawl, ColorVideoVDP) over copies of the caller's buffers, and reads their partial sums back in
+// double.
 #include "renderer/scoring/device_metrics.h"
 
 #include <algorithm>
@@ -16,6 +17,12 @@
 #include "shaders/score_blur_h.comp.h"
 #include "shaders/score_blur_v.comp.h"
 #include "shaders/score_crawl.comp.h"
+#include "shaders/score_cvvdp_band.comp.h"
+#include "shaders/score_cvvdp_base.comp.h"
+#include "shaders/score_cvvdp_channels.comp.h"
+#include "shaders/score_cvvdp_expand.comp.h"
+#include "shaders/score_cvvdp_pool.comp.h"
+#include "shaders/score_cvvdp_reduce.comp.h"
 #include "shaders/score_flip_h.comp.h"
 #include "shaders/score_flip_v.comp.h"
 #include "shaders/score_flip_ycc.comp.h"
@@ -25,6 +32,7 @@ namespace cbr::scoring {
 namespace {
 
 constexpr int kBindings = 11;
+constexpr int kCvvdpBindings = 6;  // score_cvvdp.glsl
 // FLIP's 20 band planes (YCxCz and the horizontal filter rows of both images) stay within this
 // many bytes: 128 MB holds about 400 rows of a 3840-wide frame, so 4K runs in 6 bands.
 constexpr VkDeviceSize kBandBudget = VkDeviceSize(128) << 20;
@@ -36,12 +44,18 @@ constexpr VkPipelineStageFlags2 kTransfer = VK_PIPELINE_STAGE_2_COPY_BIT | VK_PI
 constexpr VkAccessFlags2 kShaderReadWrite = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
 constexpr VkAccessFlags2 kTransferReadWrite = VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
 
-std::vector<vk::Binding> bindings() {
+std::vector<vk::Binding> bindings(int count = kBindings) {
     std::vector<vk::Binding> b;
-    for (uint32_t i = 0; i < kBindings; ++i)
+    for (uint32_t i = 0; i < uint32_t(count); ++i)
         b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
     return b;
 }
+
+// metrics/cvvdp.cpp's power function, for read()'s pooling in the CPU's float steps.
+float safePowF(float x, float p) { return std::pow(x + 1e-5f, p) - std::pow(1e-5f, p); }
+
+// The crawl's state in a chain: blurred reference luma, blurred variant luma, depth.
+VkDeviceSize stateBytes(const DeviceMetricsSettings& s) { return 12 * VkDeviceSize(s.width) * s.height; }
 
 // Every pass reads and writes through storage buffers only: a compute-to-compute barrier
 // between passes orders them all.
@@ -78,7 +92,8 @@ void requireLimits(const vk::Context& ctx, VkDeviceSize largest_buffer, uint32_t
 
 DeviceMetrics::Chain::~Chain() {
     if (pool) vkDestroyDescriptorPool(ctx.device, pool, nullptr);
-    vk::destroyBuffer(ctx, state);
+    if (cvvdp_pool) vkDestroyDescriptorPool(ctx.device, cvvdp_pool, nullptr);
+    for (vk::Buffer* b : {&state, &window_reference, &window_test}) vk::destroyBuffer(ctx, *b);
 }
 
 DeviceMetrics::DeviceMetrics(vk::Context& ctx, const DeviceMetricsSettings& s) : ctx_(ctx), settings_(s) {
@@ -100,7 +115,29 @@ DeviceMetrics::DeviceMetrics(vk::Context& ctx, const DeviceMetricsSettings& s) :
     head.crawl_base = head.ssim_base + groups * SCORE_SSIM_WORDS;
     head.hist_base = head.crawl_base + groups * SCORE_CRAWL_WORDS;
     head.pixels = uint32_t(pixels);
-    result_bytes_ = 4 * (VkDeviceSize(head.hist_base) + VkDeviceSize(SCORE_HIST_BINS) * SCORE_HIST_WORDS);
+    cvvdp_base_ = head.hist_base + SCORE_HIST_BINS * SCORE_HIST_WORDS;
+
+    // ColorVideoVDP: the model (throws for a display or frame rate that is not finite), the
+    // pyramid's levels and where their partial sums go.
+    cvvdp_ = metrics::makeCvvdpModel(width, height, s.display, s.cvvdp_fps);
+    window_ = cvvdp_.image ? 1 : cvvdp_.filterFrames();
+    if (cvvdp_.bands > CVVDP_MAX_BANDS)
+        throw std::invalid_argument("DeviceMetrics: ColorVideoVDP's " + std::to_string(cvvdp_.bands) +
+                                    " bands exceed the device passes' " + std::to_string(CVVDP_MAX_BANDS));
+    uint32_t pyramid_floats = 0, sums = cvvdp_base_;
+    for (int b = 0; b < cvvdp_.bands; ++b) {
+        shaders::CvvdpLevel l{};
+        l.w = cvvdp_.band_size[size_t(b)][0];
+        l.h = cvvdp_.band_size[size_t(b)][1];
+        l.offset = pyramid_floats;
+        l.groups_x = groupsFor(uint32_t(l.w));
+        l.groups_y = groupsFor(uint32_t(l.h));
+        l.sums = sums;
+        pyramid_floats += CVVDP_PLANES * uint32_t(l.w * l.h);
+        sums += (b == cvvdp_.bands - 1 ? 1u : l.groups_x * l.groups_y) * CVVDP_SUM_WORDS;
+        levels_.push_back(l);
+    }
+    result_bytes_ = 4 * VkDeviceSize(sums);
 
     // FLIP bands: as many output rows as fit the budget with their filter halo, at least 16.
     flip_halo_ = std::max(head.flip_colour_radius, head.flip_feature_radius);
@@ -110,7 +147,66 @@ DeviceMetrics::DeviceMetrics(vk::Context& ctx, const DeviceMetricsSettings& s) :
     band_plane_ = width * std::min(height, band_rows_ + 2 * flip_halo_);
     const VkDeviceSize band_bytes = 4 * std::max(VkDeviceSize(kBandPlanes) * band_plane_, 2 * pixels);
     const VkDeviceSize analysis_bytes = 16 * pixels;
-    requireLimits(ctx, std::max({band_bytes, analysis_bytes, result_bytes_}), groups_x_, groups_y_);
+    const VkDeviceSize pyramid_bytes = 4 * VkDeviceSize(pyramid_floats);
+    requireLimits(ctx, std::max({band_bytes, analysis_bytes, result_bytes_, pyramid_bytes, windowBytes()}), groups_x_,
+                  groups_y_);
+
+    // The model's figures for the passes, converted once (score_shared.h CvvdpShaderParams).
+    const metrics::CvvdpParams& mp = metrics::cvvdpParams();
+    shaders::CvvdpShaderParams cp{};
+    cp.width = width;
+    cp.height = height;
+    cp.bands = cvvdp_.bands;
+    cp.channels = cvvdp_.channels;
+    cp.taps_count = window_;
+    cp.taps_at = 0;
+    cp.csf_at = 4 * window_;
+    cp.image = cvvdp_.image ? 1 : 0;
+    cp.mask_p = mp.mask_p;
+    cp.mask_c_gain = mp.mask_c_gain;
+    cp.d_max_gain = mp.d_max_gain;
+    cp.sensitivity_gain = mp.sensitivity_gain;
+    cp.t_int = cvvdp_.image ? mp.image_int : 1.f;
+    cp.beta = mp.beta;
+    cp.beta_tch = mp.beta_tch;
+    cp.csf_log_l0 = cvvdp_.csf_log_l0;
+    cp.csf_log_l1 = cvvdp_.csf_log_l1;
+    cp.jod_a10 = float(mp.jod_a / 10);
+    cp.jod_exp = float(mp.jod_exp);
+    cp.jod_slope10 = float(mp.jod_a * std::pow(0.1, mp.jod_exp - 1) / 10);
+    auto epsPow = [](float p) { return std::pow(1e-5f, p); };
+    cp.eps_mask_p = epsPow(mp.mask_p);
+    cp.eps_beta = epsPow(mp.beta);
+    cp.eps_beta_tch = epsPow(mp.beta_tch);
+    cp.eps_inv_beta_tch = epsPow(1 / mp.beta_tch);
+    for (int i = 0; i < 4; ++i) {
+        cp.mask_q[i] = mp.mask_q[i];
+        cp.eps_mask_q[i] = epsPow(mp.mask_q[i]);
+        cp.ch_gain[i] = mp.ch_gain[i];
+        cp.ch_weight[i] = mp.ch_weight[i];
+        cp.baseband_weight[i] = mp.baseband_weight[i];
+        for (int j = 0; j < 4; ++j) cp.xcm[i * 4 + j] = mp.xcm[i][j];
+    }
+    for (int i = 0; i < 13; ++i) cp.pu[i] = mp.pu_kernel[i];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) cp.rgb_to_dkl[3 * i + j] = cvvdp_.rgb_to_dkl[i][j];
+    for (int v = 0; v < 256; ++v) cp.lum_lut[v] = cvvdp_.lum_lut[v];
+    for (size_t b = 0; b < levels_.size(); ++b) cp.level[b] = levels_[b];
+    // Image mode: one frame, each channel its DKL component (taps of 1), no transient (0).
+    std::vector<float> cdata;
+    if (cvvdp_.image) {
+        cdata = {1.f, 1.f, 1.f, 0.f};
+    } else {
+        for (const auto& t : cvvdp_.taps) cdata.insert(cdata.end(), t.begin(), t.end());
+    }
+    for (int b = 0; b < cvvdp_.bands; ++b)
+        for (int c = 0; c < 4; ++c) {
+            const auto& table = cvvdp_.csf_log_s[size_t(b)][size_t(c)];
+            cdata.insert(cdata.end(), table.begin(), table.end());
+        }
+    std::vector<uint8_t> cvvdp_bytes(sizeof(cp) + 4 * cdata.size());
+    std::memcpy(cvvdp_bytes.data(), &cp, sizeof(cp));
+    std::memcpy(cvvdp_bytes.data() + sizeof(cp), cdata.data(), 4 * cdata.size());
 
     std::vector<uint8_t> bytes(sizeof(head) + 4 * params.taps.size());
     std::memcpy(bytes.data(), &head, sizeof(head));
@@ -125,8 +221,10 @@ DeviceMetrics::DeviceMetrics(vk::Context& ctx, const DeviceMetricsSettings& s) :
         band_ = vk::createBuffer(ctx, band_bytes, usage, false);
         now_ = vk::createBuffer(ctx, 12 * pixels, usage, false);
         out_ = vk::createBuffer(ctx, result_bytes_, usage, false);
-        for (vk::Buffer* map : {&crawl_map_, &ssim_map_, &flip_map_})
+        for (vk::Buffer* map : {&crawl_map_, &ssim_map_, &flip_map_, &cvvdp_map_})
             *map = vk::createBuffer(ctx, 4 * pixels, usage, false);
+        cv_params_ = vk::uploadBuffer(ctx, cvvdp_bytes.data(), cvvdp_bytes.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        pyramid_ = vk::createBuffer(ctx, pyramid_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
         const std::vector<vk::Binding> b = bindings();
         constexpr uint32_t push = sizeof(shaders::ScorePush);
         ssim_ = vk::createComputeKernel(ctx, kSpirv_score_ssim_comp, sizeof(kSpirv_score_ssim_comp), b, push);
@@ -136,6 +234,17 @@ DeviceMetrics::DeviceMetrics(vk::Context& ctx, const DeviceMetricsSettings& s) :
         blur_v_ = vk::createComputeKernel(ctx, kSpirv_score_blur_v_comp, sizeof(kSpirv_score_blur_v_comp), b, push);
         blur_h_ = vk::createComputeKernel(ctx, kSpirv_score_blur_h_comp, sizeof(kSpirv_score_blur_h_comp), b, push);
         crawl_ = vk::createComputeKernel(ctx, kSpirv_score_crawl_comp, sizeof(kSpirv_score_crawl_comp), b, push);
+        const std::vector<vk::Binding> cb = bindings(kCvvdpBindings);
+        constexpr uint32_t cv_push = sizeof(shaders::CvvdpPush);
+        auto cvvdpKernel = [&](const uint32_t* spirv, size_t bytes) {
+            return vk::createComputeKernel(ctx, spirv, bytes, cb, cv_push);
+        };
+        cv_channels_ = cvvdpKernel(kSpirv_score_cvvdp_channels_comp, sizeof(kSpirv_score_cvvdp_channels_comp));
+        cv_reduce_ = cvvdpKernel(kSpirv_score_cvvdp_reduce_comp, sizeof(kSpirv_score_cvvdp_reduce_comp));
+        cv_band_ = cvvdpKernel(kSpirv_score_cvvdp_band_comp, sizeof(kSpirv_score_cvvdp_band_comp));
+        cv_pool_ = cvvdpKernel(kSpirv_score_cvvdp_pool_comp, sizeof(kSpirv_score_cvvdp_pool_comp));
+        cv_base_ = cvvdpKernel(kSpirv_score_cvvdp_base_comp, sizeof(kSpirv_score_cvvdp_base_comp));
+        cv_expand_ = cvvdpKernel(kSpirv_score_cvvdp_expand_comp, sizeof(kSpirv_score_cvvdp_expand_comp));
         pool_ = vk::createPool(ctx, b, 1);
         set_ = vk::allocateSet(ctx, pool_, ssim_.set_layout);
         writeSet(set_, now_.buffer);
@@ -148,12 +257,13 @@ DeviceMetrics::DeviceMetrics(vk::Context& ctx, const DeviceMetricsSettings& s) :
 DeviceMetrics::~DeviceMetrics() { release(); }
 
 void DeviceMetrics::release() {
-    for (vk::ComputeKernel* k : {&ssim_, &flip_ycc_, &flip_h_, &flip_v_, &blur_v_, &blur_h_, &crawl_})
+    for (vk::ComputeKernel* k : {&ssim_, &flip_ycc_, &flip_h_, &flip_v_, &blur_v_, &blur_h_, &crawl_, &cv_channels_,
+                                 &cv_reduce_, &cv_band_, &cv_pool_, &cv_base_, &cv_expand_})
         vk::destroyComputeKernel(ctx_, *k);
     if (pool_) vkDestroyDescriptorPool(ctx_.device, pool_, nullptr);
     pool_ = VK_NULL_HANDLE;
     for (vk::Buffer* b : {&reference_, &variant_, &analysis_, &params_, &band_, &now_, &out_, &crawl_map_, &ssim_map_,
-                          &flip_map_})
+                          &flip_map_, &cv_params_, &pyramid_, &cvvdp_map_})
         vk::destroyBuffer(ctx_, *b);
 }
 
@@ -161,12 +271,22 @@ std::unique_ptr<DeviceMetrics::Chain> DeviceMetrics::makeChain() {
     auto chain = std::make_unique<Chain>(ctx_);
     chain->width = settings_.width;
     chain->height = settings_.height;
-    chain->state = vk::createBuffer(ctx_, chainBytes(),
-                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+    constexpr VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    chain->state = vk::createBuffer(ctx_, stateBytes(settings_), usage, false);
+    chain->window_reference = vk::createBuffer(ctx_, windowBytes(), usage, false);
+    chain->window_test = vk::createBuffer(ctx_, windowBytes(), usage, false);
     const std::vector<vk::Binding> b = bindings();
     chain->pool = vk::createPool(ctx_, b, 1);
     chain->set = vk::allocateSet(ctx_, chain->pool, crawl_.set_layout);
     writeSet(chain->set, chain->state.buffer);
+    // score_cvvdp.glsl's bindings 0-5, with this chain's window.
+    const std::vector<vk::Binding> cb = bindings(kCvvdpBindings);
+    chain->cvvdp_pool = vk::createPool(ctx_, cb, 1);
+    chain->cvvdp_set = vk::allocateSet(ctx_, chain->cvvdp_pool, cv_channels_.set_layout);
+    const VkBuffer cv[kCvvdpBindings] = {chain->window_reference.buffer, chain->window_test.buffer, cv_params_.buffer,
+                                         pyramid_.buffer, out_.buffer, cvvdp_map_.buffer};
+    for (uint32_t i = 0; i < kCvvdpBindings; ++i)
+        vk::writeBuffer(ctx_, chain->cvvdp_set, i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, cv[i], 0, VK_WHOLE_SIZE);
     return chain;
 }
 
@@ -184,12 +304,16 @@ VkDeviceSize DeviceMetrics::resultBytes() const { return result_bytes_; }
 VkDeviceSize DeviceMetrics::scratchBytes() const {
     VkDeviceSize total = 0;
     for (const vk::Buffer* b : {&reference_, &variant_, &analysis_, &params_, &band_, &now_, &out_, &crawl_map_,
-                                &ssim_map_, &flip_map_})
+                                &ssim_map_, &flip_map_, &cv_params_, &pyramid_, &cvvdp_map_})
         total += b->size;
     return total;
 }
 
-VkDeviceSize DeviceMetrics::chainBytes() const { return 12 * VkDeviceSize(settings_.width) * settings_.height; }
+VkDeviceSize DeviceMetrics::windowBytes() const {
+    return VkDeviceSize(window_) * 4 * VkDeviceSize(settings_.width) * settings_.height;
+}
+
+VkDeviceSize DeviceMetrics::chainBytes() const { return stateBytes(settings_) + 2 * windowBytes(); }
 
 void DeviceMetrics::dispatch(VkCommandBuffer cmd, const vk::ComputeKernel& kernel, VkDescriptorSet set, int y0, int y1,
                              int r0, int r1, uint32_t groups_x, uint32_t groups_y, int maps) const {
@@ -228,9 +352,55 @@ void DeviceMetrics::recordCrawl(VkCommandBuffer cmd, const Chain& chain, bool pa
     if (pair) dispatch(cmd, crawl_, chain.set, 0, height, 0, height, groups_x_, groups_y_, maps);
 }
 
+void DeviceMetrics::dispatchCvvdp(VkCommandBuffer cmd, const vk::ComputeKernel& kernel, const Chain& chain, int band,
+                                  int maps, uint32_t groups_x, uint32_t groups_y, uint32_t groups_z) const {
+    const shaders::CvvdpPush push{band, chain.head, chain.filled, maps};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.layout, 0, 1, &chain.cvvdp_set, 0, nullptr);
+    vkCmdPushConstants(cmd, kernel.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, groups_x, groups_y, groups_z);
+}
+
+// ColorVideoVDP (metrics/cvvdp.cpp addRgba8): the temporal channels from the chain's window, the
+// Gaussian pyramid, then band by band the contrast/CSF pass and the masking/pooling pass (the
+// pooling of band b runs beside the contrast pass of band b + 1: they touch different levels),
+// the baseband, and on request the difference map from the per-band maps.
+void DeviceMetrics::recordCvvdp(VkCommandBuffer cmd, const Chain& chain, int maps) const {
+    const int last = cvvdp_.bands - 1;
+    auto level = [&](int b) { return levels_[size_t(b)]; };
+    auto stamp = [&](uint32_t i) {
+        if (time_pool_) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, time_pool_, time_first_ + i);
+    };
+    stamp(0);
+    dispatchCvvdp(cmd, cv_channels_, chain, 0, maps, level(0).groups_x, level(0).groups_y);
+    computeBarrier(cmd);
+    for (int b = 0; b < last; ++b) {
+        dispatchCvvdp(cmd, cv_reduce_, chain, b, maps, level(b + 1).groups_x, level(b + 1).groups_y, CVVDP_PLANES);
+        computeBarrier(cmd);
+    }
+    stamp(1);
+    for (int b = 0; b < last; ++b) {
+        dispatchCvvdp(cmd, cv_band_, chain, b, maps, level(b).groups_x, level(b).groups_y);
+        computeBarrier(cmd);
+        dispatchCvvdp(cmd, cv_pool_, chain, b, maps, level(b).groups_x, level(b).groups_y);
+    }
+    dispatchCvvdp(cmd, cv_base_, chain, last, maps, 1, 1);
+    computeBarrier(cmd);
+    stamp(2);
+    if (maps & SCORE_MAP_CVVDP) {
+        for (int b = last - 1; b >= 0; --b) {
+            dispatchCvvdp(cmd, cv_expand_, chain, b, maps, level(b).groups_x, level(b).groups_y);
+            computeBarrier(cmd);
+        }
+    }
+    stamp(3);
+}
+
 void DeviceMetrics::record(VkCommandBuffer cmd, VkBuffer reference, VkBuffer variant, VkBuffer analysis, Chain& chain,
-                           bool cut, VkBuffer result, VkBuffer crawl_map, VkBuffer ssim_map, VkBuffer flip_map) {
-    if (chain.width != settings_.width || chain.height != settings_.height || chain.set == VK_NULL_HANDLE)
+                           bool cut, VkBuffer result, VkBuffer crawl_map, VkBuffer ssim_map, VkBuffer flip_map,
+                           VkBuffer cvvdp_map) {
+    if (chain.width != settings_.width || chain.height != settings_.height || chain.set == VK_NULL_HANDLE ||
+        chain.window_reference.size != windowBytes())
         throw std::invalid_argument("DeviceMetrics::record: the chain is not one of this scorer's (made for " +
                                     std::to_string(chain.width) + "x" + std::to_string(chain.height) + ")");
     const bool pair = chain.has_previous && !cut;
@@ -243,6 +413,15 @@ void DeviceMetrics::record(VkCommandBuffer cmd, VkBuffer reference, VkBuffer var
     copyBuffer(cmd, reference, reference_.buffer, 4 * pixels);
     copyBuffer(cmd, variant, variant_.buffer, 4 * pixels);
     copyBuffer(cmd, analysis, analysis_.buffer, 16 * pixels);
+    // ColorVideoVDP's window: this frame into the ring's next slot. ColorVideoVDP knows no cuts:
+    // after one the window restarts as at a sequence's first frame (metrics::CvvdpTracker's first
+    // frame), the slots before this frame read as this frame until the ring refills.
+    if (cut) chain.filled = 0;
+    chain.head = (chain.head + 1) % window_;
+    chain.filled = std::min(chain.filled + 1, window_);
+    const VkBufferCopy slot{0, VkDeviceSize(chain.head) * 4 * pixels, 4 * pixels};
+    vkCmdCopyBuffer(cmd, reference, chain.window_reference.buffer, 1, &slot);
+    vkCmdCopyBuffer(cmd, variant, chain.window_test.buffer, 1, &slot);
     const uint32_t header[SCORE_HEADER_WORDS] = {SCORE_MAGIC, settings_.width, settings_.height, pair ? 1u : 0u,
                                                  groups_x_,   groups_y_,       SCORE_HIST_BINS, 0u};
     vkCmdUpdateBuffer(cmd, out_.buffer, 0, sizeof(header), header);
@@ -251,20 +430,23 @@ void DeviceMetrics::record(VkCommandBuffer cmd, VkBuffer reference, VkBuffer var
     if (crawl_map && !pair) vkCmdFillBuffer(cmd, crawl_map, 0, 4 * pixels, 0u);
     vk::memoryBarrier(cmd, kTransfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, kCompute, kShaderReadWrite);
 
-    const int maps =
-        (crawl_map ? SCORE_MAP_CRAWL : 0) | (ssim_map ? SCORE_MAP_SSIM : 0) | (flip_map ? SCORE_MAP_FLIP : 0);
+    const int maps = (crawl_map ? SCORE_MAP_CRAWL : 0) | (ssim_map ? SCORE_MAP_SSIM : 0) |
+                     (flip_map ? SCORE_MAP_FLIP : 0) | (cvvdp_map ? SCORE_MAP_CVVDP : 0);
     const int height = int(settings_.height);
     dispatch(cmd, ssim_, set_, 0, height, 0, height, groups_x_, groups_y_, maps);
     computeBarrier(cmd);
     recordFlip(cmd, maps);
     recordCrawl(cmd, chain, pair, maps);
+    computeBarrier(cmd);
+    recordCvvdp(cmd, chain, maps);
 
     vk::memoryBarrier(cmd, kCompute, kShaderReadWrite, kTransfer, kTransferReadWrite);
-    copyBuffer(cmd, now_.buffer, chain.state.buffer, chainBytes());
+    copyBuffer(cmd, now_.buffer, chain.state.buffer, stateBytes(settings_));
     copyBuffer(cmd, out_.buffer, result, result_bytes_);
     if (crawl_map && pair) copyBuffer(cmd, crawl_map_.buffer, crawl_map, 4 * pixels);
     if (ssim_map) copyBuffer(cmd, ssim_map_.buffer, ssim_map, 4 * pixels);
     if (flip_map) copyBuffer(cmd, flip_map_.buffer, flip_map, 4 * pixels);
+    if (cvvdp_map) copyBuffer(cmd, cvvdp_map_.buffer, cvvdp_map, 4 * pixels);
     // The result for the host; the maps for the caller's copies.
     vk::memoryBarrier(cmd, kTransfer, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT | kTransfer,
                       VK_ACCESS_2_HOST_READ_BIT | kTransferReadWrite);
@@ -324,6 +506,22 @@ DeviceScores DeviceMetrics::read(const void* mapped_result, const Chain& chain) 
         }
     }
 
+    // ColorVideoVDP: each band's q per channel, pooled over bands and channels as
+    // CvvdpTracker::addRgba8 pools them (its float steps).
+    const metrics::CvvdpParams& p = metrics::cvvdpParams();
+    const std::vector<std::array<double, 4>> bands = cvvdpBands(mapped_result);
+    std::array<double, 4> sch{};
+    for (int b = 0; b < cvvdp_.bands; ++b)
+        for (int c = 0; c < cvvdp_.channels; ++c) {
+            const float x = float(bands[size_t(b)][size_t(c)]) * p.ch_weight[c] *
+                            (b == cvvdp_.bands - 1 ? p.baseband_weight[c] : 1.f);
+            sch[size_t(c)] += double(safePowF(x, p.beta_sch));
+        }
+    float tc = 0;
+    for (int c = 0; c < cvvdp_.channels; ++c)
+        tc += safePowF(safePowF(float(sch[size_t(c)]), 1 / p.beta_sch), p.beta_tch);
+    s.cvvdp_q = double(safePowF(tc, 1 / p.beta_tch));
+
     s.has_pair = words[3] != 0;
     if (!s.has_pair) return s;
     double numerator = 0, flicker_variant = 0, flicker_reference = 0;
@@ -346,6 +544,27 @@ DeviceScores DeviceMetrics::read(const void* mapped_result, const Chain& chain) 
         s.no_edges = true;
     }
     return s;
+}
+
+}  // namespace cbr::scoring
+
+namespace cbr::scoring {
+
+std::vector<std::array<double, 4>> DeviceMetrics::cvvdpBands(const void* mapped_result) const {
+    const auto* words = static_cast<const uint32_t*>(mapped_result);
+    const metrics::CvvdpParams& p = metrics::cvvdpParams();
+    std::vector<std::array<double, 4>> q(size_t(cvvdp_.bands));
+    for (int b = 0; b < cvvdp_.bands; ++b) {
+        const shaders::CvvdpLevel& l = levels_[size_t(b)];
+        const uint32_t records = b == cvvdp_.bands - 1 ? 1u : l.groups_x * l.groups_y;
+        const double n = double(l.w) * double(l.h);
+        for (int c = 0; c < cvvdp_.channels; ++c) {
+            double sum = 0;
+            for (uint32_t g = 0; g < records; ++g) sum += wordFloat(words[l.sums + g * CVVDP_SUM_WORDS + uint32_t(c)]);
+            q[size_t(b)][size_t(c)] = double(safePowF(float(sum / n), 1 / p.beta));
+        }
+    }
+    return q;
 }
 
 }  // namespace cbr::scoring

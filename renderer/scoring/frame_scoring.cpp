@@ -70,7 +70,7 @@ FrameScoring::FrameScoring(DeviceScoring& shared, ScoringRole role, size_t slots
         if (has_classes) s.classes = vk::createBuffer(ctx, pixels, kDeviceCopy, false);
         s.analysis = vk::createBuffer(ctx, 16 * pixels, kDeviceCopy, false);
         s.result = vk::createReadbackBuffer(ctx, shared_.metrics().resultBytes(), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-        for (vk::Buffer* map : {&s.crawl_map, &s.ssim_map, &s.flip_map})
+        for (vk::Buffer* map : {&s.crawl_map, &s.ssim_map, &s.flip_map, &s.cvvdp_map})
             *map = vk::createBuffer(ctx, 4 * pixels, kDeviceCopy, false);
     }
     chain_ = shared_.metrics().makeChain();
@@ -80,7 +80,8 @@ FrameScoring::~FrameScoring() {
     chain_.reset();
     for (Store& st : stores_) vk::destroyBuffer(shared_.context(), st.buffer);
     for (Slot& s : slots_)
-        for (vk::Buffer* b : {&s.rgba, &s.classes, &s.analysis, &s.result, &s.crawl_map, &s.ssim_map, &s.flip_map})
+        for (vk::Buffer* b :
+             {&s.rgba, &s.classes, &s.analysis, &s.result, &s.crawl_map, &s.ssim_map, &s.flip_map, &s.cvvdp_map})
             vk::destroyBuffer(shared_.context(), *b);
 }
 
@@ -105,7 +106,8 @@ void FrameScoring::addPasses(graph::Graph& graph, size_t slot_index, const rende
     score.record = [this, &slot, reference, cut](VkCommandBuffer cmd) {
         // record() begins with a barrier after every earlier command: the copies above included.
         shared_.metrics().record(cmd, reference, slot.rgba.buffer, slot.analysis.buffer, *chain_, cut, slot.result.buffer,
-                                 slot.crawl_map.buffer, slot.ssim_map.buffer, slot.flip_map.buffer);
+                                 slot.crawl_map.buffer, slot.ssim_map.buffer, slot.flip_map.buffer,
+                                 slot.cvvdp_map.buffer);
     };
     graph.addPass(std::move(score));
 }
@@ -150,7 +152,7 @@ void FrameScoring::store(const Slot& slot, bool ssim_kind, bool eci_kind) {
             if (!(kind == 0 ? ssim_kind : eci_kind)) continue;
             Store& st = stores_[kind];
             if (!st.buffer.buffer)
-                st.buffer = vk::createBuffer(ctx, map_at + 12 * pixels, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+                st.buffer = vk::createBuffer(ctx, map_at + 16 * pixels, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
             st.frame = slot.frame;
             const std::pair<VkBuffer, VkBufferCopy> copies[] = {
                 {reference, {0, 0, 4 * pixels}},
@@ -158,7 +160,8 @@ void FrameScoring::store(const Slot& slot, bool ssim_kind, bool eci_kind) {
                 {slot.classes.buffer, {0, 8 * pixels, pixels}},
                 {slot.crawl_map.buffer, {0, map_at, 4 * pixels}},
                 {slot.ssim_map.buffer, {0, map_at + 4 * pixels, 4 * pixels}},
-                {slot.flip_map.buffer, {0, map_at + 8 * pixels, 4 * pixels}}};
+                {slot.flip_map.buffer, {0, map_at + 8 * pixels, 4 * pixels}},
+                {slot.cvvdp_map.buffer, {0, map_at + 12 * pixels, 4 * pixels}}};
             for (const auto& [source, region] : copies)
                 if (source) vkCmdCopyBuffer(cmd, source, st.buffer.buffer, 1, &region);
         }
@@ -189,6 +192,7 @@ bool FrameScoring::fetchWorst(int kind, render::FrameResult& out) {
     if (kind == 1) out.crawl_map.assign(floats(map_at), floats(map_at) + pixels);
     out.ssim_map.assign(floats(map_at + 4 * pixels), floats(map_at + 4 * pixels) + pixels);
     out.flip_map.assign(floats(map_at + 8 * pixels), floats(map_at + 8 * pixels) + pixels);
+    out.cvvdp_map.assign(floats(map_at + 12 * pixels), floats(map_at + 12 * pixels) + pixels);
     return true;
 }
 

@@ -31,7 +31,7 @@ public:
     VkDeviceSize deviceBytes() const;  // the metrics' scratch and the ring
     // The host-visible buffer frames are copied out through (one at a time, on the thread
     // that collects them), at least `bytes` large: shared, so a run holds one, not one per
-    // renderer (174 MB at 4K with the maps).
+    // renderer (207 MB at 4K with the maps).
     vk::Buffer& hostBuffer(VkDeviceSize bytes);
 
 private:
@@ -62,13 +62,13 @@ public:
     // into that kind's store with its reference frame and maps: nothing crosses to the host.
     void collect(size_t slot, render::FrameResult& result);
     // The stored worst frame of a kind (0: SSIM, 1: edge crawl) on the host: index, rgba,
-    // reference_rgba, diagnostic, ssim_map, flip_map and (edge crawl) crawl_map. False when
+    // reference_rgba, diagnostic, ssim_map, flip_map, cvvdp_map and (edge crawl) crawl_map. False when
     // no frame was stored.
     bool fetchWorst(int kind, render::FrameResult& out);
 
 private:
     struct Slot {
-        vk::Buffer rgba, classes, analysis, result, crawl_map, ssim_map, flip_map;
+        vk::Buffer rgba, classes, analysis, result, crawl_map, ssim_map, flip_map, cvvdp_map;
         int frame = -1;
         bool scored = false;      // a variant frame with figures to read
         bool keep_image = false;  // its images wanted on the host (FrameRequest::keep_image)
@@ -76,7 +76,7 @@ private:
     // Copies the frame's images to the host: the reference frame it was scored against (the
     // reference's own frame, for the reference), and a variant's image and class map.
     void copyOut(const Slot& slot, render::FrameResult& result);
-    // Layout of a store: reference, variant, class map, then the crawl, SSIM and FLIP maps
+    // Layout of a store: reference, variant, class map, then the crawl, SSIM, FLIP and ColorVideoVDP maps
     // from a 4-byte aligned offset, 4 bytes a pixel each.
     VkDeviceSize mapOffset() const;
     void store(const Slot& slot, bool ssim_kind, bool eci_kind);

@@ -59,7 +59,62 @@ struct ScorePush {
     int pad1, pad2;
 };
 
+
+// ColorVideoVDP (score_cvvdp_*.comp): a pyramid of CVVDP_PLANES float planes per level (test and
+// reference of Y sustained, RG, YV, Y transient: plane 2c the test's, 2c + 1 the reference's
+// channel c), levels 0 .. bands - 1, the last the baseband. Per band below the baseband, one
+// partial-sum record of 4 floats (the channels' sums of D^beta) per 16x16 workgroup of the
+// pooling pass; the baseband: one record.
+#define CVVDP_MAX_BANDS 16
+#define CVVDP_PLANES 8
+#define CVVDP_SUM_WORDS 4u
+#define CVVDP_CSF_N 32
+
+struct CvvdpLevel {
+    int w, h;
+    uint offset;              // first float of the level's planes in the pyramid (planes w * h apart)
+    uint groups_x, groups_y;  // 16x16 workgroups over w x h
+    uint sums;                // word offset of the level's partial-sum records in the result
+    int pad0, pad1;
+};
+
+// Binding 1 of the ColorVideoVDP passes: the model's figures (metrics::CvvdpModel and
+// metrics::cvvdpParams(), converted once), followed by cdata[]: the temporal taps (taps_count x 4
+// floats, oldest frame first) at taps_at and the CSF tables ([band][channel][CVVDP_CSF_N] log10
+// sensitivities) at csf_at.
+struct CvvdpShaderParams {
+    int width, height, bands, channels;  // channels: 4, or 3 in image mode (the transient planes are 0)
+    int taps_count, taps_at, csf_at, image;
+    float mask_p, mask_c_gain, d_max_gain, sensitivity_gain;
+    float t_int, beta, beta_tch, csf_log_l0;
+    float csf_log_l1, jod_a10, jod_exp, jod_slope10;  // the map: jod_a / 10 q^jod_exp, jod_slope / 10 q at q <= 0.1
+    // eps^p of the power function's exponents, as the CPU rounds them (powf(1e-5f, p)).
+    float eps_mask_p, eps_beta, eps_beta_tch, eps_inv_beta_tch;
+    float eps_mask_q[4];
+    float mask_q[4];
+    float xcm[16];  // xcm[k * 4 + c]: mask channel k's weight on channel c
+    float ch_gain[4];
+    float ch_weight[4];
+    float baseband_weight[4];
+    float pu[16];          // the 13-tap phase-uncertainty kernel
+    float rgb_to_dkl[12];  // row-major 3x3
+    float lum_lut[256];
+    CvvdpLevel level[CVVDP_MAX_BANDS];
+};
+
+// Per ColorVideoVDP dispatch.
+struct CvvdpPush {
+    int band;    // the level the pass works on
+    int head;    // the window's newest slot
+    int filled;  // frames in the window since the sequence began (1 .. taps_count)
+    int maps;    // SCORE_MAP_CVVDP: write the per-band maps and the difference map
+};
+#define SCORE_MAP_CVVDP 8
+
 #ifdef __cplusplus
+static_assert(sizeof(CvvdpLevel) == 32);
+static_assert(sizeof(CvvdpShaderParams) == 4 * (28 + 4 + 16 + 12 + 16 + 12 + 256) + 32 * CVVDP_MAX_BANDS);
+static_assert(sizeof(CvvdpPush) == 16);
 static_assert(sizeof(ScoreParams) == 4 * (30 + 3 + 3 + 9 + 9 + 256));
 static_assert(sizeof(ScorePush) == 32);
 }  // namespace cbr::shaders
