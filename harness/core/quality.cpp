@@ -306,6 +306,7 @@ void fillQuality(Quality& q, const scoring::DeviceScores& d) {
     put(q.flip_q1, d.flip_q1, "flip_q1");
     put(q.flip_median, d.flip_median, "flip_median");
     put(q.flip_q3, d.flip_q3, "flip_q3");
+    put(q.cvvdp_q, d.cvvdp_q, "cvvdp");
     if (!d.has_pair) return;  // first frame or after a cut: no pair to compare
     put(q.eci, d.eci, "eci");
     put(q.flicker_ratio, d.flicker_ratio, "flicker_ratio");

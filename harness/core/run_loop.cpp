@@ -197,7 +197,7 @@ bool fetchDeviceWorst(render::Renderer& renderer, int store, int frame, QualityS
         return v.empty() ? nullptr : std::make_shared<const std::vector<float>>(std::move(v));
     };
     out = {bytes(fr.reference_rgba), bytes(fr.rgba), bytes(fr.diagnostic), floats(fr.crawl_map), floats(fr.ssim_map),
-           floats(fr.flip_map)};
+           floats(fr.flip_map), floats(fr.cvvdp_map)};
     return true;
 }
 
@@ -485,6 +485,8 @@ void chooseScorer(RunState& s) {
         settings.width = uint32_t(s.w);
         settings.height = uint32_t(s.h);
         settings.flip_ppd = settings::flipPpd(s.options.tune);
+        settings.display = s.options.tune.display;
+        settings.cvvdp_fps = s.p.cvvdp_fps;
         s.device_scoring = std::make_unique<scoring::DeviceScoring>(s.ctx, settings, in_flight);
     } catch (const vk::Unsupported& e) {
         if (want == Scorer::Device) throw std::invalid_argument(std::string("--scorer device: ") + e.what() + "; expected --scorer cpu or auto on this device");

@@ -33,10 +33,10 @@ int runMetricCost(const MetricCostOptions& o) {
     }
     if (o.scorer != "cpu") {
         vk::Context ctx({false, o.device});
-        auto d = scoring::measureDeviceCost(ctx, w, h, o.frames, settings::flipPpd(tune));
-        std::printf("device scorer per %ux%u frame (median of %d, %s): all four metrics %.2f ms of GPU "
-                    "time, %.2f ms from recording to the figures on the host\n",
-                    w, h, o.frames, ctx.description.name.c_str(), d.gpu_ms, d.wall_ms);
+        auto d = scoring::measureDeviceCost(ctx, w, h, o.frames, settings::flipPpd(tune), tune.display, o.fps);
+        std::printf("device scorer per %ux%u frame (median of %d, %s): every metric (ColorVideoVDP at %g fps) "
+                    "%.2f ms of GPU time, %.2f ms from recording to the figures on the host\n",
+                    w, h, o.frames, ctx.description.name.c_str(), o.fps, d.gpu_ms, d.wall_ms);
     }
     return kExitDone;
 }

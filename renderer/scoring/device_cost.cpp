@@ -43,12 +43,15 @@ void makeFrame(uint32_t w, uint32_t h, int t, uint32_t* reference, uint32_t* var
 
 }  // namespace
 
-DeviceCost measureDeviceCost(vk::Context& ctx, uint32_t width, uint32_t height, int frames, double flip_ppd) {
+DeviceCost measureDeviceCost(vk::Context& ctx, uint32_t width, uint32_t height, int frames, double flip_ppd,
+                             const metrics::DisplayModel& display, double cvvdp_fps) {
     if (frames < 1) throw std::invalid_argument("measureDeviceCost: frames must be >= 1");
     DeviceMetricsSettings settings;
     settings.width = width;
     settings.height = height;
     settings.flip_ppd = flip_ppd;
+    settings.display = display;
+    settings.cvvdp_fps = cvvdp_fps;
     DeviceMetrics metrics(ctx, settings);
     auto chain = metrics.makeChain();
     const VkDeviceSize pixels = VkDeviceSize(width) * height;

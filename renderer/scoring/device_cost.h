@@ -4,6 +4,8 @@
 
 #include <cstdint>
 
+#include "metrics/cvvdp.h"
+
 namespace cbr::vk {
 class Context;
 }
@@ -16,8 +18,9 @@ struct DeviceCost {
 };
 
 // `frames` timed frames (at least 1) of a panning checker and a noisy copy at width x height,
-// chained as a run chains a variant's frames; one untimed frame first. Throws as
-// DeviceMetrics does (vk::Unsupported, std::invalid_argument).
-DeviceCost measureDeviceCost(vk::Context& ctx, uint32_t width, uint32_t height, int frames, double flip_ppd);
+// chained as a run chains a variant's frames (ColorVideoVDP on `display` at `cvvdp_fps`); one
+// untimed frame first. Throws as DeviceMetrics does (vk::Unsupported, std::invalid_argument).
+DeviceCost measureDeviceCost(vk::Context& ctx, uint32_t width, uint32_t height, int frames, double flip_ppd,
+                             const metrics::DisplayModel& display = {}, double cvvdp_fps = 30);
 
 }  // namespace cbr::scoring
