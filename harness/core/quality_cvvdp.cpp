@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "harness/core/quality.h"
+#include "harness/core/quality_chain.h"
 
 namespace cbr::harness {
 
