@@ -2,6 +2,7 @@
 #include "harness/cli_text.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 
 namespace cbr::harness {
@@ -21,7 +22,9 @@ size_t editDistance(std::string_view a, std::string_view b) {
     return d[a.size()][b.size()];
 }
 
-std::string nearestName(std::string_view word, const std::vector<std::string>& names) {
+std::string nearestName(std::string_view typed, const std::vector<std::string>& names) {
+    std::string word(typed);  // "RUN" is "run" mistyped
+    std::transform(word.begin(), word.end(), word.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     std::string best;
     size_t best_distance = std::min<size_t>(3, word.size());  // a suggestion must be nearer than this
     for (const auto& name : names) {
