@@ -1,6 +1,7 @@
 // cbrbench's subcommands (cli.h): options and actions, one factory per command.
 #include "harness/cli.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -9,6 +10,7 @@
 #include "camera_paths/path.h"
 #include "harness/ab/ab.h"
 #include "harness/calibrate/calibrate.h"
+#include "harness/cli_text.h"
 #include "harness/compare/compare.h"
 #include "harness/core/options.h"
 #include "harness/core/run.h"
@@ -46,13 +48,17 @@ std::string variantNames() {
 const std::string kFlipPpdHelp = settings::optionHelp(*settings::find("flip-ppd"));
 const std::string kDisplayHelp = settings::optionHelp(*settings::find("display"));
 
+// The devices, each column as wide as its content; the default is marked as chooseDevice picks it.
 int listDevices() {
-    auto devices = cbr::vk::listDevices();
-    std::printf("%-5s %-40s %-28s %s\n", "index", "name", "driver", "api");
+    const auto devices = cbr::vk::listDevices();
+    const auto lavapipe = std::find_if(devices.begin(), devices.end(), [](const auto& d) { return d.is_lavapipe; });
+    const int chosen = lavapipe != devices.end() ? lavapipe->index : 0;
+    std::vector<std::vector<std::string>> rows = {{"index", "name", "type", "driver", "api", ""}};
     for (const auto& d : devices)
-        std::printf("%-5d %-40s %-28s %s%s\n", d.index, d.name.c_str(),
-                    (d.driver_name + " " + d.driver_info).substr(0, 28).c_str(), d.api_version.c_str(),
-                    d.is_lavapipe ? "  (default)" : "");
+        rows.push_back({std::to_string(d.index), d.name, d.device_type, d.driver_name + " " + d.driver_info,
+                        d.api_version, d.index == chosen ? "(default)" : ""});
+    printColumns(rows);
+    if (devices.empty()) std::printf("no Vulkan device found; expected lavapipe (mesa-vulkan-drivers) or a GPU\n");
     return 0;
 }
 
@@ -147,7 +153,7 @@ Command reportCommand(CLI::App& app) {
 Command compareCommand(CLI::App& app) {
     auto* cli = app.add_subcommand("compare", "regression verdicts: CURRENT_DIR against BASELINE_DIR (exit 0 same, "
                                                "1 regression, 2 inconclusive: no cell decided, or UNKNOWN cells with "
-                                               "--strict, 3 bad input)");
+                                               "--strict, 3 bad input, 70 an unexpected error)");
     auto cmp = std::make_shared<CompareOptions>();
     cli->add_option("BASELINE_DIR", cmp->baseline_dir, "the baseline run's output directory")->required();
     cli->add_option("CURRENT_DIR", cmp->current_dir, "the current run's output directory (gets compare.*)")->required();
@@ -162,14 +168,14 @@ Command compareCommand(CLI::App& app) {
                     "also write the verdicts as JUnit XML to FILE (SLOWER/WORSE: failures, UNKNOWN: skipped)");
     cli->add_flag("--strict", cmp->strict, "UNKNOWN cells give exit code 2");
     // Its callers read exit 2 as "inconclusive": its bad input is 3.
-    return {cli, [cmp] { return runCompare(*cmp); }, kCompareBadInput};
+    return {cli, [cmp] { return runCompare(*cmp); }, kCompareBadInput, kExitVerdictError};
 }
 
 Command abCommand(CLI::App& app, const std::vector<std::string>& argv) {
     auto* cli = app.add_subcommand(
         "ab", "A/B of two builds or two option sets on this machine: runs in ABBA order, added to both sides until "
               "every cell is SAME, SLOWER or FASTER or the budget is spent (exit 0 settled, 1 regression, 2 bad "
-              "input, 3 undecided, 4 a run failed); run arguments of both sides after --");
+              "input, 3 undecided, 4 a run failed, 70 an unexpected error); run arguments of both sides after --");
     auto a = std::make_shared<AbOptions>();
     cli->add_option("RUN_ARGS", a->run_args, "run options both sides take, after -- (e.g. -- --res 640x360 --variants "
                                              "full,cbr-aso)");
@@ -195,10 +201,12 @@ Command abCommand(CLI::App& app, const std::vector<std::string>& argv) {
     cli->add_flag("--quiet", a->quiet, "no line per run on stdout (the looks and the table still print)");
     cli->add_flag("--no-stop", a->no_stop, "run the whole budget even when settled early (the verdicts are the same; "
                                            "calibrate --settle replays the runs)");
-    return {cli, [a, argv] {
+    return {cli,
+            [a, argv] {
                 a->argv = argv;
                 return runAb(*a);
-            }};
+            },
+            kAbBadInput, kExitVerdictError};
 }
 
 Command exportCommand(CLI::App& app) {
@@ -282,7 +290,7 @@ Command scoreSeqCommand(CLI::App& app, const std::vector<std::string>& argv) {
     auto* cli = app.add_subcommand(
         "score-seq", "PSNR, SSIM, ColorVideoVDP (JOD), FLIP, edge crawl and flicker of an image sequence against a reference sequence, "
                      "per frame, with a report; exit 0 pass, 1 --warn crossed, 2 --fail crossed, 3 sizes differ, "
-                     "4 a file missing or unreadable, 5 a bad option (idiff's convention)");
+                     "4 a file missing or unreadable, 5 a bad option (idiff's convention), 70 an unexpected error");
     auto seq = std::make_shared<ScoreSeqOptions>();
     cli->add_option("REFERENCE", seq->reference, "reference frames: a folder (natural name order) or a pattern "
                                                  "such as ref/frame_%04d.png")->required();
@@ -320,7 +328,7 @@ Command scoreSeqCommand(CLI::App& app, const std::vector<std::string>& argv) {
                     return kSeqBadOption;
                 }
             },
-            kSeqBadOption};
+            kSeqBadOption, kExitVerdictError};
 }
 
 // `run`, `plan` and `sweep` take the run options; `run` and `sweep` render.
@@ -337,7 +345,8 @@ struct RunArgs {
 };
 
 Command runCommand(CLI::App& app, const std::vector<std::string>& argv) {
-    auto* cli = app.add_subcommand("run", "render a flythrough through the variants; write CSV and JSON");
+    auto* cli = app.add_subcommand("run", "render a flythrough through the variants; write summary.csv, frames.csv, "
+                                          "run.json, report.html and worst/ (each variant's worst frames) to --out");
     auto r = std::make_shared<RunArgs>();
     addRunOptions(cli, r->o, r->variant_list);
     cli->add_option("--shard", r->shard,
@@ -417,7 +426,9 @@ Command stressCommand(CLI::App& app) {
     cli->add_flag("--list", a->list, "list the cases and their expectations");
     return {cli, [a] {
                 if (a->list) {
-                    for (const auto& c : stressCases()) std::printf("%-28s %s\n", c.name.c_str(), c.expectation.c_str());
+                    std::vector<std::vector<std::string>> rows;
+                    for (const auto& c : stressCases()) rows.push_back({c.name, c.expectation});
+                    printColumns(rows);
                     return 0;
                 }
                 a->so.cases = splitList(a->cases);
@@ -432,20 +443,28 @@ std::vector<Command> addCommands(CLI::App& app, const std::vector<std::string>& 
     std::vector<Command> c;
     c.push_back({app.add_subcommand("devices", "list Vulkan devices (index, name, driver, API version)"), listDevices});
     c.push_back(listing(app, "scenes", "list the built-in procedural scenes", [] {
-        for (const auto& s : scene::proceduralScenes()) std::printf("%-10s %s\n", s.name.c_str(), s.description.c_str());
+        std::vector<std::vector<std::string>> rows;
+        for (const auto& s : scene::proceduralScenes()) rows.push_back({s.name, s.description});
+        printColumns(rows);
     }));
     c.push_back(listing(app, "paths", "list the built-in camera paths", [] {
-        for (const auto& p : paths::builtinPaths()) std::printf("%-16s %s\n", p.name.c_str(), p.description.c_str());
+        std::vector<std::vector<std::string>> rows;
+        for (const auto& p : paths::builtinPaths()) rows.push_back({p.name, p.description});
+        printColumns(rows);
     }));
     c.push_back(listing(app, "displays", "list the display models of --display (ColorVideoVDP's viewing conditions)", [] {
+        std::vector<std::vector<std::string>> rows;
         for (const auto& name : metrics::displayNames()) {
-            const auto d = metrics::parseDisplay(name);
-            std::printf("%-22s %5.1f ppd  %s\n", name.c_str(), d.ppd(), metrics::displayDescription(name).c_str());
+            char ppd[32];
+            std::snprintf(ppd, sizeof ppd, "%.1f ppd", metrics::parseDisplay(name).ppd());
+            rows.push_back({name, ppd, metrics::displayDescription(name)});
         }
+        printColumns(rows, {1});
     }));
     c.push_back(listing(app, "variants", "list the rendering variants", [] {
-        for (const auto& v : variants::allVariants())
-            std::printf("%-8s %s\n", std::string(v.name).c_str(), std::string(v.description).c_str());
+        std::vector<std::vector<std::string>> rows;
+        for (const auto& v : variants::allVariants()) rows.push_back({std::string(v.name), std::string(v.description)});
+        printColumns(rows);
     }));
     c.push_back(runCommand(app, argv));
     c.push_back(reportCommand(app));

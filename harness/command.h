@@ -13,7 +13,8 @@ namespace cbr::harness {
 struct Command {
     CLI::App* cli = nullptr;
     std::function<int()> run;               // called once the command line parsed to this command
-    int bad_option_exit = kExitBadInput;    // a parse error inside this command
+    int bad_option_exit = kExitBadInput;    // a parse error inside this command, or bad input it throws
+    int error_exit = kExitFailed;           // an unexpected error it throws (70 where 1 is a verdict)
 };
 
 }  // namespace cbr::harness

@@ -83,7 +83,8 @@ std::string commandLineMarkdown(const CLI::App& app) {
           "the program differ; regenerate with `build/harness/cbrbench help --markdown > "
           "docs/reference/command-line.md`. -->\n";
     md << "# Command-line reference\n\n" << cell(app.get_description()) << ".\n\n";
-    md << "Every command prints the same on the terminal with `cbrbench COMMAND --help`. Exit codes: "
+    md << "Every command prints the same on the terminal with `cbrbench COMMAND --help`; `cbrbench --version` "
+          "prints the version and the commit. Exit codes: "
           "[exit-codes.md](exit-codes.md); output files and their columns: [outputs.md](outputs.md).\n\n";
     const auto commands = app.get_subcommands([](const CLI::App*) { return true; });
     md << "| command | what it does |\n|---|---|\n";

@@ -7,24 +7,54 @@
 #include <CLI/CLI.hpp>
 
 #include "harness/cli.h"
+#include "harness/cli_text.h"
 #include "harness/core/interrupt.h"
 #include "harness/core/process.h"
 #include "harness/core/progress.h"
 #include "renderer/vk/check.h"
 
+namespace {
+
+// The command's code for what it threw: bad input and unexpected errors are per command
+// (compare's bad input is 3; where 1 is a verdict, an unexpected error is 70).
+int runParsed(const cbr::harness::Command& c) {
+    try {
+        return c.run();
+    } catch (const cbr::harness::Interrupted&) {
+        std::fprintf(stderr, "cbrbench: interrupted: stopped before the next frame; this run's partial output was "
+                             "removed and nothing else was touched\n");
+        return cbr::harness::kExitInterrupted;
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "cbrbench: %s\n", e.what());
+        return c.bad_option_exit;
+    } catch (const cbr::vk::Unsupported& e) {
+        std::fprintf(stderr, "cbrbench: unsupported: %s\n", e.what());
+        return c.bad_option_exit;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "cbrbench: error: %s\n", e.what());
+        return c.error_exit;
+    }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     cbr::harness::setUpProcessMemory(argv);
-    CLI::App app{"cbrbench: checkerboard rendering benchmark and quality analysis"};
+    CLI::App app{"cbrbench: checkerboard rendering benchmark and quality analysis", "cbrbench"};
     app.require_subcommand(1);
+    app.set_version_flag("--version", cbr::harness::versionLine(), "print the version and the commit, and exit");
     bool quiet = false;
-    const std::vector<cbr::harness::Command> commands =
-        cbr::harness::addCommands(app, std::vector<std::string>(argv, argv + argc), quiet);
+    const std::vector<std::string> args(argv, argv + argc);
+    const std::vector<cbr::harness::Command> commands = cbr::harness::addCommands(app, args, quiet);
+    // An unknown command names itself (and the nearest one) instead of "a subcommand is required".
+    if (const std::string error = cbr::harness::commandWordError(app, args); !error.empty()) {
+        std::fprintf(stderr, "%s\n", error.c_str());
+        return cbr::harness::kExitBadInput;
+    }
     cbr::harness::installInterruptHandler();
     try {
         app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForAllHelp& e) {
+    } catch (const CLI::Success& e) {  // --help, --version
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "cbrbench: %s (see cbrbench --help)\n", e.what());
@@ -34,22 +64,7 @@ int main(int argc, char** argv) {
     }
 
     cbr::harness::setProgressQuiet(quiet);
-    try {
-        for (const auto& c : commands)
-            if (c.cli->parsed()) return c.run();
-        return cbr::harness::kExitBadInput;  // require_subcommand(1): not reached
-    } catch (const cbr::harness::Interrupted&) {
-        std::fprintf(stderr, "cbrbench: interrupted: stopped before the next frame; this run's partial output was "
-                             "removed and nothing else was touched\n");
-        return cbr::harness::kExitInterrupted;
-    } catch (const std::invalid_argument& e) {
-        std::fprintf(stderr, "cbrbench: %s\n", e.what());
-        return cbr::harness::kExitBadInput;
-    } catch (const cbr::vk::Unsupported& e) {
-        std::fprintf(stderr, "cbrbench: unsupported: %s\n", e.what());
-        return cbr::harness::kExitBadInput;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "cbrbench: error: %s\n", e.what());
-        return cbr::harness::kExitFailed;
-    }
+    for (const auto& c : commands)
+        if (c.cli->parsed()) return runParsed(c);
+    return cbr::harness::kExitBadInput;  // require_subcommand(1): not reached
 }

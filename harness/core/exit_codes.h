@@ -9,13 +9,16 @@ namespace cbr::harness {
 
 // compare, ab and score-seq follow the conventions of the tools CI systems already wrap
 // (compare: 2 means inconclusive; score-seq: OpenImageIO idiff's codes), so one number
-// means different things per command: the names say which.
+// means different things per command: the names say which. Where 1 is a verdict (compare,
+// ab, score-seq), an unexpected error is 70 (sysexits' EX_SOFTWARE), never 1.
 enum ExitCode : int {
     // Every command but compare and score-seq.
     kExitDone = 0,
     kExitFailed = 1,    // an unexpected error; a matrix job or a stress case that failed; merge's missing jobs
     kExitBadInput = 2,  // one line naming what, where and what is accepted; no output
     kExitInterrupted = 130,
+    // compare, ab and score-seq: an unexpected error (a full disk, a module that cannot load)
+    kExitVerdictError = 70,
     // compare
     kCompareSame = 0,
     kCompareRegression = 1,
