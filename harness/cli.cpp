@@ -88,6 +88,9 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_flag("--save-frames", o.save_frames, "save display images as PNG (the scored quality pass)");
     cmd->add_option("--export", o.exports, "also write the results as: gbench (gbench.json, Google Benchmark JSON)");
     cmd->add_option("--out", o.out, "output directory (default out/<scene>-<path>-<date-time>)");
+    cmd->add_flag("--replace", o.replace,
+                  "replace --out if it exists (a folder cbrbench wrote): swapped in one step once the new one is "
+                  "complete; a failed or interrupted run leaves the old one");
     cmd->add_option_function<std::string>(
            "--debug-slowdown",
            [&o](const std::string& text) {
@@ -304,7 +307,8 @@ Command scoreSeqCommand(CLI::App& app, const std::vector<std::string>& argv) {
     cli->add_option("--cuts", seq->cuts, "frame numbers that start a new shot (no edge-crawl pair across them)")
         ->delimiter(',');
     cli->add_option("--name", seq->name, "label of the test sequence (default: its folder's name)");
-    cli->add_option("--out", seq->out, "output folder, must not exist (default out/score-seq-<date-time>)");
+    cli->add_option("--out", seq->out, "output folder, must not exist unless --replace (default out/score-seq-<date-time>)");
+    cli->add_flag("--replace", seq->replace, "replace --out if it exists (a folder cbrbench wrote), in one step once complete");
     cli->add_option("--display", seq->display, kDisplayHelp)->capture_default_str();
     cli->add_option("--fps", seq->fps, "frames per second the sequence stands for (ColorVideoVDP's temporal channels)")
         ->capture_default_str();
@@ -395,11 +399,13 @@ Command mergeCommand(CLI::App& app) {
     struct Args {
         std::vector<std::string> dirs;
         std::string out;
+        bool replace = false;
     };
     auto a = std::make_shared<Args>();
     cli->add_option("DIR", a->dirs, "shard output directories")->required();
-    cli->add_option("--out", a->out, "the merged directory (must not exist)")->required();
-    return {cli, [a] { return mergeRuns(a->dirs, a->out); }};
+    cli->add_option("--out", a->out, "the merged directory (must not exist unless --replace)")->required();
+    cli->add_flag("--replace", a->replace, "replace --out if it exists (a folder cbrbench wrote), in one step once complete");
+    return {cli, [a] { return mergeRuns(a->dirs, a->out, a->replace); }};
 }
 
 Command stressCommand(CLI::App& app) {
@@ -414,6 +420,7 @@ Command stressCommand(CLI::App& app) {
     StressOptions& so = a->so;
     cli->add_option("--res", so.resolution, "frame size of every case")->capture_default_str();
     cli->add_option("--out", so.out, "output directory (default out/stress-<date-time>)");
+    cli->add_flag("--replace", so.replace, "replace --out if it exists (a folder cbrbench wrote), in one step once complete");
     cli->add_option("--device", so.device, "device index or name substring");
     cli->add_option("--cases", a->cases, "comma-separated case names (default: all; `--list` names them)");
     cli->add_option("--pipelines", a->pipelines, "forward and/or deferred")->capture_default_str();

@@ -8,8 +8,11 @@ namespace cbr::reports {
 
 class OutputDir {
 public:
-    // Throws std::invalid_argument when `final_path` exists already (never overwrite results).
-    explicit OutputDir(std::filesystem::path final_path);
+    // Throws std::invalid_argument when `final_path` exists already (never overwrite results),
+    // unless `replace`: then an existing folder that cbrbench wrote (it holds run.json, or nothing)
+    // is swapped for the new one in one step when commit() runs, and removed after; until then
+    // it stays as it was, and a run that fails or is interrupted leaves it untouched.
+    explicit OutputDir(std::filesystem::path final_path, bool replace = false);
     ~OutputDir();  // removes the temporary directory unless committed
     OutputDir(const OutputDir&) = delete;
     OutputDir& operator=(const OutputDir&) = delete;
@@ -22,6 +25,7 @@ private:
     std::filesystem::path final_;
     std::filesystem::path temp_;
     bool committed_ = false;
+    bool replace_ = false;
 };
 
 }  // namespace cbr::reports

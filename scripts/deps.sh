@@ -8,9 +8,10 @@ cbr_packages=(
   libvulkan-dev mesa-vulkan-drivers glslang-tools
   libglm-dev libtinygltf-dev libstb-dev libdeflate-dev nlohmann-json3-dev libcli11-dev
   libopenimageio-dev libopencv-imgproc-dev
+  assimp-testmodels  # the real glTF models the README's and the tutorial's examples load
 )
 if [[ "${CBR_WITH_TESTS:-0}" == 1 ]]; then
-  cbr_packages+=(vulkan-validationlayers libgtest-dev assimp-testmodels chromium libxml2-utils libbenchmark-tools python3-scipy)
+  cbr_packages+=(vulkan-validationlayers libgtest-dev chromium libxml2-utils libbenchmark-tools python3-scipy)
   # scripts/sanitize.sh and scripts/fuzz.sh: clang with libFuzzer and the sanitizer runtimes. On Debian 12 those
   # archives are in libclang-rt-14-dev, only recommended by clang-14's libclang-common-14-dev
   # (and recommendations are not installed here), so it is named explicitly.

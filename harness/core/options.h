@@ -53,6 +53,7 @@ struct RunOptions {
     std::string device;
     bool validate = false;
     bool save_frames = false;
+    bool replace = false;             // --replace: an existing --out is swapped for the new one when complete
     std::string out;                  // "" -> out/<scene>-<path>-<date-time>
     Slowdown debug_slowdown;             // a known slowdown for testing regression detection
     std::string exports;                 // --export: comma list of formats (harness/core/exports.h)

@@ -127,7 +127,7 @@ int runBenchmark(const RunOptions& options) {
     std::unique_ptr<vk::Context> ctx_owner = open_device();
     vk::Context& ctx = *ctx_owner;
     checkDeviceLimits(options, p.settings, ctx);
-    reports::OutputDir out(p.out);
+    reports::OutputDir out(p.out, options.replace);
     if (options.save_frames) std::filesystem::create_directories(out.path() / "frames");
     gpu::GpuScene gpu_scene = uploadScene(ctx, p, wall);
     // Released on every way out, an interrupt's exception included: destroying the device

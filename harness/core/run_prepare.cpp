@@ -106,8 +106,8 @@ std::filesystem::path outputDirectory(const RunOptions& o) {
                       : std::filesystem::path(o.out);
     if (o.control.sweep && o.out.empty())
         out = std::filesystem::path("out") / ("sweep-" + specStem(o.scene) + "-" + specStem(o.path) + "-" + timestampForName());
-    if (std::filesystem::exists(out))
-        throw std::invalid_argument("--out " + out.string() + ": already exists; expected a new directory");
+    if (std::filesystem::exists(out) && !o.replace)
+        throw std::invalid_argument("--out " + out.string() + ": already exists; expected a new directory (or --replace)");
     return out;
 }
 

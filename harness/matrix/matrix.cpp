@@ -268,7 +268,7 @@ int runMatrix(const RunOptions& o, const Shard& shard) {
                       : std::filesystem::path(o.out);
     // Every job's input is checked before anything is written.
     for (size_t k : mine) checkRunOptions(jobs[k].options);
-    reports::OutputDir out(out_path);
+    reports::OutputDir out(out_path, o.replace);
     std::vector<json> rows;
     std::vector<std::pair<json, std::string>> done;
     std::string device;
@@ -323,7 +323,7 @@ int runMatrix(const RunOptions& o, const Shard& shard) {
     return failed ? kExitFailed : kExitDone;
 }
 
-int mergeRuns(const std::vector<std::string>& dirs, const std::string& out_dir) {
+int mergeRuns(const std::vector<std::string>& dirs, const std::string& out_dir, bool replace) {
     if (dirs.empty()) throw std::invalid_argument("merge: no input directories; expected shard output directories");
     std::string plan, device, device_from;
     std::map<std::string, json> plan_jobs;  // job -> planned shard
@@ -360,7 +360,7 @@ int mergeRuns(const std::vector<std::string>& dirs, const std::string& out_dir) 
             jobs[id] = {row, dir / id};
         }
     }
-    reports::OutputDir out(out_dir);
+    reports::OutputDir out(out_dir, replace);
     std::vector<json> rows;
     std::vector<std::pair<json, std::string>> done;
     ProgressBar bar("jobs", int(jobs.size()));

@@ -42,6 +42,6 @@ int printPlan(const RunOptions& o, int shards);
 // OUT/summary.csv (every job's summary rows) and OUT/matrix.json.
 int runMatrix(const RunOptions& o, const Shard& shard);
 // `cbrbench merge DIR... --out DIR`: refuses mixed devices or plans and duplicate jobs.
-int mergeRuns(const std::vector<std::string>& dirs, const std::string& out);
+int mergeRuns(const std::vector<std::string>& dirs, const std::string& out, bool replace = false);
 
 }  // namespace cbr::harness

@@ -451,7 +451,7 @@ int runScoreSeq(const ScoreSeqOptions& given) {
     for (const auto& f : o.fail) fail.push_back(parseSeqThreshold(f, "--fail"));
     const SeqInputs in = planInputs(o);
     const fs::path final_dir = o.out.empty() ? fs::path("out") / ("score-seq-" + timestampForName()) : fs::path(o.out);
-    reports::OutputDir out(final_dir);
+    reports::OutputDir out(final_dir, o.replace);
 
     RunResults results;
     std::vector<SeqFrameInfo> infos;

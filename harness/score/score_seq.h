@@ -15,6 +15,7 @@ struct ScoreSeqOptions {
     std::string motion_scale = "1,1";  // SX,SY: multiplies the files' first two channels into pixels
     std::string name;             // the test sequence's label (default: TEST's folder name)
     std::string out;              // "" -> out/score-seq-<date-time>
+    bool replace = false;         // --replace: an existing --out (a cbrbench folder) is swapped for the new one
     std::vector<long> cuts;       // frame numbers that start a new shot: no edge-crawl pair across them
     double flip_ppd = 0;          // FLIP's pixels per degree; 0: the display model's
     std::string display = "standard_4k";  // ColorVideoVDP's display model (settings table's --display)

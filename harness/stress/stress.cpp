@@ -150,7 +150,7 @@ int runStress(const StressOptions& o) {
     parseResolution(o.resolution, w, h);
     checkStressOptions(o);
     fs::path final_dir = o.out.empty() ? fs::path("out") / ("stress-" + timestampForName()) : fs::path(o.out);
-    reports::OutputDir out(final_dir);
+    reports::OutputDir out(final_dir, o.replace);
     fs::path paths_dir = out.path() / "inputs";
     fs::create_directories(paths_dir);
     std::vector<Case> cases = buildCases(paths_dir, o, w, h);

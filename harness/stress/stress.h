@@ -10,6 +10,7 @@ namespace cbr::harness {
 struct StressOptions {
     std::string resolution = "96x64";
     std::string out;                 // "" -> out/stress-<date-time>
+    bool replace = false;            // --replace: an existing --out (a cbrbench folder) is swapped for the new one
     std::string device;
     std::vector<std::string> cases;  // empty: all
     std::vector<std::string> pipelines{"forward", "deferred"};

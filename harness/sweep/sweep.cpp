@@ -40,7 +40,7 @@ int runOuterSweeps(const RunOptions& options, const std::vector<OuterSweep>& out
                                                               timestampForName())
                             : std::filesystem::path(options.out);
     for (const auto& o : outer) checkRunOptions(sub(o, final_out / o.dir));
-    reports::OutputDir out(final_out);
+    reports::OutputDir out(final_out, options.replace);
     std::vector<std::string> dirs;
     for (const auto& o : outer) {
         RunOptions s = sub(o, out.path() / o.dir);

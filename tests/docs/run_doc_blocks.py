@@ -11,6 +11,8 @@
 #   scripts/bench           that cbrbench (`run` without arguments): the build is done already;
 #   scripts/test            says it is not re-entered (it is the suite running this test).
 # A marker may name files the block must leave behind: <!-- doc-test expect: out/*/report.html -->
+# Each file's blocks run twice in the same sandbox, as a reader trying them again would: an
+# example that only works once (an --out that exists the second time) fails the test.
 import glob
 import re
 import shutil
@@ -86,16 +88,17 @@ def run_file(md, real, work):
     sandbox(box, real)
     script = ["set -euo pipefail", f'export PATH="{box}/build/harness:$PATH"',
               "trap 'echo \"doc-test: a command failed in the block at $DOC_BLOCK\" >&2' ERR"]
-    for line, expect, code in found:
-        where = f"{md}:{line}"
-        script += [f"DOC_BLOCK='{where}'", f"echo '== {where}'", "set -x", code, "{ set +x; } 2>/dev/null"]
-        for pattern in expect:
-            script.append(f"compgen -G '{pattern}' >/dev/null || {{ echo 'doc-test: {where}: "
-                          f"no {pattern} after the block' >&2; false; }}")
+    for attempt in ("first", "second"):
+        for line, expect, code in found:
+            where = f"{md}:{line} ({attempt} time)"
+            script += [f"DOC_BLOCK='{where}'", f"echo '== {where}'", "set -x", code, "{ set +x; } 2>/dev/null"]
+            for pattern in expect:
+                script.append(f"compgen -G '{pattern}' >/dev/null || {{ echo 'doc-test: {where}: "
+                              f"no {pattern} after the block' >&2; false; }}")
     r = subprocess.run(["bash", "-c", "\n".join(script)], cwd=box)
     if r.returncode != 0:
         sys.exit(f"run_doc_blocks: {md} failed (exit {r.returncode}); its sandbox is {box}")
-    print(f"run_doc_blocks: {md}: {len(found)} blocks ran")
+    print(f"run_doc_blocks: {md}: {len(found)} blocks ran, twice each")
     shutil.rmtree(box, ignore_errors=True)
 
 
