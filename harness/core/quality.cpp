@@ -1,6 +1,5 @@
 // Quality scoring on worker threads: PSNR/SSIM/FLIP per frame, ECI in order, worst frames.
 #include "harness/core/quality.h"
-#include "harness/core/quality_chain.h"
 
 #include <algorithm>
 #include <cmath>

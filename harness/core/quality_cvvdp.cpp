@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "harness/core/quality.h"
-#include "harness/core/quality_chain.h"
 
 namespace cbr::harness {
 
