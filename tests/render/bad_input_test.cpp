@@ -119,7 +119,7 @@ std::vector<Case> cases() {
         {"bad_shading_cost", {"--shading-cost", "0"}, {"--shading-cost"}},
         {"bad_drr_scale", {"--drr-scale", "1.5"}, {"--drr-scale"}},
         {"bad_drr_filter", {"--drr-filter", "lanczos9"}, {"--drr-filter", "bilinear"}},
-        {"bad_flip_ppd", {"--flip-ppd", "0"}, {"--flip-ppd", "67.02"}},
+        {"bad_flip_ppd", {"--flip-ppd", "-1"}, {"--flip-ppd -1", "a number >= 0"}},
         {"bad_target_clear", {"--target-clear", "memset"}, {"--target-clear memset", "load-op", "compute"}},
         {"bad_history_format", {"--history-format", "rgb9e5"}, {"--history-format rgb9e5", "b10g11r11", "rgba16f"}},
         {"nan_flip_ppd", {"--flip-ppd", "nan"}, {"--flip-ppd"}},
