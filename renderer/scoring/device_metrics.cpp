@@ -116,28 +116,7 @@ DeviceMetrics::DeviceMetrics(vk::Context& ctx, const DeviceMetricsSettings& s) :
     head.hist_base = head.crawl_base + groups * SCORE_CRAWL_WORDS;
     head.pixels = uint32_t(pixels);
     cvvdp_base_ = head.hist_base + SCORE_HIST_BINS * SCORE_HIST_WORDS;
-
-    // ColorVideoVDP: the model (throws for a display or frame rate that is not finite), the
-    // pyramid's levels and where their partial sums go.
-    cvvdp_ = metrics::makeCvvdpModel(width, height, s.display, s.cvvdp_fps);
-    window_ = cvvdp_.image ? 1 : cvvdp_.filterFrames();
-    if (cvvdp_.bands > CVVDP_MAX_BANDS)
-        throw std::invalid_argument("DeviceMetrics: ColorVideoVDP's " + std::to_string(cvvdp_.bands) +
-                                    " bands exceed the device passes' " + std::to_string(CVVDP_MAX_BANDS));
-    uint32_t pyramid_floats = 0, sums = cvvdp_base_;
-    for (int b = 0; b < cvvdp_.bands; ++b) {
-        shaders::CvvdpLevel l{};
-        l.w = cvvdp_.band_size[size_t(b)][0];
-        l.h = cvvdp_.band_size[size_t(b)][1];
-        l.offset = pyramid_floats;
-        l.groups_x = groupsFor(uint32_t(l.w));
-        l.groups_y = groupsFor(uint32_t(l.h));
-        l.sums = sums;
-        pyramid_floats += CVVDP_PLANES * uint32_t(l.w * l.h);
-        sums += (b == cvvdp_.bands - 1 ? 1u : l.groups_x * l.groups_y) * CVVDP_SUM_WORDS;
-        levels_.push_back(l);
-    }
-    result_bytes_ = 4 * VkDeviceSize(sums);
+    const uint32_t pyramid_floats = planCvvdp();
 
     // FLIP bands: as many output rows as fit the budget with their filter halo, at least 16.
     flip_halo_ = std::max(head.flip_colour_radius, head.flip_feature_radius);
@@ -150,63 +129,6 @@ DeviceMetrics::DeviceMetrics(vk::Context& ctx, const DeviceMetricsSettings& s) :
     const VkDeviceSize pyramid_bytes = 4 * VkDeviceSize(pyramid_floats);
     requireLimits(ctx, std::max({band_bytes, analysis_bytes, result_bytes_, pyramid_bytes, windowBytes()}), groups_x_,
                   groups_y_);
-
-    // The model's figures for the passes, converted once (score_shared.h CvvdpShaderParams).
-    const metrics::CvvdpParams& mp = metrics::cvvdpParams();
-    shaders::CvvdpShaderParams cp{};
-    cp.width = width;
-    cp.height = height;
-    cp.bands = cvvdp_.bands;
-    cp.channels = cvvdp_.channels;
-    cp.taps_count = window_;
-    cp.taps_at = 0;
-    cp.csf_at = 4 * window_;
-    cp.image = cvvdp_.image ? 1 : 0;
-    cp.mask_p = mp.mask_p;
-    cp.mask_c_gain = mp.mask_c_gain;
-    cp.d_max_gain = mp.d_max_gain;
-    cp.sensitivity_gain = mp.sensitivity_gain;
-    cp.t_int = cvvdp_.image ? mp.image_int : 1.f;
-    cp.beta = mp.beta;
-    cp.beta_tch = mp.beta_tch;
-    cp.csf_log_l0 = cvvdp_.csf_log_l0;
-    cp.csf_log_l1 = cvvdp_.csf_log_l1;
-    cp.jod_a10 = float(mp.jod_a / 10);
-    cp.jod_exp = float(mp.jod_exp);
-    cp.jod_slope10 = float(mp.jod_a * std::pow(0.1, mp.jod_exp - 1) / 10);
-    auto epsPow = [](float p) { return std::pow(1e-5f, p); };
-    cp.eps_mask_p = epsPow(mp.mask_p);
-    cp.eps_beta = epsPow(mp.beta);
-    cp.eps_beta_tch = epsPow(mp.beta_tch);
-    cp.eps_inv_beta_tch = epsPow(1 / mp.beta_tch);
-    for (int i = 0; i < 4; ++i) {
-        cp.mask_q[i] = mp.mask_q[i];
-        cp.eps_mask_q[i] = epsPow(mp.mask_q[i]);
-        cp.ch_gain[i] = mp.ch_gain[i];
-        cp.ch_weight[i] = mp.ch_weight[i];
-        cp.baseband_weight[i] = mp.baseband_weight[i];
-        for (int j = 0; j < 4; ++j) cp.xcm[i * 4 + j] = mp.xcm[i][j];
-    }
-    for (int i = 0; i < 13; ++i) cp.pu[i] = mp.pu_kernel[i];
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) cp.rgb_to_dkl[3 * i + j] = cvvdp_.rgb_to_dkl[i][j];
-    for (int v = 0; v < 256; ++v) cp.lum_lut[v] = cvvdp_.lum_lut[v];
-    for (size_t b = 0; b < levels_.size(); ++b) cp.level[b] = levels_[b];
-    // Image mode: one frame, each channel its DKL component (taps of 1), no transient (0).
-    std::vector<float> cdata;
-    if (cvvdp_.image) {
-        cdata = {1.f, 1.f, 1.f, 0.f};
-    } else {
-        for (const auto& t : cvvdp_.taps) cdata.insert(cdata.end(), t.begin(), t.end());
-    }
-    for (int b = 0; b < cvvdp_.bands; ++b)
-        for (int c = 0; c < 4; ++c) {
-            const auto& table = cvvdp_.csf_log_s[size_t(b)][size_t(c)];
-            cdata.insert(cdata.end(), table.begin(), table.end());
-        }
-    std::vector<uint8_t> cvvdp_bytes(sizeof(cp) + 4 * cdata.size());
-    std::memcpy(cvvdp_bytes.data(), &cp, sizeof(cp));
-    std::memcpy(cvvdp_bytes.data() + sizeof(cp), cdata.data(), 4 * cdata.size());
 
     std::vector<uint8_t> bytes(sizeof(head) + 4 * params.taps.size());
     std::memcpy(bytes.data(), &head, sizeof(head));
@@ -223,8 +145,6 @@ DeviceMetrics::DeviceMetrics(vk::Context& ctx, const DeviceMetricsSettings& s) :
         out_ = vk::createBuffer(ctx, result_bytes_, usage, false);
         for (vk::Buffer* map : {&crawl_map_, &ssim_map_, &flip_map_, &cvvdp_map_})
             *map = vk::createBuffer(ctx, 4 * pixels, usage, false);
-        cv_params_ = vk::uploadBuffer(ctx, cvvdp_bytes.data(), cvvdp_bytes.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-        pyramid_ = vk::createBuffer(ctx, pyramid_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
         const std::vector<vk::Binding> b = bindings();
         constexpr uint32_t push = sizeof(shaders::ScorePush);
         ssim_ = vk::createComputeKernel(ctx, kSpirv_score_ssim_comp, sizeof(kSpirv_score_ssim_comp), b, push);
@@ -234,17 +154,7 @@ DeviceMetrics::DeviceMetrics(vk::Context& ctx, const DeviceMetricsSettings& s) :
         blur_v_ = vk::createComputeKernel(ctx, kSpirv_score_blur_v_comp, sizeof(kSpirv_score_blur_v_comp), b, push);
         blur_h_ = vk::createComputeKernel(ctx, kSpirv_score_blur_h_comp, sizeof(kSpirv_score_blur_h_comp), b, push);
         crawl_ = vk::createComputeKernel(ctx, kSpirv_score_crawl_comp, sizeof(kSpirv_score_crawl_comp), b, push);
-        const std::vector<vk::Binding> cb = bindings(kCvvdpBindings);
-        constexpr uint32_t cv_push = sizeof(shaders::CvvdpPush);
-        auto cvvdpKernel = [&](const uint32_t* spirv, size_t bytes) {
-            return vk::createComputeKernel(ctx, spirv, bytes, cb, cv_push);
-        };
-        cv_channels_ = cvvdpKernel(kSpirv_score_cvvdp_channels_comp, sizeof(kSpirv_score_cvvdp_channels_comp));
-        cv_reduce_ = cvvdpKernel(kSpirv_score_cvvdp_reduce_comp, sizeof(kSpirv_score_cvvdp_reduce_comp));
-        cv_band_ = cvvdpKernel(kSpirv_score_cvvdp_band_comp, sizeof(kSpirv_score_cvvdp_band_comp));
-        cv_pool_ = cvvdpKernel(kSpirv_score_cvvdp_pool_comp, sizeof(kSpirv_score_cvvdp_pool_comp));
-        cv_base_ = cvvdpKernel(kSpirv_score_cvvdp_base_comp, sizeof(kSpirv_score_cvvdp_base_comp));
-        cv_expand_ = cvvdpKernel(kSpirv_score_cvvdp_expand_comp, sizeof(kSpirv_score_cvvdp_expand_comp));
+        createCvvdp(pyramid_bytes);
         pool_ = vk::createPool(ctx, b, 1);
         set_ = vk::allocateSet(ctx, pool_, ssim_.set_layout);
         writeSet(set_, now_.buffer);
@@ -506,21 +416,7 @@ DeviceScores DeviceMetrics::read(const void* mapped_result, const Chain& chain) 
         }
     }
 
-    // ColorVideoVDP: each band's q per channel, pooled over bands and channels as
-    // CvvdpTracker::addRgba8 pools them (its float steps).
-    const metrics::CvvdpParams& p = metrics::cvvdpParams();
-    const std::vector<std::array<double, 4>> bands = cvvdpBands(mapped_result);
-    std::array<double, 4> sch{};
-    for (int b = 0; b < cvvdp_.bands; ++b)
-        for (int c = 0; c < cvvdp_.channels; ++c) {
-            const float x = float(bands[size_t(b)][size_t(c)]) * p.ch_weight[c] *
-                            (b == cvvdp_.bands - 1 ? p.baseband_weight[c] : 1.f);
-            sch[size_t(c)] += double(safePowF(x, p.beta_sch));
-        }
-    float tc = 0;
-    for (int c = 0; c < cvvdp_.channels; ++c)
-        tc += safePowF(safePowF(float(sch[size_t(c)]), 1 / p.beta_sch), p.beta_tch);
-    s.cvvdp_q = double(safePowF(tc, 1 / p.beta_tch));
+    s.cvvdp_q = readCvvdp(mapped_result);  // ColorVideoVDP: its bands pooled
 
     s.has_pair = words[3] != 0;
     if (!s.has_pair) return s;
@@ -546,10 +442,6 @@ DeviceScores DeviceMetrics::read(const void* mapped_result, const Chain& chain) 
     return s;
 }
 
-}  // namespace cbr::scoring
-
-namespace cbr::scoring {
-
 std::vector<std::array<double, 4>> DeviceMetrics::cvvdpBands(const void* mapped_result) const {
     const auto* words = static_cast<const uint32_t*>(mapped_result);
     const metrics::CvvdpParams& p = metrics::cvvdpParams();
@@ -565,6 +457,133 @@ std::vector<std::array<double, 4>> DeviceMetrics::cvvdpBands(const void* mapped_
         }
     }
     return q;
+}
+
+// ColorVideoVDP: the model (throws for a display or frame rate that is not finite), the
+// pyramid's levels and where their partial sums go (after cvvdp_base_); returns the pyramid's
+// floats.
+uint32_t DeviceMetrics::planCvvdp() {
+    const DeviceMetricsSettings& s = settings_;
+    const int width = int(s.width), height = int(s.height);
+    cvvdp_ = metrics::makeCvvdpModel(width, height, s.display, s.cvvdp_fps);
+    window_ = cvvdp_.image ? 1 : cvvdp_.filterFrames();
+    if (cvvdp_.bands > CVVDP_MAX_BANDS)
+        throw std::invalid_argument("DeviceMetrics: ColorVideoVDP's " + std::to_string(cvvdp_.bands) +
+                                    " bands exceed the device passes' " + std::to_string(CVVDP_MAX_BANDS));
+    uint32_t pyramid_floats = 0, sums = cvvdp_base_;
+    for (int b = 0; b < cvvdp_.bands; ++b) {
+        shaders::CvvdpLevel l{};
+        l.w = cvvdp_.band_size[size_t(b)][0];
+        l.h = cvvdp_.band_size[size_t(b)][1];
+        l.offset = pyramid_floats;
+        l.groups_x = groupsFor(uint32_t(l.w));
+        l.groups_y = groupsFor(uint32_t(l.h));
+        l.sums = sums;
+        pyramid_floats += CVVDP_PLANES * uint32_t(l.w * l.h);
+        sums += (b == cvvdp_.bands - 1 ? 1u : l.groups_x * l.groups_y) * CVVDP_SUM_WORDS;
+        levels_.push_back(l);
+    }
+    result_bytes_ = 4 * VkDeviceSize(sums);
+    return pyramid_floats;
+}
+
+// The model's figures for the passes, converted once (score_shared.h CvvdpShaderParams), then
+// the temporal taps and the CSF tables.
+std::vector<uint8_t> DeviceMetrics::cvvdpParamBytes() const {
+    const int width = int(settings_.width), height = int(settings_.height);
+    const metrics::CvvdpParams& mp = metrics::cvvdpParams();
+    shaders::CvvdpShaderParams cp{};
+    cp.width = width;
+    cp.height = height;
+    cp.bands = cvvdp_.bands;
+    cp.channels = cvvdp_.channels;
+    cp.taps_count = window_;
+    cp.taps_at = 0;
+    cp.csf_at = 4 * window_;
+    cp.image = cvvdp_.image ? 1 : 0;
+    cp.mask_p = mp.mask_p;
+    cp.mask_c_gain = mp.mask_c_gain;
+    cp.d_max_gain = mp.d_max_gain;
+    cp.sensitivity_gain = mp.sensitivity_gain;
+    cp.t_int = cvvdp_.image ? mp.image_int : 1.f;
+    cp.beta = mp.beta;
+    cp.beta_tch = mp.beta_tch;
+    cp.csf_log_l0 = cvvdp_.csf_log_l0;
+    cp.csf_log_l1 = cvvdp_.csf_log_l1;
+    cp.jod_a10 = float(mp.jod_a / 10);
+    cp.jod_exp = float(mp.jod_exp);
+    cp.jod_slope10 = float(mp.jod_a * std::pow(0.1, mp.jod_exp - 1) / 10);
+    auto epsPow = [](float p) { return std::pow(1e-5f, p); };
+    cp.eps_mask_p = epsPow(mp.mask_p);
+    cp.eps_beta = epsPow(mp.beta);
+    cp.eps_beta_tch = epsPow(mp.beta_tch);
+    cp.eps_inv_beta_tch = epsPow(1 / mp.beta_tch);
+    for (int i = 0; i < 4; ++i) {
+        cp.mask_q[i] = mp.mask_q[i];
+        cp.eps_mask_q[i] = epsPow(mp.mask_q[i]);
+        cp.ch_gain[i] = mp.ch_gain[i];
+        cp.ch_weight[i] = mp.ch_weight[i];
+        cp.baseband_weight[i] = mp.baseband_weight[i];
+        for (int j = 0; j < 4; ++j) cp.xcm[i * 4 + j] = mp.xcm[i][j];
+    }
+    for (int i = 0; i < 13; ++i) cp.pu[i] = mp.pu_kernel[i];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) cp.rgb_to_dkl[3 * i + j] = cvvdp_.rgb_to_dkl[i][j];
+    for (int v = 0; v < 256; ++v) cp.lum_lut[v] = cvvdp_.lum_lut[v];
+    for (size_t b = 0; b < levels_.size(); ++b) cp.level[b] = levels_[b];
+    // Image mode: one frame, each channel its DKL component (taps of 1), no transient (0).
+    std::vector<float> cdata;
+    if (cvvdp_.image) {
+        cdata = {1.f, 1.f, 1.f, 0.f};
+    } else {
+        for (const auto& t : cvvdp_.taps) cdata.insert(cdata.end(), t.begin(), t.end());
+    }
+    for (int b = 0; b < cvvdp_.bands; ++b)
+        for (int c = 0; c < 4; ++c) {
+            const auto& table = cvvdp_.csf_log_s[size_t(b)][size_t(c)];
+            cdata.insert(cdata.end(), table.begin(), table.end());
+        }
+    std::vector<uint8_t> cvvdp_bytes(sizeof(cp) + 4 * cdata.size());
+    std::memcpy(cvvdp_bytes.data(), &cp, sizeof(cp));
+    std::memcpy(cvvdp_bytes.data() + sizeof(cp), cdata.data(), 4 * cdata.size());
+    return cvvdp_bytes;
+}
+
+// The passes' parameters and pyramid, and its kernels (inside the constructor's try).
+void DeviceMetrics::createCvvdp(VkDeviceSize pyramid_bytes) {
+    vk::Context& ctx = ctx_;
+    const std::vector<uint8_t> cvvdp_bytes = cvvdpParamBytes();
+    cv_params_ = vk::uploadBuffer(ctx, cvvdp_bytes.data(), cvvdp_bytes.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    pyramid_ = vk::createBuffer(ctx, pyramid_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+    const std::vector<vk::Binding> cb = bindings(kCvvdpBindings);
+    constexpr uint32_t cv_push = sizeof(shaders::CvvdpPush);
+    auto cvvdpKernel = [&](const uint32_t* spirv, size_t bytes) {
+        return vk::createComputeKernel(ctx, spirv, bytes, cb, cv_push);
+    };
+    cv_channels_ = cvvdpKernel(kSpirv_score_cvvdp_channels_comp, sizeof(kSpirv_score_cvvdp_channels_comp));
+    cv_reduce_ = cvvdpKernel(kSpirv_score_cvvdp_reduce_comp, sizeof(kSpirv_score_cvvdp_reduce_comp));
+    cv_band_ = cvvdpKernel(kSpirv_score_cvvdp_band_comp, sizeof(kSpirv_score_cvvdp_band_comp));
+    cv_pool_ = cvvdpKernel(kSpirv_score_cvvdp_pool_comp, sizeof(kSpirv_score_cvvdp_pool_comp));
+    cv_base_ = cvvdpKernel(kSpirv_score_cvvdp_base_comp, sizeof(kSpirv_score_cvvdp_base_comp));
+    cv_expand_ = cvvdpKernel(kSpirv_score_cvvdp_expand_comp, sizeof(kSpirv_score_cvvdp_expand_comp));
+}
+
+// Each band's q per channel, pooled over bands and channels as CvvdpTracker::addRgba8 pools
+// them (its float steps).
+double DeviceMetrics::readCvvdp(const void* mapped_result) const {
+    const metrics::CvvdpParams& p = metrics::cvvdpParams();
+    const std::vector<std::array<double, 4>> bands = cvvdpBands(mapped_result);
+    std::array<double, 4> sch{};
+    for (int b = 0; b < cvvdp_.bands; ++b)
+        for (int c = 0; c < cvvdp_.channels; ++c) {
+            const float x = float(bands[size_t(b)][size_t(c)]) * p.ch_weight[c] *
+                            (b == cvvdp_.bands - 1 ? p.baseband_weight[c] : 1.f);
+            sch[size_t(c)] += double(safePowF(x, p.beta_sch));
+        }
+    float tc = 0;
+    for (int c = 0; c < cvvdp_.channels; ++c)
+        tc += safePowF(safePowF(float(sch[size_t(c)]), 1 / p.beta_sch), p.beta_tch);
+    return double(safePowF(tc, 1 / p.beta_tch));
 }
 
 }  // namespace cbr::scoring

@@ -121,6 +121,11 @@ private:
     void recordFlip(VkCommandBuffer cmd, int maps) const;
     void recordCrawl(VkCommandBuffer cmd, const Chain& chain, bool pair, int maps) const;
     void recordCvvdp(VkCommandBuffer cmd, const Chain& chain, int maps) const;
+    // ColorVideoVDP's parts of the constructor and of read() (device_metrics.cpp).
+    uint32_t planCvvdp();  // the model and the pyramid's levels; returns the pyramid's floats
+    std::vector<uint8_t> cvvdpParamBytes() const;
+    void createCvvdp(VkDeviceSize pyramid_bytes);  // its buffers and kernels
+    double readCvvdp(const void* mapped_result) const;  // DeviceScores::cvvdp_q
     void dispatchCvvdp(VkCommandBuffer cmd, const vk::ComputeKernel& kernel, const Chain& chain, int band, int maps,
                        uint32_t groups_x, uint32_t groups_y, uint32_t groups_z = 1) const;
     VkDeviceSize windowBytes() const;  // one sequence's window: filterFrames() RGBA8 frames
