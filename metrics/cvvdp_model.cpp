@@ -179,7 +179,10 @@ std::vector<std::string> displayNames() {
 
 std::string displayDescription(const std::string& name) {
     const auto* d = findNamed(name);
-    return d ? d->description : "";
+    std::string text = d ? d->description : "";
+    while (!text.empty() && (text.back() == ' ' || text.back() == ','))  // the reference's "A mobile phone display, "
+        text.pop_back();
+    return text;
 }
 
 const char* cvvdpModelVersion() { return T::kModelVersion; }

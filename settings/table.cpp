@@ -202,7 +202,7 @@ std::vector<const Row*> compareKey() {
 std::string accepted(const Row& row) {
     std::vector<std::string> items;
     if (row.type == Type::Text)
-        return "a display name (" + joinOr(metrics::displayNames()) +
+        return "a display name (cbrbench displays: " + joinOr(metrics::displayNames()) +
                ") and/or KEY=VALUE overrides: res, diagonal, width, distance, fov, peak, contrast, black, ambient, refl";
     if (row.type == Type::Word) {
         for (const char* w : row.words) items.emplace_back(w);

@@ -198,13 +198,17 @@ int chooseDevice(const std::vector<DeviceDescription>& all, const std::string& w
     } else {
         std::string lw = want;
         std::transform(lw.begin(), lw.end(), lw.begin(), ::tolower);
+        // Mesa's CPU driver is lavapipe; the device it reports is named llvmpipe.
+        if (lw == "lavapipe")
+            for (const auto& d : all)
+                if (d.is_lavapipe) return d.index;
         for (const auto& d : all) {
             std::string ln = d.name;
             std::transform(ln.begin(), ln.end(), ln.begin(), ::tolower);
             if (ln.find(lw) != std::string::npos) return d.index;
         }
     }
-    throw std::invalid_argument("--device " + want + ": no such device; expected an index or a name substring of: " +
+    throw std::invalid_argument("--device " + want + ": no such device; expected an index, lavapipe, or a name substring of: " +
                                 deviceList(all));
 }
 
