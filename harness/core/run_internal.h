@@ -62,6 +62,9 @@ Prepared prepare(const RunOptions& o);
 struct RunState {
     RunState(const Prepared& p, vk::Context& ctx, gpu::GpuScene& gpu_scene, const std::filesystem::path& out,
              WallAccount& wall);
+    // The scorer's jobs write into quality_rows, which is destroyed before the scorer and the
+    // workers: a run that unwinds (a failure, an interrupt) waits for them first.
+    ~RunState() { workers.wait(); }
 
     const Prepared& p;
     const RunOptions& options;

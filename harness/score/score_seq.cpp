@@ -455,9 +455,11 @@ int runScoreSeq(const ScoreSeqOptions& given) {
 
     RunResults results;
     std::vector<SeqFrameInfo> infos;
+    // The rows outlive the scorer and its workers: a frame that fails mid-sequence unwinds with
+    // jobs still writing into rows, and the scorer's destructor waits for them first.
+    SeqRows rows;
     WorkerPool workers(std::max(1u, std::thread::hardware_concurrency()));
     std::unique_ptr<QualityScorer> scorer;
-    SeqRows rows;
     const Scored s = scoreFrames(o, in, rows, infos, scorer, workers);
     results.worst = scorer->finish(out.path());
     results.worst_files = worstFiles(results.worst);
