@@ -76,4 +76,18 @@ void printColumns(const std::vector<std::vector<std::string>>& rows, const std::
     }
 }
 
+std::string optionHint(const CLI::App& command, const std::vector<std::string>& argv) {
+    std::vector<std::string> names;
+    for (const CLI::Option* o : command.get_options())
+        for (const auto& n : o->get_lnames()) names.push_back(n);
+    for (const auto& arg : argv) {
+        if (arg.size() < 3 || arg.compare(0, 2, "--") != 0) continue;
+        const std::string word = arg.substr(2, arg.find('=') == std::string::npos ? std::string::npos : arg.find('=') - 2);
+        if (std::find(names.begin(), names.end(), word) != names.end()) continue;
+        const std::string near = nearestName(word, names);
+        return near.empty() ? std::string() : "; did you mean --" + near + "?";
+    }
+    return "";
+}
+
 }  // namespace cbr::harness

@@ -24,6 +24,10 @@ std::string nearestName(std::string_view word, const std::vector<std::string>& n
 // commands)". Without any argument: a line saying a command is required. Else "".
 std::string commandWordError(const CLI::App& app, const std::vector<std::string>& argv);
 
+// For a command line `command` refused: "; did you mean --frames?" for the first --word in argv
+// that names none of its options but is near one (nearestName), else "".
+std::string optionHint(const CLI::App& command, const std::vector<std::string>& argv);
+
 // "cbrbench 0.1.0 (commit 9a0f00a12345)".
 std::string versionLine();
 

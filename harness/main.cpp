@@ -8,6 +8,7 @@
 
 #include "harness/cli.h"
 #include "harness/cli_text.h"
+#include "harness/cli_text.h"
 #include "harness/core/interrupt.h"
 #include "harness/core/process.h"
 #include "harness/core/progress.h"
@@ -57,7 +58,11 @@ int main(int argc, char** argv) {
     } catch (const CLI::Success& e) {  // --help, --version
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "cbrbench: %s (see cbrbench --help)\n", e.what());
+        const CLI::App* command = nullptr;
+        for (const auto& c : commands)
+            if (c.cli->parsed()) command = c.cli;
+        const std::string hint = command ? cbr::harness::optionHint(*command, std::vector<std::string>(argv, argv + argc)) : "";
+        std::fprintf(stderr, "cbrbench: %s%s (see cbrbench --help)\n", e.what(), hint.c_str());
         for (const auto& c : commands)
             if (c.cli->parsed()) return c.bad_option_exit;
         return cbr::harness::kExitBadInput;

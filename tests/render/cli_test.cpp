@@ -61,6 +61,20 @@ TEST(UnknownCommand, NoCommandAtAll) {
     EXPECT_EQ(r.err, "cbrbench: a command is required, e.g. cbrbench run" + kHelpHint + "\n");
 }
 
+// A mistyped option: the command's nearest option is named; nothing near, nothing named.
+TEST(UnknownOption, NamesTheNearestOption) {
+    auto r = bench({"run", "--frame", "10"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("; did you mean --frames?"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    r = bench({"score-seq", "a", "b", "--fsp", "30"});
+    EXPECT_EQ(r.exit_code, 5);  // score-seq's bad option (idiff's convention)
+    EXPECT_NE(r.err.find("; did you mean --fps?"), std::string::npos) << r.err;
+    r = bench({"run", "--xyzzy", "1"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err.find("did you mean"), std::string::npos) << r.err;
+}
+
 TEST(Version, PrintsVersionAndCommitWithoutACommand) {
     const auto r = bench({"--version"});
     EXPECT_EQ(r.exit_code, 0) << r.err;
