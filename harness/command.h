@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "harness/core/exit_codes.h"
+#include "harness/base/exit_codes.h"
 
 namespace cbr::harness {
 

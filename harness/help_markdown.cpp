@@ -5,7 +5,7 @@
 #include <memory>
 #include <sstream>
 
-#include "harness/core/exit_codes.h"
+#include "harness/base/exit_codes.h"
 
 namespace cbr::harness {
 namespace {

@@ -9,9 +9,9 @@
 #include "harness/cli.h"
 #include "harness/cli_text.h"
 #include "harness/cli_text.h"
-#include "harness/core/interrupt.h"
-#include "harness/core/process.h"
-#include "harness/core/progress.h"
+#include "harness/base/interrupt.h"
+#include "harness/base/process.h"
+#include "harness/base/progress.h"
 #include "renderer/vk/check.h"
 
 namespace {

@@ -10,9 +10,9 @@
 #include <unistd.h>
 
 #include "harness/ab/ab_internal.h"
-#include "harness/core/interrupt.h"
-#include "harness/core/options.h"
-#include "harness/core/process.h"
+#include "harness/base/interrupt.h"
+#include "harness/jobs/options.h"
+#include "harness/base/process.h"
 #include "reports/output_dir.h"
 #include "reports/report_data.h"
 

@@ -1,12 +1,12 @@
 // `cbrbench ab`: two builds, or two option sets, on one machine, in ABBA order, with runs
 // added to both sides until every cell's time verdict settles or the budget is spent
-// (method/timing.md, "A/B of two builds"; the rule: harness/core/settle.h).
+// (method/timing.md, "A/B of two builds"; the rule: harness/figures/settle.h).
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "harness/core/exit_codes.h"
+#include "harness/base/exit_codes.h"
 
 namespace cbr::harness {
 

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "harness/ab/ab.h"
-#include "harness/core/settle.h"
-#include "harness/core/verdict.h"
+#include "harness/figures/settle.h"
+#include "harness/figures/verdict.h"
 
 namespace cbr::harness::ab {
 

@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/ab/ab_internal.h"
-#include "harness/core/output_cells.h"
-#include "harness/core/stats.h"
+#include "harness/output/output_cells.h"
+#include "harness/figures/stats.h"
 #include "reports/compare_html.h"
 #include "reports/csv.h"
 #include "reports/junit.h"

@@ -14,11 +14,11 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/calibrate/calibrate_settle.h"
-#include "harness/core/progress.h"
-#include "harness/core/run.h"
-#include "harness/core/settle.h"
-#include "harness/core/stats.h"
-#include "harness/core/verdict.h"
+#include "harness/base/progress.h"
+#include "harness/run/run.h"
+#include "harness/figures/settle.h"
+#include "harness/figures/stats.h"
+#include "harness/figures/verdict.h"
 #include "reports/csv.h"
 #include "reports/output_dir.h"
 #include "reports/report_data.h"

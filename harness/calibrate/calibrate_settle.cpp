@@ -12,10 +12,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/exit_codes.h"
-#include "harness/core/process.h"
-#include "harness/core/settle.h"
-#include "harness/core/stats.h"
+#include "harness/base/exit_codes.h"
+#include "harness/base/process.h"
+#include "harness/figures/settle.h"
+#include "harness/figures/stats.h"
 #include "reports/csv.h"
 #include "reports/report_data.h"
 

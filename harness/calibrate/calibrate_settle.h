@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/options.h"
+#include "harness/jobs/options.h"
 
 namespace cbr::harness {
 

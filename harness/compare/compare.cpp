@@ -13,8 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/stats.h"
-#include "harness/core/verdict.h"
+#include "harness/figures/stats.h"
+#include "harness/figures/verdict.h"
 #include "reports/compare_html.h"
 #include "reports/csv.h"
 #include "reports/junit.h"

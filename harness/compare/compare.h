@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "harness/core/exit_codes.h"
+#include "harness/base/exit_codes.h"
 #include "reports/jod.h"
 
 namespace cbr::harness {

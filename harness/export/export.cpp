@@ -1,5 +1,5 @@
 // `cbrbench export RUN_DIR --format gbench [--out FILE]`: a finished run's results in another
-// tool's format (the formats are the core's, harness/core/exports.h, which run --export uses).
+// tool's format (the formats are the core's, harness/output/exports.h, which run --export uses).
 #include "harness/export/export.h"
 
 #include <cstdio>
@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/exit_codes.h"
-#include "harness/core/exports.h"
+#include "harness/base/exit_codes.h"
+#include "harness/output/exports.h"
 #include "reports/csv.h"
 #include "reports/report_data.h"
 

@@ -13,10 +13,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/exit_codes.h"
-#include "harness/core/interrupt.h"
-#include "harness/core/progress.h"
-#include "harness/core/run.h"
+#include "harness/base/exit_codes.h"
+#include "harness/base/interrupt.h"
+#include "harness/base/progress.h"
+#include "harness/run/run.h"
 #include "reports/csv.h"
 #include "reports/csv_read.h"
 #include "reports/output_dir.h"

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <cstdio>
 
-#include "harness/core/exit_codes.h"
-#include "harness/core/options.h"
+#include "harness/base/exit_codes.h"
+#include "harness/jobs/options.h"
 #include "metrics/cost.h"
 #include "renderer/scoring/device_cost.h"
 #include "renderer/vk/context.h"

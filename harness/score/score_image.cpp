@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "harness/core/exit_codes.h"
-#include "harness/core/options.h"
+#include "harness/base/exit_codes.h"
+#include "harness/jobs/options.h"
 #include "metrics/cvvdp.h"
 #include "metrics/flip.h"
 #include "metrics/image_io.h"

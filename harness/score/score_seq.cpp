@@ -1,6 +1,6 @@
 // `cbrbench score-seq`: two image sequences scored frame by frame with the run's own scorer
 // (PSNR, SSIM, FLIP, edge crawl and flicker), into a run-shaped folder with a report.
-#include "harness/core/process.h"
+#include "harness/base/process.h"
 #include "harness/score/score_seq.h"
 
 #include <algorithm>
@@ -13,11 +13,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/options.h"
-#include "harness/core/outputs.h"
-#include "harness/core/output_cells.h"
-#include "harness/core/progress.h"
-#include "harness/core/quality.h"
+#include "harness/jobs/options.h"
+#include "harness/output/outputs.h"
+#include "harness/output/output_cells.h"
+#include "harness/base/progress.h"
+#include "harness/quality/quality.h"
 #include "harness/score/sequence_files.h"
 #include "metrics/cvvdp.h"
 #include "metrics/image_io.h"

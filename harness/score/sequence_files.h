@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/exit_codes.h"
+#include "harness/base/exit_codes.h"
 
 namespace cbr::harness {
 

@@ -15,10 +15,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/core/exit_codes.h"
-#include "harness/core/interrupt.h"
-#include "harness/core/options.h"
-#include "harness/core/progress.h"
+#include "harness/base/exit_codes.h"
+#include "harness/base/interrupt.h"
+#include "harness/jobs/options.h"
+#include "harness/base/progress.h"
 #include "renderer/variants/variants.h"
 #include "reports/csv.h"
 #include "reports/output_dir.h"

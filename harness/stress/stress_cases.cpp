@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "camera_paths/path.h"
-#include "harness/core/builtin_context.h"
+#include "harness/jobs/builtin_context.h"
 #include "metrics/image_io.h"
 #include "renderer/scene/scene.h"
 #include "renderer/variants/variants.h"

@@ -9,7 +9,7 @@
 #include "camera_paths/path.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
-#include "harness/core/process.h"
+#include "harness/base/process.h"
 
 namespace cbr::harness::stress {
 namespace {

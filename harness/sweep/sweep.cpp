@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "harness/core/run.h"
-#include "harness/core/sweep_configs.h"
-#include "harness/core/table_roles.h"
+#include "harness/run/run.h"
+#include "harness/jobs/sweep_configs.h"
+#include "harness/output/table_roles.h"
 #include "reports/output_dir.h"
 #include "settings/table.h"
 #include "reports/sweep.h"
@@ -17,7 +17,7 @@
 namespace cbr::harness {
 namespace {
 
-// The sweeps of the outer dimensions (harness/core/sweep_configs.h) one after another into OUT/<dir>/,
+// The sweeps of the outer dimensions (harness/jobs/sweep_configs.h) one after another into OUT/<dir>/,
 // then OUT/sweep.csv (every row, naming its path and reference) and the index sweep.html.
 // Every sweep's input is checked before the first renders; OUT appears whole or not at all.
 int runOuterSweeps(const RunOptions& options, const std::vector<OuterSweep>& outer) {

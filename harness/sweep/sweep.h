@@ -1,8 +1,8 @@
-// `cbrbench sweep`: the run's configurations over swept settings (harness/core/sweep_configs.h),
+// `cbrbench sweep`: the run's configurations over swept settings (harness/jobs/sweep_configs.h),
 // and the outer dimensions (several paths, reference kinds) that each get a run of their own.
 #pragma once
 
-#include "harness/core/options.h"
+#include "harness/jobs/options.h"
 
 namespace cbr::harness {
 

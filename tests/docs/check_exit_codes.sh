@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # DocsExitCodes: the table in docs/reference/exit-codes.md must be exactly what the program
-# prints with `cbrbench help --exit-codes` (the one exit-code table, harness/core/exit_codes.h).
+# prints with `cbrbench help --exit-codes` (the one exit-code table, harness/base/exit_codes.h).
 # Usage: check_exit_codes.sh CBRBENCH DOC_MD
 set -euo pipefail
 exe=$1 doc=$2

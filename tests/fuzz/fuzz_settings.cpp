@@ -5,8 +5,8 @@
 #include <string>
 
 #include "camera_paths/path.h"
-#include "harness/core/options.h"
-#include "harness/core/sweep_configs.h"
+#include "harness/jobs/options.h"
+#include "harness/jobs/sweep_configs.h"
 #include "tests/fuzz/fuzz_util.h"
 
 namespace {

@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "harness/core/stats.h"
-#include "harness/core/verdict.h"
+#include "harness/figures/stats.h"
+#include "harness/figures/verdict.h"
 
 using cbr::harness::benjaminiHochberg;
 using cbr::harness::mannWhitneyMinP;

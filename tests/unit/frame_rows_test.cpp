@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "harness/core/frame_rows.h"
+#include "harness/output/frame_rows.h"
 
 namespace cbr::harness {
 namespace {

@@ -9,7 +9,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <unistd.h>
 
-#include "harness/core/gltf_path.h"
+#include "harness/jobs/gltf_path.h"
 #include "renderer/scene/scene.h"
 #include "tests/support/gltf_writer.h"
 

@@ -1,13 +1,13 @@
 // Measurement health: warm-up steadiness, drift against the same poses, the machine's load
-// per timed pass (harness/core/health.h), on made-up series whose answer is known.
+// per timed pass (harness/figures/health.h), on made-up series whose answer is known.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "harness/core/health.h"
-#include "harness/core/nvml.h"
-#include "harness/core/results.h"
+#include "harness/figures/health.h"
+#include "harness/base/nvml.h"
+#include "harness/figures/results.h"
 
 namespace cbr::harness {
 namespace {

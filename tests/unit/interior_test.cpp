@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "camera_paths/path.h"
-#include "harness/core/builtin_context.h"
+#include "harness/jobs/builtin_context.h"
 #include "renderer/scene/geometry.h"
 #include "renderer/scene/interior.h"
 #include "renderer/scene/scene.h"

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "camera_paths/path.h"
-#include "harness/core/placement.h"
+#include "harness/jobs/placement.h"
 #include "renderer/gpu/gpu_scene.h"
 #include "renderer/scene/scene.h"
 

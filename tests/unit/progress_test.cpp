@@ -1,7 +1,7 @@
 // The progress bar's line: count, percentage, rate and time left.
 #include <gtest/gtest.h>
 
-#include "harness/core/progress.h"
+#include "harness/base/progress.h"
 
 using cbr::harness::ProgressBar;
 

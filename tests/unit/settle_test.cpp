@@ -1,4 +1,4 @@
-// The sequential rule of self-settling verdicts (harness/core/settle.h): the looks and the
+// The sequential rule of self-settling verdicts (harness/figures/settle.h): the looks and the
 // alpha each gets, the samples per unit, unsteady runs, kept verdicts, and the false-alarm rate
 // over all looks on simulated A/A sequences.
 #include <gtest/gtest.h>
@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "harness/core/settle.h"
-#include "harness/core/stats.h"
+#include "harness/figures/settle.h"
+#include "harness/figures/stats.h"
 
 using namespace cbr::harness;
 

@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include "harness/core/sweep_configs.h"
-#include "harness/core/table_roles.h"
+#include "harness/jobs/sweep_configs.h"
+#include "harness/output/table_roles.h"
 #include "reports/csv.h"
 #include "reports/html.h"
 #include "reports/jod.h"
