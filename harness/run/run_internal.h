@@ -106,10 +106,16 @@ struct RunState {
 // The `rep` of a ConfigPass that renders the untimed, scored quality frames.
 constexpr int kQualityPass = -1;
 
-// The loop's steps in the order runBenchmark calls them (run_loop.cpp).
-void makeSsaaReference(RunState& s);
+// The first configuration is full: the reference, unless `--reference ssaa` (a sweep's
+// other full configurations differ only in shading cost and are scored against it).
+inline bool isReference(const RunState& s, size_t vi) { return vi == 0 && s.options.tune.reference != settings::Reference::Ssaa; }
+
+// The steps in the order runBenchmark calls them: one renderer per configuration (run_setup.cpp),
 void makeRenderers(RunState& s);
-// --scorer: the device scorer for every renderer, or the CPU's (RunResults::scorer says which).
+// `--reference ssaa`'s supersampled renderer (run_loop.cpp),
+void makeSsaaReference(RunState& s);
+// --scorer: the device scorer for every renderer, or the CPU's (RunResults::scorer says which;
+// run_setup.cpp); then checkMemory (memory_check.h), and the loop (run_loop.cpp):
 void chooseScorer(RunState& s);
 void calibrateSlowdown(RunState& s);
 void renderQualityFrames(RunState& s);
