@@ -262,7 +262,7 @@ std::string wallTable(const RunData& d) {
     const auto* wall = jsonAt(d.run, "/wall");
     if (!wall || !wall->is_object()) return {};
     Rows rows;
-    // In the order a run meets them (harness/core/wall_account.h); report and other close after this page.
+    // In the order a run meets them (harness/base/wall_account.h); report and other close after this page.
     for (const char* key : {"scene_load", "device_open", "upload", "pipelines", "scorer_setup", "warm_up", "quality_render", "readback",
                             "scoring", "timed_frames", "worst_images", "bandwidth", "outputs"}) {
         const auto* value = jsonAt(*wall, std::string("/parts_s/") + key);

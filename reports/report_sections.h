@@ -64,7 +64,7 @@ struct PixelClass {
     const char* label;
     const char* color;
 };
-// The colours are the class maps' (harness/core/quality.cpp classColours), so legend and map agree.
+// The colours are the class maps' (harness/quality/quality.cpp classColours), so legend and map agree.
 inline constexpr PixelClass kPixelClasses[] = {
     {"px_shaded", "shaded", "#606060"},
     {"px_reused", "reused", "#28c83c"},

@@ -1,6 +1,6 @@
 // The speed-up against the reference, as every output prints it: the terminal summary, the
 // report, sweep.html and the exports (docs/method/measurement.md, "Runs, repetitions and
-// speed-ups"). It is computed once, in harness/core/outputs.cpp (summary.csv
+// speed-ups"). It is computed once, in harness/output/outputs.cpp (summary.csv
 // speedup_vs_full, speedup_ci_low, speedup_ci_high): the median of the paired per-frame
 // ratios full_ms / variant_ms at the same camera pose, with a 95% percentile-bootstrap
 // interval over whole repetitions. Nothing else is a speed-up: a ratio of two medians is not.

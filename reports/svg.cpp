@@ -299,6 +299,48 @@ std::vector<size_t> paretoFront(const std::vector<ScatterPoint>& p, bool higher)
     return front;
 }
 
+namespace {
+
+// The points' labels, where they collide with no point and no earlier label (greedy, first
+// fit); `placed` holds the drawn points' centres in point order.
+void placePointLabels(std::string& out, const ScatterChart& c, const Frame& f, const std::vector<size_t>& front,
+                      const std::vector<std::pair<double, double>>& placed) {
+    struct Box {
+        double x0, y0, x1, y1;
+        bool hits(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+    };
+    std::vector<Box> taken;
+    for (const auto& [px, py_] : placed) taken.push_back({px - 7, py_ - 7, px + 7, py_ + 7});
+    size_t k = 0;
+    for (size_t i = 0; i < c.points.size(); ++i) {
+        const auto& p = c.points[i];
+        if (!std::isfinite(p.x) || !p.y || std::isnan(*p.y)) continue;
+        const auto [x, y] = placed[k++];
+        if (c.label_front_only && std::find(front.begin(), front.end(), i) == front.end()) continue;
+        const double w = 6.4 * double(p.label.size()), h = 11;
+        const struct {
+            double dx, dy;
+            bool left;
+        } tries[] = {{9, -6, false}, {9, 14, false}, {-9, -6, true}, {-9, 14, true},
+                     {9, -18, false}, {-9, -18, true}, {9, 26, false}, {-9, 26, true}};
+        double lx = x + 9, ly = y - 6;
+        bool left = false;
+        for (const auto& t : tries) {
+            double bx = t.left ? x + t.dx - w : x + t.dx;
+            Box b{bx, y + t.dy - 9, bx + w, y + t.dy + h - 9};
+            bool inside = b.x0 >= 0 && b.x1 <= f.w && b.y0 >= 16 && b.y1 <= f.y0();
+            if (!inside || std::any_of(taken.begin(), taken.end(), [&](const Box& o) { return o.hits(b); })) continue;
+            lx = x + t.dx, ly = y + t.dy, left = t.left;
+            taken.push_back(b);
+            break;
+        }
+        out += "<text class=\"point-label\" x=\"" + n1(lx) + "\" y=\"" + n1(ly) + "\" text-anchor=\"" +
+               (left ? "end" : "start") + "\">" + esc(p.label) + "</text>";
+    }
+}
+
+}  // namespace
+
 std::string scatterChartSvg(const ScatterChart& c) {
     Frame f{c.width, 250, 52, 16, 26, 36};
     std::vector<double> xs_v, ys_v;
@@ -352,39 +394,7 @@ std::string scatterChartSvg(const ScatterChart& c) {
                esc(tip) + "</title></circle>";
         placed.push_back({x, y});
     }
-    // Labels go where they collide with no point and no earlier label (greedy, first fit).
-    struct Box {
-        double x0, y0, x1, y1;
-        bool hits(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
-    };
-    std::vector<Box> taken;
-    for (const auto& [px, py_] : placed) taken.push_back({px - 7, py_ - 7, px + 7, py_ + 7});
-    size_t k = 0;
-    for (size_t i = 0; i < c.points.size(); ++i) {
-        const auto& p = c.points[i];
-        if (!std::isfinite(p.x) || !p.y || std::isnan(*p.y)) continue;
-        const auto [x, y] = placed[k++];
-        if (c.label_front_only && std::find(front.begin(), front.end(), i) == front.end()) continue;
-        const double w = 6.4 * double(p.label.size()), h = 11;
-        const struct {
-            double dx, dy;
-            bool left;
-        } tries[] = {{9, -6, false}, {9, 14, false}, {-9, -6, true}, {-9, 14, true},
-                     {9, -18, false}, {-9, -18, true}, {9, 26, false}, {-9, 26, true}};
-        double lx = x + 9, ly = y - 6;
-        bool left = false;
-        for (const auto& t : tries) {
-            double bx = t.left ? x + t.dx - w : x + t.dx;
-            Box b{bx, y + t.dy - 9, bx + w, y + t.dy + h - 9};
-            bool inside = b.x0 >= 0 && b.x1 <= f.w && b.y0 >= 16 && b.y1 <= f.y0();
-            if (!inside || std::any_of(taken.begin(), taken.end(), [&](const Box& o) { return o.hits(b); })) continue;
-            lx = x + t.dx, ly = y + t.dy, left = t.left;
-            taken.push_back(b);
-            break;
-        }
-        out += "<text class=\"point-label\" x=\"" + n1(lx) + "\" y=\"" + n1(ly) + "\" text-anchor=\"" +
-               (left ? "end" : "start") + "\">" + esc(p.label) + "</text>";
-    }
+    placePointLabels(out, c, f, front, placed);
     return out + "</svg>";
 }
 

@@ -11,7 +11,8 @@ cbr_packages=(
   assimp-testmodels  # the real glTF models the README's and the tutorial's examples load
 )
 if [[ "${CBR_WITH_TESTS:-0}" == 1 ]]; then
-  cbr_packages+=(vulkan-validationlayers libgtest-dev chromium libxml2-utils libbenchmark-tools python3-scipy)
+  cbr_packages+=(vulkan-validationlayers libgtest-dev chromium libxml2-utils libbenchmark-tools python3-scipy
+    universal-ctags)  # tests/docs/check_lengths.py: where each function ends
   # scripts/sanitize.sh and scripts/fuzz.sh: clang with libFuzzer and the sanitizer runtimes. On Debian 12 those
   # archives are in libclang-rt-14-dev, only recommended by clang-14's libclang-common-14-dev
   # (and recommendations are not installed here), so it is named explicitly.
