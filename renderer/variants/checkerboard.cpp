@@ -60,31 +60,7 @@ public:
         quarter_ = {(s.width + 1) / 2, (s.height + 1) / 2};
         uint32_t layers = msaa_ ? 1 : 2;
         VkSampleCountFlagBits samples = msaa_ ? VK_SAMPLE_COUNT_2_BIT : VK_SAMPLE_COUNT_1_BIT;
-        auto target = [&](const char* name, int i, VkFormat format, VkImageUsageFlags usage) {
-            return vk::createImage(ctx, {std::string(name) + std::to_string(i), format, quarter_,
-                                         usage | VK_IMAGE_USAGE_SAMPLED_BIT, 1, layers, samples});
-        };
-        bool blend = !scene.blend.empty();
-        for (int i = 0; i < 2; ++i) {
-            auto& set = sets_[i];
-            set.depth = target("cbr_depth", i, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
-            if (has_motion_)
-                set.motion = target("cbr_motion", i, passes::kMotionFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
-            if (!deferred_) {
-                set.color = target("cbr_color", i, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
-                continue;
-            }
-            // Deferred: a checkerboard G-buffer, the Shade Resolve Target (one texel per
-            // sample: twice the width), and the Checkerboard Forward Buffer for transparency.
-            const char* names[3] = {"cbr_gb_albedo", "cbr_gb_normal", "cbr_gb_emissive"};
-            vk::Image* gb[3] = {&gbuffers_[i].albedo, &gbuffers_[i].normal, &gbuffers_[i].emissive};
-            for (int k = 0; k < 3; ++k)
-                *gb[k] = target(names[k], i, passes::kGBufferFormats[k], VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
-            gbuffers_[i].depth = &set.depth;
-            set.srt = vk::createImage(ctx, {"cbr_srt" + std::to_string(i), kHdrFormat, {quarter_.width * 2, quarter_.height},
-                                            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
-            if (blend) set.cfb = target("cbr_cfb", i, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
-        }
+        createSets(ctx, scene, samples, layers);
         VkExtent2D full{s.width, s.height};
         fused_ = s.resolve_impl == render::ResolveImpl::Fused;
         if (!fused_)
@@ -134,6 +110,36 @@ public:
         if (desc.sample_locations)
             set_sample_locations_ = reinterpret_cast<PFN_vkCmdSetSampleLocationsEXT>(
                 vkGetDeviceProcAddr(ctx.device, "vkCmdSetSampleLocationsEXT"));
+    }
+
+    // The two checkerboard frames' quarter-size targets: depth, motion when anything moves,
+    // colour (forward) or the G-buffer, Shade Resolve Target and forward buffer (deferred).
+    void createSets(vk::Context& ctx, const gpu::GpuScene& scene, VkSampleCountFlagBits samples, uint32_t layers) {
+    auto target = [&](const char* name, int i, VkFormat format, VkImageUsageFlags usage) {
+        return vk::createImage(ctx, {std::string(name) + std::to_string(i), format, quarter_,
+                                     usage | VK_IMAGE_USAGE_SAMPLED_BIT, 1, layers, samples});
+    };
+    bool blend = !scene.blend.empty();
+    for (int i = 0; i < 2; ++i) {
+        auto& set = sets_[i];
+        set.depth = target("cbr_depth", i, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+        if (has_motion_)
+            set.motion = target("cbr_motion", i, passes::kMotionFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+        if (!deferred_) {
+            set.color = target("cbr_color", i, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+            continue;
+        }
+        // Deferred: a checkerboard G-buffer, the Shade Resolve Target (one texel per
+        // sample: twice the width), and the Checkerboard Forward Buffer for transparency.
+        const char* names[3] = {"cbr_gb_albedo", "cbr_gb_normal", "cbr_gb_emissive"};
+        vk::Image* gb[3] = {&gbuffers_[i].albedo, &gbuffers_[i].normal, &gbuffers_[i].emissive};
+        for (int k = 0; k < 3; ++k)
+            *gb[k] = target(names[k], i, passes::kGBufferFormats[k], VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+        gbuffers_[i].depth = &set.depth;
+        set.srt = vk::createImage(ctx, {"cbr_srt" + std::to_string(i), kHdrFormat, {quarter_.width * 2, quarter_.height},
+                                        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+        if (blend) set.cfb = target("cbr_cfb", i, kHdrFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+    }
     }
 
     ~CheckerboardVariant() override {

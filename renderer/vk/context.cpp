@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "renderer/vk/check.h"
+#include "renderer/vk/device_choice.h"
 #include "renderer/vk/sanitizers.h"
 
 #if defined(CBR_SANITIZED)
@@ -63,65 +64,6 @@ VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBit
     return VK_FALSE;
 }
 
-std::string versionString(uint32_t v) {
-    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
-           std::to_string(VK_API_VERSION_PATCH(v));
-}
-
-// Vendors pack driverVersion differently; NVIDIA uses 10.8.8.6 bits.
-std::string driverVersionString(uint32_t vendor, uint32_t v) {
-    if (vendor == 0x10de)
-        return std::to_string(v >> 22) + "." + std::to_string((v >> 14) & 0xff) + "." +
-               std::to_string((v >> 6) & 0xff) + "." + std::to_string(v & 0x3f);
-    return versionString(v);
-}
-
-const char* deviceTypeName(VkPhysicalDeviceType t) {
-    switch (t) {
-        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated-gpu";
-        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete-gpu";
-        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual-gpu";
-        case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
-        default: return "other";
-    }
-}
-
-std::string driverIdName(VkDriverId id) {
-    switch (id) {
-        case VK_DRIVER_ID_MESA_LLVMPIPE: return "MESA_LLVMPIPE";
-        case VK_DRIVER_ID_NVIDIA_PROPRIETARY: return "NVIDIA_PROPRIETARY";
-        case VK_DRIVER_ID_MESA_RADV: return "MESA_RADV";
-        case VK_DRIVER_ID_AMD_PROPRIETARY: return "AMD_PROPRIETARY";
-        case VK_DRIVER_ID_INTEL_OPEN_SOURCE_MESA: return "INTEL_OPEN_SOURCE_MESA";
-        case VK_DRIVER_ID_INTEL_PROPRIETARY_WINDOWS: return "INTEL_PROPRIETARY_WINDOWS";
-        case VK_DRIVER_ID_MESA_TURNIP: return "MESA_TURNIP";
-        case VK_DRIVER_ID_MESA_VENUS: return "MESA_VENUS";
-        case VK_DRIVER_ID_MESA_DOZEN: return "MESA_DOZEN";
-        default: return "ID_" + std::to_string(int(id));
-    }
-}
-
-DeviceDescription describe(VkPhysicalDevice physical, int index) {
-    VkPhysicalDeviceIDProperties ids{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ID_PROPERTIES};
-    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, &ids};
-    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
-    vkGetPhysicalDeviceProperties2(physical, &props);
-    const auto& p = props.properties;
-    DeviceDescription d;
-    d.index = index;
-    d.name = p.deviceName;
-    d.driver_name = driver.driverName;
-    d.driver_info = driver.driverInfo;
-    d.driver_id = driverIdName(driver.driverID);
-    d.driver_version = driverVersionString(p.vendorID, p.driverVersion);
-    d.api_version = versionString(p.apiVersion);
-    d.device_type = deviceTypeName(p.deviceType);
-    d.vendor_id = p.vendorID;
-    d.device_id = p.deviceID;
-    std::memcpy(d.uuid, ids.deviceUUID, sizeof d.uuid);
-    d.is_lavapipe = driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE || d.name.find("llvmpipe") != std::string::npos;
-    return d;
-}
 
 VkInstance createInstance(bool validate, bool* debug_utils) {
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
@@ -170,47 +112,6 @@ VkInstance createInstance(bool validate, bool* debug_utils) {
     return instance;
 }
 
-std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
-    uint32_t n = 0;
-    VK_CHECK(vkEnumeratePhysicalDevices(instance, &n, nullptr));
-    std::vector<VkPhysicalDevice> devices(n);
-    VK_CHECK(vkEnumeratePhysicalDevices(instance, &n, devices.data()));
-    return devices;
-}
-
-std::string deviceList(const std::vector<DeviceDescription>& all) {
-    std::string s;
-    for (const auto& d : all) s += (s.empty() ? "" : ", ") + std::to_string(d.index) + " (" + d.name + ")";
-    return s.empty() ? "none" : s;
-}
-
-// "" -> lavapipe when present, else the first; a number -> that index; else a name substring.
-int chooseDevice(const std::vector<DeviceDescription>& all, const std::string& want) {
-    if (all.empty()) throw Unsupported("no Vulkan device found; expected lavapipe (mesa-vulkan-drivers) or a GPU");
-    if (want.empty()) {
-        for (const auto& d : all)
-            if (d.is_lavapipe) return d.index;
-        return 0;
-    }
-    if (std::all_of(want.begin(), want.end(), ::isdigit)) {
-        int i = std::stoi(want);
-        if (i >= 0 && i < int(all.size())) return i;
-    } else {
-        std::string lw = want;
-        std::transform(lw.begin(), lw.end(), lw.begin(), ::tolower);
-        // Mesa's CPU driver is lavapipe; the device it reports is named llvmpipe.
-        if (lw == "lavapipe")
-            for (const auto& d : all)
-                if (d.is_lavapipe) return d.index;
-        for (const auto& d : all) {
-            std::string ln = d.name;
-            std::transform(ln.begin(), ln.end(), ln.begin(), ::tolower);
-            if (ln.find(lw) != std::string::npos) return d.index;
-        }
-    }
-    throw std::invalid_argument("--device " + want + ": no such device; expected an index, lavapipe, or a name substring of: " +
-                                deviceList(all));
-}
 
 }  // namespace
 
@@ -298,6 +199,69 @@ bool enableSampleLocations2x(VkPhysicalDevice physical, std::vector<const char*>
     return true;
 }
 
+// The validation layer's warnings and errors counted into `validation` (onDebugMessage).
+VkDebugUtilsMessengerEXT createMessenger(VkInstance instance, ValidationCounts& validation) {
+    VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    info.pfnUserCallback = onDebugMessage;
+    info.pUserData = &validation;
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+    if (create) VK_CHECK(create(instance, &info, nullptr, &messenger));
+    return messenger;
+}
+
+// The features the device reported (vkGetPhysicalDeviceFeatures2's chain).
+struct ReadFeatures {
+    const VkPhysicalDeviceFeatures2& f2;
+    const VkPhysicalDeviceVulkan11Features& f11;
+    const VkPhysicalDeviceVulkan13Features& f13;
+};
+
+// The logical device with one queue, enabling only what was read and is used; the
+// extensions' capabilities go into caps.
+VkDevice createDevice(VkInstance instance, VkPhysicalDevice physical, uint32_t queue_family, const std::string& name,
+                      const ReadFeatures& read, DeviceCaps& caps) {
+    VkPhysicalDeviceVulkan13Features e13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    e13.dynamicRendering = VK_TRUE;
+    e13.synchronization2 = VK_TRUE;
+    e13.maintenance4 = read.f13.maintenance4;  // glslang emits LocalSizeId for Vulkan 1.3 targets
+    VkPhysicalDeviceVulkan11Features e11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &e13};
+    e11.multiview = read.f11.multiview;
+    VkPhysicalDeviceFeatures2 e2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &e11};
+    e2.features.pipelineStatisticsQuery = read.f2.features.pipelineStatisticsQuery;
+    e2.features.sampleRateShading = read.f2.features.sampleRateShading;
+    caps.compute_clear = read.f2.features.shaderStorageImageWriteWithoutFormat && read.f2.features.shaderStorageImageMultisample;
+    e2.features.shaderStorageImageWriteWithoutFormat = caps.compute_clear;
+    e2.features.shaderStorageImageMultisample = caps.compute_clear;
+    // The checkerboard scene pass blends colour but never its motion attachment.
+    if (!read.f2.features.independentBlend) throw Unsupported("device " + name + " lacks independentBlend");
+    e2.features.independentBlend = VK_TRUE;
+
+    std::vector<const char*> extensions;
+    caps.sample_locations_2x = enableSampleLocations2x(physical, extensions);
+    caps.memory_budget = enableIfPresent(physical, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME, extensions);
+    caps.calibrated_timestamps = calibratableDomains(instance, physical) &&
+                                 enableIfPresent(physical, VK_EXT_CALIBRATED_TIMESTAMPS_EXTENSION_NAME, extensions);
+
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo qinfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    qinfo.queueFamilyIndex = queue_family;
+    qinfo.queueCount = 1;
+    qinfo.pQueuePriorities = &priority;
+    VkDeviceCreateInfo dinfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &e2};
+    dinfo.queueCreateInfoCount = 1;
+    dinfo.pQueueCreateInfos = &qinfo;
+    dinfo.enabledExtensionCount = uint32_t(extensions.size());
+    dinfo.ppEnabledExtensionNames = extensions.data();
+    VkDevice device = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateDevice(physical, &dinfo, nullptr, &device));
+    return device;
+}
+
 }  // namespace
 
 Context::Context(const ContextOptions& options) {
@@ -305,19 +269,7 @@ Context::Context(const ContextOptions& options) {
     instance = createInstance(options.validate, &debug_utils);
     validation_enabled = options.validate;
     if (const char* poison = std::getenv("CBR_POISON_IMAGES")) poison_images = std::string(poison) == "1";
-    if (debug_utils) {
-        VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-        info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                               VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-        info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                           VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                           VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-        info.pfnUserCallback = onDebugMessage;
-        info.pUserData = &validation;
-        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-            vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
-        if (create) VK_CHECK(create(instance, &info, nullptr, &messenger_));
-    }
+    if (debug_utils) messenger_ = createMessenger(instance, validation);
 
     auto devices = physicalDevices(instance);
     std::vector<DeviceDescription> all;
@@ -350,40 +302,7 @@ Context::Context(const ContextOptions& options) {
     caps.depth_sample_counts = properties.limits.framebufferDepthSampleCounts;
     caps.max_image_dimension_2d = properties.limits.maxImageDimension2D;
 
-    // Enable only what we read above and use.
-    VkPhysicalDeviceVulkan13Features e13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    e13.dynamicRendering = VK_TRUE;
-    e13.synchronization2 = VK_TRUE;
-    e13.maintenance4 = f13.maintenance4;  // glslang emits LocalSizeId for Vulkan 1.3 targets
-    VkPhysicalDeviceVulkan11Features e11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &e13};
-    e11.multiview = f11.multiview;
-    VkPhysicalDeviceFeatures2 e2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &e11};
-    e2.features.pipelineStatisticsQuery = f2.features.pipelineStatisticsQuery;
-    e2.features.sampleRateShading = f2.features.sampleRateShading;
-    caps.compute_clear = f2.features.shaderStorageImageWriteWithoutFormat && f2.features.shaderStorageImageMultisample;
-    e2.features.shaderStorageImageWriteWithoutFormat = caps.compute_clear;
-    e2.features.shaderStorageImageMultisample = caps.compute_clear;
-    // The checkerboard scene pass blends colour but never its motion attachment.
-    if (!f2.features.independentBlend) throw Unsupported("device " + description.name + " lacks independentBlend");
-    e2.features.independentBlend = VK_TRUE;
-
-    std::vector<const char*> extensions;
-    caps.sample_locations_2x = enableSampleLocations2x(physical, extensions);
-    caps.memory_budget = enableIfPresent(physical, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME, extensions);
-    caps.calibrated_timestamps = calibratableDomains(instance, physical) &&
-                                 enableIfPresent(physical, VK_EXT_CALIBRATED_TIMESTAMPS_EXTENSION_NAME, extensions);
-
-    float priority = 1.0f;
-    VkDeviceQueueCreateInfo qinfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    qinfo.queueFamilyIndex = queue_family;
-    qinfo.queueCount = 1;
-    qinfo.pQueuePriorities = &priority;
-    VkDeviceCreateInfo dinfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &e2};
-    dinfo.queueCreateInfoCount = 1;
-    dinfo.pQueueCreateInfos = &qinfo;
-    dinfo.enabledExtensionCount = uint32_t(extensions.size());
-    dinfo.ppEnabledExtensionNames = extensions.data();
-    VK_CHECK(vkCreateDevice(physical, &dinfo, nullptr, &device));
+    device = createDevice(instance, physical, queue_family, description.name, {f2, f11, f13}, caps);
     vkGetDeviceQueue(device, queue_family, 0, &queue);
 
     VkCommandPoolCreateInfo pinfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
