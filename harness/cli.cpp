@@ -12,7 +12,7 @@
 #include "harness/calibrate/calibrate.h"
 #include "harness/cli_text.h"
 #include "harness/compare/compare.h"
-#include "harness/jobs/options.h"
+#include "harness/jobs/matrix_spec.h"
 #include "harness/run/run.h"
 #include "harness/output/table_roles.h"
 #include "harness/jobs/sweep_configs.h"
@@ -62,10 +62,11 @@ int listDevices() {
     return 0;
 }
 
-// The options of `run` and `sweep` (a sweep is a run over configurations).
-void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& variant_list) {
-    cmd->add_option("--scene", o.scene, "procedural scene name (cbrbench scenes) or a .gltf/.glb file")->capture_default_str();
-    cmd->add_option("--path", o.path,
+// The options of `run` and `sweep` (a sweep is a run over configurations): the typed ones
+// into `o`, the lists and parsed values as words into `w` (parseMatrixSpec reads them).
+void addRunOptions(CLI::App* cmd, RunOptions& o, RunWords& w) {
+    cmd->add_option("--scene", w.scene, "procedural scene name (cbrbench scenes) or a .gltf/.glb file")->capture_default_str();
+    cmd->add_option("--path", w.path,
                     "built-in path name (cbrbench paths), a path .json file, or gltf / gltf:NAME (the scene file's camera)")
         ->capture_default_str();
     cmd->add_option("--fps", o.fps, "frame rate of a --path gltf camera (frames over the animation's length)")
@@ -73,9 +74,9 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_option("--animation", o.animation,
                     "glTF animations to play: all, none, or a comma list of names or indices (looped)")
         ->capture_default_str();
-    cmd->add_option("--variants", variant_list,
+    cmd->add_option("--variants", w.variants,
                     "comma-separated variants of " + variantNames() + " (default: all; full always runs: the reference)");
-    cmd->add_option("--res", o.resolution, "output resolution WIDTHxHEIGHT")->capture_default_str();
+    cmd->add_option("--res", w.resolution, "output resolution WIDTHxHEIGHT")->capture_default_str();
     cmd->add_option("--frames", o.frames,
                     "frames sampled evenly over the path (0: the path's own length; --path gltf: default 0)")
         ->capture_default_str()
@@ -86,7 +87,7 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
     cmd->add_option("--device", o.device, "device index or name substring (default: lavapipe, else the first)");
     cmd->add_flag("--validate", o.validate, "enable the Khronos validation layer and count its messages");
     cmd->add_flag("--save-frames", o.save_frames, "save display images as PNG (the scored quality pass)");
-    cmd->add_option("--export", o.exports, "also write the results as: gbench (gbench.json, Google Benchmark JSON)");
+    cmd->add_option("--export", w.exports, "also write the results as: gbench (gbench.json, Google Benchmark JSON)");
     cmd->add_option("--out", o.out, "output directory (default out/<scene>-<path>-<date-time>)");
     cmd->add_flag("--replace", o.replace,
                   "replace --out if it exists (a folder cbrbench wrote): swapped in one step once the new one is "
@@ -103,9 +104,9 @@ void addRunOptions(CLI::App* cmd, cbr::harness::RunOptions& o, std::string& vari
            "PASS=PCT: make one pass PCT percent slower with calibrated extra GPU work (tests the detector; needs "
            "--warmup >= 2)")
         ->type_name("PASS=PCT");
-    cmd->add_option("--pipeline", o.pipeline, "forward or deferred (G-buffer, lighting resolve)")->capture_default_str();
+    cmd->add_option("--pipeline", w.pipeline, "forward or deferred (G-buffer, lighting resolve)")->capture_default_str();
     settings::addOptions(cmd, o.tune);
-    cmd->add_option("--scene-offset", o.scene_offset, "X,Y,Z: move the scene and the camera path by this (e.g. 1e6,1e6,1e6)");
+    cmd->add_option("--scene-offset", w.scene_offset, "X,Y,Z: move the scene and the camera path by this (e.g. 1e6,1e6,1e6)");
     cmd->add_option("--scene-scale", o.scene_scale, "scale the scene and the camera path about the origin (0.001: mm)")
         ->capture_default_str();
     cmd->add_option("--near", o.near, "near plane of every keyframe, scene units (after placement)");
@@ -222,15 +223,20 @@ Command exportCommand(CLI::App& app) {
     cli->add_option("RUN_DIR", a->dir, "a run's output directory")->required();
     cli->add_option("--format", a->format, "gbench")->required();
     cli->add_option("--out", a->out, "the file to write (default: RUN_DIR/gbench.json)");
-    return {cli, [a] { return runExport(a->dir, a->format, a->out); }};
+    return {cli, [a] {
+                const auto formats = parseExportFormats(a->format, "export --format");
+                if (formats.size() != 1)
+                    throw std::invalid_argument("export --format: give one format; accepted: " + std::string(kExportFormats));
+                return runExport(a->dir, formats[0], a->out);
+            }};
 }
 
 Command calibrateCommand(CLI::App& app, const std::vector<std::string>& argv) {
     auto* cli = app.add_subcommand("calibrate", "false-alarm and detection rates of compare's time verdicts on "
                                                  "this device: A/A pairs and injected slowdowns (calibrate.csv)");
     auto cal = std::make_shared<CalibrateOptions>();
-    auto variant_list = std::make_shared<std::string>();
-    addRunOptions(cli, cal->run, *variant_list);
+    auto words = std::make_shared<RunWords>();
+    addRunOptions(cli, cal->run, *words);
     cli->add_option("--pairs", cal->pairs, "A/A pairs (two runs of the same settings)")->capture_default_str();
     cli->add_option("--slow-pairs", cal->slow_pairs, "pairs per injected slowdown")->capture_default_str();
     cli->add_option("--slowdown", cal->slowdowns, "PASS=PCT[,PCT...]: slowdowns injected with --debug-slowdown "
@@ -245,10 +251,14 @@ Command calibrateCommand(CLI::App& app, const std::vector<std::string>& argv) {
                                            "--max-runs and replayed with both sample units: calibrate_settle.csv; "
                                            "--repeats' smallest count is every run's repetitions");
     cli->add_option("--max-runs", cal->max_runs, "--settle: ab's budget, runs per side")->capture_default_str();
-    return {cli, [cal, variant_list, argv] {
-                cal->run.variants = splitList(variant_list->empty() ? std::string(variants::referenceVariant().name)
-                                                                       : *variant_list);
+    return {cli, [cal, words, argv] {
+                if (words->variants.empty()) words->variants = variants::referenceVariant().name;
                 cal->run.control.argv = argv;
+                const MatrixSpec spec = parseMatrixSpec(*words, cal->run);
+                if (spec.jobCount() != 1)
+                    throw std::invalid_argument("calibrate: comma lists in --scene, --path, --pipeline or --res; "
+                                                "expected one of each (calibrate judges one job)");
+                cal->run = spec.firstJob();
                 cal->out = cal->run.out;
                 return runCalibrate(*cal);
             }};
@@ -258,7 +268,8 @@ Command metricCostCommand(CLI::App& app) {
     auto* cli = app.add_subcommand("metric-cost", "benchmark: PSNR, SSIM, ECI, FLIP and ColorVideoVDP milliseconds per frame, on the "
                                                    "CPU and on the device");
     auto a = std::make_shared<MetricCostOptions>();
-    cli->add_option("--res", a->res, "frame size WIDTHxHEIGHT")->capture_default_str();
+    auto res = std::make_shared<std::string>(a->res.text());
+    cli->add_option("--res", *res, "frame size WIDTHxHEIGHT")->capture_default_str();
     cli->add_option("--frames", a->frames, "timed frames (median reported)")->capture_default_str();
     cli->add_option("--flip-ppd", a->flip_ppd, kFlipPpdHelp);
     cli->add_option("--display", a->display, kDisplayHelp)->capture_default_str();
@@ -267,7 +278,10 @@ Command metricCostCommand(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::IsMember({"all", "cpu", "device"}));
     cli->add_option("--device", a->device, "device index or name substring for the device scorer (default: lavapipe, else the first)");
-    return {cli, [a] { return runMetricCost(*a); }};
+    return {cli, [a, res] {
+                a->res = parseResolution(*res);
+                return runMetricCost(*a);
+            }};
 }
 
 Command scoreCommand(CLI::App& app) {
@@ -338,13 +352,12 @@ Command scoreSeqCommand(CLI::App& app, const std::vector<std::string>& argv) {
 // `run`, `plan` and `sweep` take the run options; `run` and `sweep` render.
 struct RunArgs {
     RunOptions o;
-    std::string variant_list, shard;
+    RunWords words;
     int shards = 1;
-    // The options as parsed, with the variant list split and the command line recorded.
-    RunOptions& parsed(const std::vector<std::string>& argv) {
-        o.variants = splitList(variant_list);
+    // The command line typed, and recorded: a bad word throws here, before anything runs.
+    MatrixSpec spec(const std::vector<std::string>& argv) {
         o.control.argv = argv;
-        return o;
+        return parseMatrixSpec(words, o);
     }
 };
 
@@ -352,14 +365,14 @@ Command runCommand(CLI::App& app, const std::vector<std::string>& argv) {
     auto* cli = app.add_subcommand("run", "render a flythrough through the variants; write summary.csv, frames.csv, "
                                           "run.json, report.html and worst/ (each variant's worst frames) to --out");
     auto r = std::make_shared<RunArgs>();
-    addRunOptions(cli, r->o, r->variant_list);
-    cli->add_option("--shard", r->shard,
+    addRunOptions(cli, r->o, r->words);
+    cli->add_option("--shard", r->words.shard,
                     "I/N: run shard I (0-based) of N of a job matrix (comma lists in --scene, --path, --pipeline, "
                     "--res); a matrix also reads SLURM_ARRAY_TASK_ID/COUNT or GTEST_SHARD_INDEX/TOTAL_SHARDS");
     return {cli, [r, argv] {
-                RunOptions& o = r->parsed(argv);
-                if (isMatrix(o) || !r->shard.empty()) return runMatrix(o, resolveShard(r->shard));
-                return runBenchmark(o);
+                const MatrixSpec spec = r->spec(argv);
+                if (spec.isMatrix()) return runMatrix(spec, spec.shard ? *spec.shard : shardFromEnvironment());
+                return runBenchmark(spec.firstJob());
             }};
 }
 
@@ -367,29 +380,30 @@ Command planCommand(CLI::App& app, const std::vector<std::string>& argv) {
     auto* cli = app.add_subcommand("plan", "print the job matrix (scene x path x pipeline x resolution) with stable "
                                             "job ids and shards; takes run's options");
     auto r = std::make_shared<RunArgs>();
-    addRunOptions(cli, r->o, r->variant_list);
+    addRunOptions(cli, r->o, r->words);
     cli->add_option("--shards", r->shards, "number of shards to assign jobs to")->capture_default_str();
-    return {cli, [r, argv] { return printPlan(r->parsed(argv), r->shards); }};
+    return {cli, [r, argv] { return printPlan(r->spec(argv), r->shards); }};
 }
 
 Command sweepCommand(CLI::App& app, const std::vector<std::string>& argv) {
     auto* cli = app.add_subcommand("sweep", "run the variants over swept settings, interleaved in one process; write "
                                              "sweep.csv and sweep.html (recommended value per swept setting, quality at equal cost)");
     auto r = std::make_shared<RunArgs>();
-    addRunOptions(cli, r->o, r->variant_list);
+    addRunOptions(cli, r->o, r->words);
     cli->add_option("--param", r->o.params,
                     "NAME=LO:HI:log|lin:N or NAME=V1,V2,... (repeatable; word-valued names take a list only): " +
                         sweepParamSummary() +
                         "; reference runs one sweep per value into OUT/ref=K/, as --path a,b runs one per path")
         ->required();
     return {cli, [r, argv] {
-                RunOptions& o = r->parsed(argv);
-                o.control.sweep = true;
-                if (isMatrix(o))
+                r->o.control.sweep = true;
+                const MatrixSpec spec = r->spec(argv);
+                // The paths are the sweep's outer dimension (one sweep per path), not jobs.
+                if (spec.scenes.size() > 1 || spec.pipelines.size() > 1 || spec.resolutions.size() > 1)
                     throw std::invalid_argument("sweep: comma lists in --scene, --pipeline or --res; expected one of "
                                                 "each (a sweep is one job: its configurations are compared with each "
                                                 "other; --path may list several)");
-                return runSweep(o);
+                return runSweep(spec.firstJob(), spec.paths);
             }};
 }
 
@@ -408,17 +422,28 @@ Command mergeCommand(CLI::App& app) {
     return {cli, [a] { return mergeRuns(a->dirs, a->out, a->replace); }};
 }
 
+// stress --pipelines: a comma list of pipelines.
+std::vector<Pipeline> stressPipelines(const std::string& list) {
+    std::vector<Pipeline> out;
+    for (const auto& word : splitList(list)) {
+        const auto p = findPipeline(word);
+        if (!p) throw std::invalid_argument("--pipelines " + word + ": expected forward and/or deferred");
+        out.push_back(*p);
+    }
+    return out;
+}
+
 Command stressCommand(CLI::App& app) {
     auto* cli = app.add_subcommand("stress", "named extreme cases through every variant and both pipelines; exit 0 "
                                               "only if every case's expectation holds (stress.csv, stress.html)");
     struct Args {
         StressOptions so;
-        std::string cases, pipelines = "forward,deferred";
+        std::string cases, pipelines = "forward,deferred", resolution = so.resolution.text();
         bool list = false;
     };
     auto a = std::make_shared<Args>();
     StressOptions& so = a->so;
-    cli->add_option("--res", so.resolution, "frame size of every case")->capture_default_str();
+    cli->add_option("--res", a->resolution, "frame size of every case")->capture_default_str();
     cli->add_option("--out", so.out, "output directory (default out/stress-<date-time>)");
     cli->add_flag("--replace", so.replace, "replace --out if it exists (a folder cbrbench wrote), in one step once complete");
     cli->add_option("--device", so.device, "device index or name substring");
@@ -438,8 +463,9 @@ Command stressCommand(CLI::App& app) {
                     printColumns(rows);
                     return 0;
                 }
+                a->so.resolution = parseResolution(a->resolution);
                 a->so.cases = splitList(a->cases);
-                a->so.pipelines = splitList(a->pipelines);
+                a->so.pipelines = stressPipelines(a->pipelines);
                 return runStress(a->so);
             }};
 }

@@ -28,111 +28,131 @@ Field field() {
 }
 
 // The order of the rows is the help's, sweep's labels' and sweep.csv's (its columns are held
-// by a test). Numbers: name, column, help, type, {}, min, max, min_open, max_open.
+// by a test). Each row names the fields it sets; the others keep Row's defaults.
+
+// taau's rows, between the checkerboard history's and its reading (the help's order).
+void addTaauRows(std::vector<Row>& rows) {
+    auto add = [&](Row r) { rows.push_back(std::move(r)); };
+    add({.name = "taau-scale", .column = "taau_scale", .help = "taau per-axis render scale", .type = Type::Real,
+         .min = 0, .max = 1, .min_open = true, .variants = {"taau"}, .sweep = "tscale", .compare_key = 13,
+         .hash = Hash::UnlessDefault, .field = field<&Tunables::taau_scale>()});
+    add({.name = "taau-phases", .column = "taau_phases", .help = "taau Halton(2,3) jitter phases", .type = Type::Int,
+         .min = 8, .max = 16, .only = {8, 16}, .variants = {"taau"}, .compare_key = 14, .hash = Hash::UnlessDefault,
+         .field = field<&Tunables::taau_phases>()});
+    add({.name = "taau-blend", .column = "taau_blend",
+         .help = "taau history blend weight of a sample on the pixel centre", .type = Type::Real, .min = 0, .max = 1,
+         .min_open = true, .variants = {"taau"}, .sweep = "blend", .compare_key = 15, .hash = Hash::UnlessDefault,
+         .field = field<&Tunables::taau_blend>()});
+    add({.name = "taau-lod-offset", .column = "taau_lod_offset",
+         .help = "added to taau's texture LOD bias of log2(render width / output width): below 0 sharper textures, "
+                 "more shimmer for the history to absorb",
+         .type = Type::Real, .min = -4, .max = 4, .variants = {"taau"}, .compare_key = 16,
+         .hash = Hash::UnlessDefault, .field = field<&Tunables::taau_lod_offset>()});
+}
 
 // The rows that tune the workload and the variants.
 void addVariantRows(std::vector<Row>& rows) {
     const std::vector<const char*> kCheckerboard = {"cbr-aso", "cbr-cso", "cbr-clip"};
     auto add = [&](Row r) { rows.push_back(std::move(r)); };
-    add({"shading-cost", "shading_cost", "fragment shading about K times more expensive, same image", Type::Int, {}, 1,
-         1024, false, false, {}, {}, "cost", false, 1, Hash::Always, true, false, field<&Tunables::shading_cost>()});
-    add({"exposure", "exposure", "exposure multiplier before tone mapping", Type::Real, {}, 0, kNoMax, true, true, {},
-         {}, nullptr, false, 0, Hash::Always, true, true, field<&Tunables::exposure>()});
-    add({"drr-scale", "drr_scale", "drr per-axis render scale", Type::Real, {}, 0, 1, true, false, {}, {"drr"},
-         "scale", false, 2, Hash::Always, true, false, field<&Tunables::drr_scale>()});
-    add({"drr-filter", "drr_filter", "drr upscale filter", Type::Word, {"bilinear", "catmull-rom"}, 0, 0, false, false,
-         {}, {"drr"}, "filter", false, 3, Hash::Always, true, false, field<&Tunables::drr_filter>()});
-    add({"drr-target-ms", "drr_target_ms", "dynamic drr: target GPU frame time in ms (0: fixed scale)", Type::Real, {},
-         0, kNoMax, false, true, {}, {"drr"}, nullptr, false, 0, Hash::Always, true, false,
-         field<&Tunables::drr_target_ms>()});
-    add({"cso-tolerance", "cso_tolerance", "cbr-cso depth tolerance (relative, or scene units)", Type::Real, {}, 0,
-         kNoMax, true, true, {}, {"cbr-cso"}, "tol", false, 4, Hash::Always, true, false,
-         field<&Tunables::cso_tolerance>()});
-    add({"cso-mode", "cso_mode", "cbr-cso tolerance mode", Type::Word, {"relative", "absolute"}, 0, 0, false, false,
-         {}, {"cbr-cso"}, "mode", false, 5, Hash::Always, true, false, field<&Tunables::cso_mode>()});
-    add({"cbr-lod-bias", "cbr_lod_bias",
-         "texture LOD bias of checkerboard scene passes (-1 matches full-res derivatives; the paper's: -0.5)",
-         Type::Real, {}, -16, 16, false, false, {}, kCheckerboard, "lod", false, 7, Hash::Always, true, true,
-         field<&Tunables::cbr_lod_bias>()});
-    add({"cbr-route", "cbr_route", "checkerboard route (auto: msaa-jitter where the device has 2x MSAA with sample-rate shading, layers on lavapipe, else multiview)", Type::Word,
-         {"auto", "msaa-jitter", "msaa-locations", "multiview", "layers"}, 0, 0, false, false, {}, kCheckerboard,
-         "route", false, 6, Hash::Always, true, false, field<&Tunables::cbr_route>()});
-    add({"cbr-history", "cbr_history",
-         "checkerboard history: quarter (frame N-1's quarter-res samples, the paper's) or full (the previous "
-         "resolved frame, clipped to the neighbourhood)",
-         Type::Word, {"quarter", "full"}, 0, 0, false, false, {}, {"cbr-aso", "cbr-cso"}, "history", false, 10,
-         Hash::UnlessDefault, true, false, field<&Tunables::cbr_history>()});
-    add({"taau-scale", "taau_scale", "taau per-axis render scale", Type::Real, {}, 0, 1, true, false, {}, {"taau"},
-         "tscale", false, 13, Hash::UnlessDefault, true, false, field<&Tunables::taau_scale>()});
-    add({"taau-phases", "taau_phases", "taau Halton(2,3) jitter phases", Type::Int, {}, 8, 16, false, false, {8, 16},
-         {"taau"}, nullptr, false, 14, Hash::UnlessDefault, true, false, field<&Tunables::taau_phases>()});
-    add({"taau-blend", "taau_blend", "taau history blend weight of a sample on the pixel centre", Type::Real, {}, 0, 1,
-         true, false, {}, {"taau"}, "blend", false, 15, Hash::UnlessDefault, true, false,
-         field<&Tunables::taau_blend>()});
-    add({"taau-lod-offset", "taau_lod_offset",
-         "added to taau's texture LOD bias of log2(render width / output width): below 0 sharper textures, more "
-         "shimmer for the history to absorb",
-         Type::Real, {}, -4, 4, false, false, {}, {"taau"}, nullptr, false, 16, Hash::UnlessDefault, true, false,
-         field<&Tunables::taau_lod_offset>()});
-    add({"history-filter", "history_filter",
-         "how --cbr-history full reads the history (bilinear blurs frame after frame)", Type::Word,
-         {"catmull-rom", "bilinear"}, 0, 0, false, false, {}, kCheckerboard, nullptr, false, 11, Hash::UnlessDefault,
-         true, false, field<&Tunables::history_filter>()});
-    add({"history-format", "history_format",
-         "how --cbr-history full stores the history: b10g11r11 (4 bytes a pixel; rgba16f where the device cannot "
-         "store it) or rgba16f (8 bytes, exact on a still camera)",
-         Type::Word, {"b10g11r11", "rgba16f"}, 0, 0, false, false, {}, kCheckerboard, nullptr, false, 12,
-         Hash::UnlessDefault, true, false, field<&Tunables::history_format>()});
+    add({.name = "shading-cost", .column = "shading_cost", .help = "fragment shading about K times more expensive, same image",
+         .type = Type::Int, .min = 1, .max = 1024, .sweep = "cost", .compare_key = 1,
+         .field = field<&Tunables::shading_cost>()});
+    add({.name = "exposure", .column = "exposure", .help = "exposure multiplier before tone mapping", .type = Type::Real,
+         .min = 0, .max = kNoMax, .min_open = true, .max_open = true, .json_float = true,
+         .field = field<&Tunables::exposure>()});
+    add({.name = "drr-scale", .column = "drr_scale", .help = "drr per-axis render scale", .type = Type::Real, .min = 0,
+         .max = 1, .min_open = true, .variants = {"drr"}, .sweep = "scale", .compare_key = 2,
+         .field = field<&Tunables::drr_scale>()});
+    add({.name = "drr-filter", .column = "drr_filter", .help = "drr upscale filter", .type = Type::Word,
+         .words = {"bilinear", "catmull-rom"}, .variants = {"drr"}, .sweep = "filter", .compare_key = 3,
+         .field = field<&Tunables::drr_filter>()});
+    add({.name = "drr-target-ms", .column = "drr_target_ms",
+         .help = "dynamic drr: target GPU frame time in ms (0: fixed scale)", .type = Type::Real, .min = 0,
+         .max = kNoMax, .max_open = true, .variants = {"drr"}, .field = field<&Tunables::drr_target_ms>()});
+    add({.name = "cso-tolerance", .column = "cso_tolerance", .help = "cbr-cso depth tolerance (relative, or scene units)",
+         .type = Type::Real, .min = 0, .max = kNoMax, .min_open = true, .max_open = true, .variants = {"cbr-cso"},
+         .sweep = "tol", .compare_key = 4, .field = field<&Tunables::cso_tolerance>()});
+    add({.name = "cso-mode", .column = "cso_mode", .help = "cbr-cso tolerance mode", .type = Type::Word,
+         .words = {"relative", "absolute"}, .variants = {"cbr-cso"}, .sweep = "mode", .compare_key = 5,
+         .field = field<&Tunables::cso_mode>()});
+    add({.name = "cbr-lod-bias", .column = "cbr_lod_bias",
+         .help = "texture LOD bias of checkerboard scene passes (-1 matches full-res derivatives; the paper's: -0.5)",
+         .type = Type::Real, .min = -16, .max = 16, .variants = kCheckerboard, .sweep = "lod", .compare_key = 7,
+         .json_float = true, .field = field<&Tunables::cbr_lod_bias>()});
+    add({.name = "cbr-route", .column = "cbr_route",
+         .help = "checkerboard route (auto: msaa-jitter where the device has 2x MSAA with sample-rate shading, layers "
+                 "on lavapipe, else multiview)",
+         .type = Type::Word, .words = {"auto", "msaa-jitter", "msaa-locations", "multiview", "layers"},
+         .variants = kCheckerboard, .sweep = "route", .compare_key = 6, .field = field<&Tunables::cbr_route>()});
+    add({.name = "cbr-history", .column = "cbr_history",
+         .help = "checkerboard history: quarter (frame N-1's quarter-res samples, the paper's) or full (the previous "
+                 "resolved frame, clipped to the neighbourhood)",
+         .type = Type::Word, .words = {"quarter", "full"}, .variants = {"cbr-aso", "cbr-cso"}, .sweep = "history",
+         .compare_key = 10, .hash = Hash::UnlessDefault, .field = field<&Tunables::cbr_history>()});
+    addTaauRows(rows);
+    add({.name = "history-filter", .column = "history_filter",
+         .help = "how --cbr-history full reads the history (bilinear blurs frame after frame)", .type = Type::Word,
+         .words = {"catmull-rom", "bilinear"}, .variants = kCheckerboard, .compare_key = 11,
+         .hash = Hash::UnlessDefault, .field = field<&Tunables::history_filter>()});
+    add({.name = "history-format", .column = "history_format",
+         .help = "how --cbr-history full stores the history: b10g11r11 (4 bytes a pixel; rgba16f where the device "
+                 "cannot store it) or rgba16f (8 bytes, exact on a still camera)",
+         .type = Type::Word, .words = {"b10g11r11", "rgba16f"}, .variants = kCheckerboard, .compare_key = 12,
+         .hash = Hash::UnlessDefault, .field = field<&Tunables::history_format>()});
+}
+
+// The display row: a Text row, its value a display model (metrics/cvvdp.h).
+Row displayRow() {
+    return {.name = "display", .column = "display",
+            .help = "how the frames are seen, for ColorVideoVDP and FLIP: a display model (its size, distance, peak "
+                    "luminance and ambient light; cbrbench displays lists them)",
+            .type = Type::Text, .hash = Hash::UnlessDefault,
+            .text_field = {.get = [](const Tunables& t) { return t.display.spec(); },
+                           .set = [](Tunables& t, const std::string& v) { t.display = metrics::parseDisplay(v); },
+                           .json = [](const Tunables& t) {
+                               const auto& d = t.display;
+                               return nlohmann::json{{"name", d.name},          {"spec", d.spec()},
+                                                     {"ppd", d.ppd()},          {"width", d.width},
+                                                     {"height", d.height},      {"distance_m", d.distance_m},
+                                                     {"diagonal_in", d.diagonal_in}, {"fov_diagonal_deg", d.fov_diagonal_deg},
+                                                     {"peak", d.peak},          {"contrast", d.contrast},
+                                                     {"ambient_lux", d.ambient_lux}, {"k_refl", d.k_refl},
+                                                     {"description", d.describe()}};
+                           }}};
 }
 
 // The rows of how every variant is drawn and scored.
 void addRunRows(std::vector<Row>& rows) {
     auto add = [&](Row r) { rows.push_back(std::move(r)); };
-    add({"resolve-impl", "resolve_impl",
-         "fused (resolve/upscale write the display image), separate (then a tonemap pass), or reference (the "
-         "untiled passes the tiled resolve replaced, for image and time comparisons)",
-         Type::Word, {"fused", "separate", "reference"}, 0, 0, false, false, {}, {}, nullptr, false, 9, Hash::Always,
-         true, false, field<&Tunables::resolve_impl>()});
-    add({"target-clear", "target_clear",
-         "how scene passes clear colour targets: auto (compute on NVIDIA, load op elsewhere), load-op, or compute "
-         "(a compute pass stores the clear value)",
-         Type::Word, {"auto", "load-op", "compute"}, 0, 0, false, false, {}, {}, nullptr, false, 0,
-         Hash::UnlessDefault, true, false, field<&Tunables::target_clear>()});
-    add({"debug-shading", "debug_shading",
-         "none, or pixel-id: colours encode the full-res pixel each sample lands on (tests)", Type::Word,
-         {"none", "pixel-id"}, 0, 0, false, false, {}, {}, nullptr, false, 0, Hash::Always, true, false,
-         field<&Tunables::debug_shading>()});
-    add({"reference", "reference", "what variants are scored against", Type::Word, {"full", "ssaa"}, 0, 0, false,
-         false, {}, {}, "ref", true, 8, Hash::Always, false, false, field<&Tunables::reference>()});
-    add({"ssaa", "ssaa", "samples per axis of the ssaa reference (box filter)", Type::Int, {}, 2, 8, false, false, {},
-         {}, nullptr, false, 0, Hash::Always, false, false, field<&Tunables::ssaa>()});
-    Row display{"display", "display",
-                "how the frames are seen, for ColorVideoVDP and FLIP: a display model (its size, distance, peak "
-                "luminance and ambient light; cbrbench displays lists them)",
-                Type::Text, {}, 0, 0, false, false, {}, {}, nullptr, false, 0, Hash::UnlessDefault, true, false, {}};
-    display.text_field = {[](const Tunables& t) { return t.display.spec(); },
-                          [](Tunables& t, const std::string& v) { t.display = metrics::parseDisplay(v); },
-                          [](const Tunables& t) {
-                              const auto& d = t.display;
-                              return nlohmann::json{{"name", d.name},          {"spec", d.spec()},
-                                                    {"ppd", d.ppd()},          {"width", d.width},
-                                                    {"height", d.height},      {"distance_m", d.distance_m},
-                                                    {"diagonal_in", d.diagonal_in}, {"fov_diagonal_deg", d.fov_diagonal_deg},
-                                                    {"peak", d.peak},          {"contrast", d.contrast},
-                                                    {"ambient_lux", d.ambient_lux}, {"k_refl", d.k_refl},
-                                                    {"description", d.describe()}};
-                          }};
-    add(std::move(display));
-    add({"flip-ppd", "flip_ppd",
-         "FLIP's pixels per degree of visual angle (0: the display model's, 75.40 for standard_4k; FLIP's own "
-         "default observer, 0.7 m from a 0.7 m wide 3840-pixel monitor, is 67.02)",
-         Type::Real, {}, 0, kNoMax, false, true, {}, {}, nullptr, false, 0, Hash::UnlessDefault, false, false,
-         field<&Tunables::flip_ppd>()});
-    add({"scorer", "scorer",
-         "where quality frames are scored: device (Vulkan compute, where the images are), cpu, or auto (device on "
-         "GPUs, cpu on lavapipe, where it is faster)",
-         Type::Word, {"auto", "device", "cpu"}, 0, 0, false, false, {}, {}, nullptr, false, 0, Hash::Never, false,
-         false, field<&Tunables::scorer>()});
+    add({.name = "resolve-impl", .column = "resolve_impl",
+         .help = "fused (resolve/upscale write the display image), separate (then a tonemap pass), or reference (the "
+                 "untiled passes the tiled resolve replaced, for image and time comparisons)",
+         .type = Type::Word, .words = {"fused", "separate", "reference"}, .compare_key = 9,
+         .field = field<&Tunables::resolve_impl>()});
+    add({.name = "target-clear", .column = "target_clear",
+         .help = "how scene passes clear colour targets: auto (compute on NVIDIA, load op elsewhere), load-op, or "
+                 "compute (a compute pass stores the clear value)",
+         .type = Type::Word, .words = {"auto", "load-op", "compute"}, .hash = Hash::UnlessDefault,
+         .field = field<&Tunables::target_clear>()});
+    add({.name = "debug-shading", .column = "debug_shading",
+         .help = "none, or pixel-id: colours encode the full-res pixel each sample lands on (tests)", .type = Type::Word,
+         .words = {"none", "pixel-id"}, .field = field<&Tunables::debug_shading>()});
+    add({.name = "reference", .column = "reference", .help = "what variants are scored against", .type = Type::Word,
+         .words = {"full", "ssaa"}, .sweep = "ref", .outer = true, .compare_key = 8, .run_json = false,
+         .field = field<&Tunables::reference>()});
+    add({.name = "ssaa", .column = "ssaa", .help = "samples per axis of the ssaa reference (box filter)",
+         .type = Type::Int, .min = 2, .max = 8, .run_json = false, .field = field<&Tunables::ssaa>()});
+    add(displayRow());
+    add({.name = "flip-ppd", .column = "flip_ppd",
+         .help = "FLIP's pixels per degree of visual angle (0: the display model's, 75.40 for standard_4k; FLIP's own "
+                 "default observer, 0.7 m from a 0.7 m wide 3840-pixel monitor, is 67.02)",
+         .type = Type::Real, .min = 0, .max = kNoMax, .max_open = true, .hash = Hash::UnlessDefault, .run_json = false,
+         .field = field<&Tunables::flip_ppd>()});
+    add({.name = "scorer", .column = "scorer",
+         .help = "where quality frames are scored: device (Vulkan compute, where the images are), cpu, or auto (device "
+                 "on GPUs, cpu on lavapipe, where it is faster)",
+         .type = Type::Word, .words = {"auto", "device", "cpu"}, .hash = Hash::Never, .run_json = false,
+         .field = field<&Tunables::scorer>()});
 }
 
 // A local, not a namespace-scope constant: compare.cpp reads the table while statics are

@@ -17,12 +17,10 @@ namespace cbr::harness {
 
 namespace fs = std::filesystem;
 
-int runExport(const std::string& run_dir, const std::string& format, const std::string& out_file) {
-    auto formats = parseExportFormats(format, "export --format");
-    if (formats.size() != 1) throw std::invalid_argument("export --format: give one format; accepted: " + std::string(kExportFormats));
+int runExport(const std::string& run_dir, ExportFormat format, const std::string& out_file) {
     if (!fs::is_directory(run_dir))
         throw std::invalid_argument("export " + run_dir + ": not a directory; expected a run's output directory");
-    fs::path out = out_file.empty() ? fs::path(run_dir) / exportFileName(formats[0]) : fs::path(out_file);
+    fs::path out = out_file.empty() ? fs::path(run_dir) / exportFileName(format) : fs::path(out_file);
     fs::path parent = fs::absolute(out).parent_path();
     if (!fs::is_directory(parent) || fs::is_directory(out))
         throw std::invalid_argument("export --out " + out.string() + ": accepted: a file path in an existing directory");
@@ -32,7 +30,7 @@ int runExport(const std::string& run_dir, const std::string& format, const std::
     } catch (const nlohmann::json::exception& e) {
         throw std::invalid_argument("export " + (fs::path(run_dir) / "run.json").string() + ": " + e.what());
     }
-    reports::writeTextAtomically(out, exportText(d, formats[0]));
+    reports::writeTextAtomically(out, exportText(d, format));
     std::printf("export: %s\n", out.c_str());
     return kExitDone;
 }

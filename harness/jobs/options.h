@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/jobs/job_values.h"
 #include "renderer/settings.h"
 #include "settings/settings.h"
 
@@ -39,11 +40,14 @@ struct Slowdown {
 // std::invalid_argument naming `flag`, the text and what it accepts.
 Slowdown parseSlowdown(const std::string& text, const std::string& flag = "--debug-slowdown");
 
+// One job: a whole run of one scene, path, pipeline and resolution (matrix_spec.h expands a
+// command line's lists into these). Every value is typed: nothing after the command line
+// reads a word of it again.
 struct RunOptions {
     std::string scene = "atrium";     // procedural name or .gltf/.glb path
-    std::string path = "flythrough";  // built-in name or .json path
+    std::string path = "flythrough";  // built-in name, .json path, or gltf[:NAME]
     std::vector<std::string> variants;  // empty: every variant in the table
-    std::string resolution = "960x540";
+    Resolution resolution;            // 960x540
     int frames = 60;                  // 0: the path's own length
     bool frames_set = false;          // --frames given: else a --path gltf runs at --fps over its length
     double fps = 60;                  // frame rate of a --path gltf camera
@@ -56,19 +60,16 @@ struct RunOptions {
     bool replace = false;             // --replace: an existing --out is swapped for the new one when complete
     std::string out;                  // "" -> out/<scene>-<path>-<date-time>
     Slowdown debug_slowdown;             // a known slowdown for testing regression detection
-    std::string exports;                 // --export: comma list of formats (harness/output/exports.h)
-    std::string pipeline = "forward";    // forward | deferred, or a comma list of them (a job matrix)
+    std::vector<ExportFormat> exports;   // --export: written besides the run's files (harness/output/exports.h)
+    Pipeline pipeline = Pipeline::Forward;
     settings::Tunables tune;             // every row of the settings table, typed (settings/table.h)
     // Placement (harness/jobs/placement.h): world' = offset + scale * world, scene and path together.
-    std::string scene_offset;            // "X,Y,Z" ("": none)
+    std::optional<glm::dvec3> scene_offset;  // none: the scene where its file puts it
     double scene_scale = 1.0;
     std::optional<double> near, far;     // every keyframe's clip planes, after placement
     std::vector<std::string> params;  // `cbrbench sweep --param` specs (empty: a plain run)
     RunControl control;
 };
-
-// Parsed "WxH"; throws std::invalid_argument for anything else or a 0 dimension.
-void parseResolution(const std::string& text, uint32_t& width, uint32_t& height);
 
 // --flip-ppd (of run, sweep, score and metric-cost): throws std::invalid_argument with one
 // line unless it is finite and > 0.

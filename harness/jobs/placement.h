@@ -1,6 +1,7 @@
-// --scene-offset, --scene-scale, --near, --far: checked, then applied to the loaded scene
-// and camera path together (before frames are sampled), so precision tests and stress runs
-// see the same image far from the origin, at another unit, or with extreme clip planes.
+// --scene-offset (parsed with the command line), --scene-scale, --near, --far: checked, then
+// applied to the loaded scene and camera path together (before frames are sampled), so
+// precision tests and stress runs see the same image far from the origin, at another unit,
+// or with extreme clip planes.
 #pragma once
 
 #include <cmath>
@@ -20,37 +21,13 @@ inline std::string placementNumber(double v) {
     return buf;
 }
 
-// "X,Y,Z" with three finite numbers; throws std::invalid_argument naming --scene-offset.
-inline glm::dvec3 parseSceneOffset(const std::string& text) {
-    double v[3] = {};
-    size_t start = 0;
-    bool ok = true;
-    for (int i = 0; i < 3 && ok; ++i) {
-        size_t comma = text.find(',', start);
-        if ((i < 2) != (comma != std::string::npos)) ok = false;
-        std::string item = text.substr(start, i < 2 ? comma - start : std::string::npos);
-        size_t used = 0;
-        try {
-            v[i] = std::stod(item, &used);
-        } catch (const std::exception&) {
-            ok = false;
-        }
-        ok = ok && used == item.size() && std::isfinite(v[i]);
-        start = comma + 1;
-    }
-    if (!ok)
-        throw std::invalid_argument("--scene-offset " + text +
-                                    ": expected X,Y,Z, three finite numbers in scene units (e.g. 1e6,1e6,1e6)");
-    return {v[0], v[1], v[2]};
-}
-
 // world' = offset + scale * world for scene and path alike; then --near/--far replace
 // every keyframe's clip planes (in the placed scene's units).
 inline void applyPlacement(const RunOptions& o, scene::Scene& scene, paths::CameraPath& path) {
     if (!(o.scene_scale > 0 && std::isfinite(o.scene_scale)))
         throw std::invalid_argument("--scene-scale " + placementNumber(o.scene_scale) +
                                     ": expected a finite number > 0 (e.g. 0.001: metres to millimetres)");
-    const glm::dvec3 offset = o.scene_offset.empty() ? glm::dvec3(0.0) : parseSceneOffset(o.scene_offset);
+    const glm::dvec3 offset = o.scene_offset.value_or(glm::dvec3(0.0));
     if (o.near && !(*o.near > 0 && std::isfinite(*o.near)))
         throw std::invalid_argument("--near " + placementNumber(*o.near) + ": expected a finite number > 0");
     if (o.far && !(*o.far > 0 && std::isfinite(*o.far)))

@@ -273,7 +273,7 @@ std::string sweepPathName(const std::string& spec) {
     return stem;
 }
 
-std::vector<OuterSweep> outerSweeps(const std::string& path_list, const std::string& reference,
+std::vector<OuterSweep> outerSweeps(const std::vector<std::string>& paths, const std::string& reference,
                                     const std::vector<std::string>& params) {
     std::vector<std::string> inner;
     std::vector<std::string> references{reference};
@@ -287,7 +287,8 @@ std::vector<OuterSweep> outerSweeps(const std::string& path_list, const std::str
         references = parseSweepParam(spec).words;
         swept = true;
     }
-    std::vector<std::string> paths = split(path_list, ',');
+    std::string path_list;
+    for (size_t i = 0; i < paths.size(); ++i) path_list += (i ? "," : "") + paths[i];
     std::vector<std::string> names;
     for (const auto& path : paths) {
         if (path.empty())

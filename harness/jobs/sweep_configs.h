@@ -73,7 +73,7 @@ struct SweepConfig {
 // Without parameters: one configuration per variant, labelled with the variant's name.
 std::vector<SweepConfig> expandSweep(const std::vector<SweepParam>& params, const std::vector<std::string>& variants);
 
-// The outer dimensions of a sweep: --path as a comma list and --param reference=...
+// The outer dimensions of a sweep: --path's list and --param reference=...
 // (the reference is rendered once per run, so it cannot vary per configuration). Each
 // combination is a sweep of its own: `dir` is its subdirectory of --out ("" when there
 // is only one: the sweep writes into --out itself), `path` and `reference` its values.
@@ -85,7 +85,7 @@ struct OuterSweep {
 };
 // Throws std::invalid_argument for a bad reference spec, an empty or repeated path, or
 // two paths whose names (file stems) coincide.
-std::vector<OuterSweep> outerSweeps(const std::string& path_list, const std::string& reference,
+std::vector<OuterSweep> outerSweeps(const std::vector<std::string>& paths, const std::string& reference,
                                     const std::vector<std::string>& params);
 
 // A path spec as sweep.csv's `path` column and directory names write it: the file stem,

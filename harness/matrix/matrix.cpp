@@ -21,31 +21,11 @@
 #include "reports/csv_read.h"
 #include "reports/output_dir.h"
 #include "renderer/variants/variants.h"
-#include "settings/table.h"
 
 namespace cbr::harness {
 namespace {
 
 using nlohmann::json;
-
-// Job ids use [A-Za-z0-9._-] only: they are directory names and CSV cells.
-std::string safe(const std::string& s) {
-    std::string out;
-    for (char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-') ? c : '_';
-    return out;
-}
-
-uint64_t fnv1a(const std::string& s) {
-    uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-    return h;
-}
-
-std::string hex8(uint64_t v) {
-    char b[17];
-    std::snprintf(b, sizeof b, "%08llx", static_cast<unsigned long long>(v & 0xffffffffull));
-    return b;
-}
 
 int parseIndex(const char* text, const std::string& what) {
     std::string s = text ? text : "";
@@ -102,8 +82,8 @@ void writeCombinedSummary(const std::filesystem::path& dir, const std::vector<st
 }
 
 json jobMeta(const Job& j) {
-    return {{"job", j.id}, {"scene", j.options.scene}, {"path", j.options.path}, {"pipeline", j.options.pipeline},
-            {"resolution", j.options.resolution}};
+    return {{"job", j.id}, {"scene", j.options.scene}, {"path", j.options.path},
+            {"pipeline", pipelineWord(j.options.pipeline)}, {"resolution", j.options.resolution.text()}};
 }
 
 void writeJobsCsv(const std::filesystem::path& dir, const std::vector<json>& rows) {
@@ -126,76 +106,7 @@ std::string isoNow() {
 
 }  // namespace
 
-bool isMatrix(const RunOptions& o) {
-    for (const auto* s : {&o.scene, &o.path, &o.pipeline, &o.resolution})
-        // A sweep's paths are its outer dimension (one sweep per path, run.cpp), not jobs.
-        if (s->find(',') != std::string::npos && !(o.control.sweep && s == &o.path)) return true;
-    return false;
-}
-
-std::vector<Job> planJobs(const RunOptions& o) {
-    auto axis = [](const std::string& list, const char* flag) {
-        auto v = splitList(list);
-        if (v.empty()) throw std::invalid_argument(std::string(flag) + " " + list + ": empty list; expected NAME[,NAME...]");
-        std::set<std::string> seen;
-        for (const auto& x : v)
-            if (!seen.insert(x).second)
-                throw std::invalid_argument(std::string(flag) + " " + list + ": " + x + " listed twice; expected each once");
-        return v;
-    };
-    std::vector<Job> jobs;
-    std::set<std::string> ids;
-    for (const auto& scene : axis(o.scene, "--scene"))
-        for (const auto& path : axis(o.path, "--path"))
-            for (const auto& pipeline : axis(o.pipeline, "--pipeline"))
-                for (const auto& res : axis(o.resolution, "--res")) {
-                    Job j;
-                    j.options = o;
-                    j.options.scene = scene;
-                    j.options.path = path;
-                    j.options.pipeline = pipeline;
-                    j.options.resolution = res;
-                    j.id = safe(specStem(scene) + "-" + specStem(path) + "-" + pipeline + "-" + res);
-                    // Two files with one stem (a/x.gltf, b/x.gltf): the full specs tell them apart.
-                    if (ids.count(j.id)) j.id += "-" + hex8(fnv1a(scene + "|" + path));
-                    ids.insert(j.id);
-                    jobs.push_back(std::move(j));
-                }
-    std::sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) { return a.id < b.id; });
-    return jobs;
-}
-
-std::string planHash(const RunOptions& o) {
-    json j = {{"variants", o.variants},        {"frames", o.frames},
-              {"repeat", o.repeat},            {"warmup", o.warmup},
-              {"device", o.device},            {"validate", o.validate},
-              {"debug_slowdown", o.debug_slowdown.spec()}, {"scene_offset", o.scene_offset},
-              {"scene_scale", o.scene_scale},  {"near", o.near ? json(*o.near) : json()},
-              {"far", o.far ? json(*o.far) : json()}};
-    // The table's rows as each says: settings added after plans were first hashed enter only
-    // away from their default, so those plans keep their hash.
-    for (const auto& row : settings::table())
-        if (row.hash == settings::Hash::Always || (row.hash == settings::Hash::UnlessDefault && !settings::isDefault(row, o.tune)))
-            j[row.column] = settings::toJson(row, o.tune);
-    const RunOptions defaults;
-    if (o.animation != defaults.animation) j["animation"] = o.animation;
-    if (o.fps != defaults.fps) j["fps"] = o.fps;
-    // The jobs, not the lists' spelling: "a,b" and "b,a" are one plan.
-    json ids = json::array();
-    for (const auto& job : planJobs(o)) ids.push_back(job.id);
-    j["jobs"] = ids;
-    return hex8(fnv1a(j.dump()));
-}
-
-Shard resolveShard(const std::string& flag) {
-    Shard s;
-    if (!flag.empty()) {
-        int i = -1, n = -1;
-        char extra = 0;
-        if (std::sscanf(flag.c_str(), "%d/%d%c", &i, &n, &extra) != 2 || n < 1 || i < 0 || i >= n)
-            throw std::invalid_argument("--shard " + flag + ": expected I/N with 0 <= I < N (0-based, e.g. 0/4)");
-        return {i, n, "--shard"};
-    }
+Shard shardFromEnvironment() {
     if (const char* id = std::getenv("SLURM_ARRAY_TASK_ID")) {
         const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
         if (!count)
@@ -220,14 +131,15 @@ Shard resolveShard(const std::string& flag) {
                                         std::string(total));
         return {i, n, "GTEST_SHARD_INDEX"};
     }
-    return s;
+    return {};
 }
 
 int shardOf(size_t job_index, const Shard& s) { return int(job_index % size_t(s.count)); }
 
-int printPlan(const RunOptions& o, int shards) {
+int printPlan(const MatrixSpec& spec, int shards) {
     if (shards < 1) throw std::invalid_argument("--shards " + std::to_string(shards) + ": expected >= 1");
-    auto jobs = planJobs(o);
+    const RunOptions& o = spec.shared;
+    auto jobs = expandJobs(spec);
     for (const auto& j : jobs) checkRunOptions(j.options);
     // Without --variants every variant of the table runs (the reference first).
     const std::string reference(variants::referenceVariant().name);
@@ -241,7 +153,7 @@ int printPlan(const RunOptions& o, int shards) {
     }
     std::printf("plan %s: %zu job%s (scene x path x pipeline x resolution), each running the variants %s together, "
                 "%d shard%s\n",
-                planHash(o).c_str(), jobs.size(), jobs.size() == 1 ? "" : "s",
+                planHash(spec).c_str(), jobs.size(), jobs.size() == 1 ? "" : "s",
                 variants.c_str(), shards,
                 shards == 1 ? "" : "s");
     size_t w = 4;
@@ -252,18 +164,20 @@ int printPlan(const RunOptions& o, int shards) {
         const auto& jo = jobs[k].options;
         std::string shard = std::to_string(shardOf(k, s)) + "/" + std::to_string(shards);
         std::printf("%-*s %-7s %-14s %-14s %-9s %s\n", int(w), jobs[k].id.c_str(), shard.c_str(), jo.scene.c_str(),
-                    jo.path.c_str(), jo.pipeline.c_str(), jo.resolution.c_str());
+                    jo.path.c_str(), pipelineWord(jo.pipeline), jo.resolution.text().c_str());
     }
     return kExitDone;
 }
 
-int runMatrix(const RunOptions& o, const Shard& shard) {
-    auto jobs = planJobs(o);
+int runMatrix(const MatrixSpec& spec, const Shard& shard) {
+    const RunOptions& o = spec.shared;
+    const std::string plan = planHash(spec);
+    auto jobs = expandJobs(spec);
     std::vector<size_t> mine;
     for (size_t k = 0; k < jobs.size(); ++k)
         if (shardOf(k, shard) == shard.index) mine.push_back(k);
     std::filesystem::path out_path =
-        o.out.empty() ? std::filesystem::path("out") / ("matrix-" + planHash(o) + "-shard" + std::to_string(shard.index) +
+        o.out.empty() ? std::filesystem::path("out") / ("matrix-" + plan + "-shard" + std::to_string(shard.index) +
                                                         "of" + std::to_string(shard.count))
                       : std::filesystem::path(o.out);
     // Every job's input is checked before anything is written.
@@ -306,7 +220,7 @@ int runMatrix(const RunOptions& o, const Shard& shard) {
     }
     writeJobsCsv(out.path(), rows);
     if (!done.empty()) writeCombinedSummary(out.path(), done);
-    json m = {{"plan", planHash(o)},
+    json m = {{"plan", plan},
               {"jobs_planned", jobs.size()},
               {"shards", json::array({{{"index", shard.index}, {"count", shard.count}, {"source", shard.source}}})},
               {"device", device},

@@ -13,7 +13,7 @@ namespace cbr::harness {
 
 // What a run will hold, as far as its memory goes (run.cpp fills it from the prepared run).
 struct MemoryPlan {
-    std::string resolution;  // as given, for the refusal's line
+    std::string resolution;  // "WxH", for the refusal's line
     int width = 0, height = 0;
     size_t configs = 0;      // configurations rendered
     size_t scored = 0;       // configurations scored against the reference

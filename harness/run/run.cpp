@@ -23,13 +23,13 @@ namespace {
 void checkDeviceLimits(const RunOptions& options, const render::Settings& settings, const vk::Context& ctx) {
     uint32_t max_dim = ctx.caps.max_image_dimension_2d;
     if (settings.width > max_dim || settings.height > max_dim)
-        throw std::invalid_argument("--res " + options.resolution + ": above the device limit; expected each side <= " +
+        throw std::invalid_argument("--res " + options.resolution.text() + ": above the device limit; expected each side <= " +
                                     std::to_string(max_dim) + " on " + ctx.description.name);
 
     const int ssaa = options.tune.ssaa;
     if (options.tune.reference == settings::Reference::Ssaa &&
         (settings.width * uint32_t(ssaa) > max_dim || settings.height * uint32_t(ssaa) > max_dim))
-        throw std::invalid_argument("--ssaa " + std::to_string(ssaa) + ": the " + options.resolution +
+        throw std::invalid_argument("--ssaa " + std::to_string(ssaa) + ": the " + options.resolution.text() +
                                     " reference would exceed the device limit of " + std::to_string(max_dim) +
                                     "; expected a smaller factor or resolution");
 }
@@ -45,7 +45,7 @@ gpu::GpuScene uploadScene(vk::Context& ctx, Prepared& p, WallAccount& wall) {
 // What the run will hold, for its memory estimate.
 MemoryPlan memoryPlan(const RunState& s) {
     MemoryPlan plan;
-    plan.resolution = s.options.resolution;
+    plan.resolution = s.options.resolution.text();
     plan.width = s.w;
     plan.height = s.h;
     plan.configs = s.p.configs.size();
@@ -90,7 +90,7 @@ void writeFiles(RunState& s, reports::OutputDir& out) {
         WallAccount::Scope scope(s.wall, WallPart::Outputs);
         writeOutputs(out.path(), rc);
         if (options.control.sweep) writeSweepCsv(out.path(), rc);
-        writeExports(out.path(), parseExportFormats(options.exports, "--export"));
+        writeExports(out.path(), options.exports);
     }
     {
         WallAccount::Scope scope(s.wall, WallPart::Report);

@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "harness/output/exports.h"
 #include "harness/jobs/gltf_path.h"
 #include "harness/jobs/placement.h"
 #include "harness/run/run_internal.h"
@@ -20,6 +19,7 @@ void checkOptions(const RunOptions& o) {
     if (o.frames < 0) throw std::invalid_argument("--frames " + std::to_string(o.frames) + ": expected >= 1 (or 0: the path's length)");
     if (o.repeat < 1) throw std::invalid_argument("--repeat " + std::to_string(o.repeat) + ": expected >= 1");
     if (o.warmup < 0) throw std::invalid_argument("--warmup " + std::to_string(o.warmup) + ": expected >= 0");
+    checkResolution(o.resolution);  // typed at the command line; options made in code are checked here
     settings::check(o.tune);  // the command line checked them; options made in code are checked here
 }
 
@@ -37,13 +37,12 @@ void applyDebugSlowdown(const RunOptions& o, render::Settings& settings) {
 // and what the harness derives from the other options.
 render::Settings settingsFromOptions(const RunOptions& o) {
     render::Settings s;
-    parseResolution(o.resolution, s.width, s.height);
     checkOptions(o);
+    s.width = o.resolution.width;
+    s.height = o.resolution.height;
     static_cast<settings::Tunables&>(s) = o.tune;
     applyDebugSlowdown(o, s);
-    if (o.pipeline != "forward" && o.pipeline != "deferred")
-        throw std::invalid_argument("--pipeline " + o.pipeline + ": expected forward or deferred");
-    s.deferred = o.pipeline == "deferred";
+    s.deferred = o.pipeline == Pipeline::Deferred;
     s.analysis = true;  // quality frames carry motion and depth for the edge-crawl metric
     return s;
 }
@@ -136,7 +135,6 @@ void checkSpecs(const RunOptions& o) {
 void checkRunOptions(const RunOptions& o) {
     Prepared p;
     p.settings = settingsFromOptions(o);
-    (void)parseExportFormats(o.exports, "--export");
     makeConfigs(o, p);
     checkSpecs(o);
     (void)outputDirectory(o);
@@ -146,7 +144,6 @@ Prepared prepare(const RunOptions& o) {
     Prepared p;
     p.options = o;
     p.settings = settingsFromOptions(o);
-    (void)parseExportFormats(o.exports, "--export");
     makeConfigs(o, p);
     loadSceneAndPath(o, p);
     p.out = outputDirectory(o);

@@ -16,8 +16,7 @@
 namespace cbr::harness {
 
 int runMetricCost(const MetricCostOptions& o) {
-    uint32_t w = 0, h = 0;
-    parseResolution(o.res, w, h);
+    const uint32_t w = o.res.width, h = o.res.height;
     checkFlipPpd(o.flip_ppd);
     if (!(o.fps > 0 && std::isfinite(o.fps)))
         throw std::invalid_argument("--fps " + std::to_string(o.fps) + ": expected a number > 0");

@@ -3,12 +3,13 @@
 
 #include <string>
 
+#include "harness/jobs/job_values.h"
 #include "metrics/flip.h"
 
 namespace cbr::harness {
 
 struct MetricCostOptions {
-    std::string res = "1920x1080";
+    Resolution res{1920, 1080};
     int frames = 10;
     double flip_ppd = 0;  // 0: the display's
     std::string display = "standard_4k";

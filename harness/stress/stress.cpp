@@ -48,9 +48,6 @@ namespace {
 void checkStressOptions(const StressOptions& o) {
     if (o.static_frames < 2 || o.subpixel_frames < 101)
         throw std::invalid_argument("stress: --static-frames >= 2 and --subpixel-frames >= 101 expected");
-    for (const auto& p : o.pipelines)
-        if (p != "forward" && p != "deferred")
-            throw std::invalid_argument("--pipelines " + p + ": expected forward and/or deferred");
     std::set<std::string> names;
     for (const auto& c : stressCases()) names.insert(c.name);
     for (const auto& want : o.cases)
@@ -65,8 +62,8 @@ void checkStressOptions(const StressOptions& o) {
 // baseline too), and each case judged as its runs come in.
 class StressPipeline {
 public:
-    StressPipeline(const StressOptions& o, const reports::OutputDir& out, const std::string& pipeline, ProgressBar& bar)
-        : o_(o), out_(out), pipeline_(pipeline), bar_(bar) {}
+    StressPipeline(const StressOptions& o, const reports::OutputDir& out, Pipeline pipeline, ProgressBar& bar)
+        : o_(o), out_(out), pipeline_(pipelineWord(pipeline)), bar_(bar) {}
 
     // The case's runs (started where not run yet) and their links, "pipeline/id".
     Children runCase(const Case& c, std::string& links) {
@@ -124,7 +121,7 @@ private:
         if (no_save != child.args.end()) child.args.erase(no_save), child.save_frames = false;
         child.dir = out_.path() / pipeline_ / id;
         fs::create_directories(child.dir.parent_path());
-        std::vector<std::string> common = {"--res", o_.resolution, "--repeat", "1", "--warmup", "1", "--pipeline", pipeline_,
+        std::vector<std::string> common = {"--res", o_.resolution.text(), "--repeat", "1", "--warmup", "1", "--pipeline", pipeline_,
                                            "--variants", caseVariants()};
         if (!o_.device.empty()) common.insert(common.end(), {"--device", o_.device});
         if (o_.validate) common.push_back("--validate");
@@ -146,14 +143,12 @@ private:
 }  // namespace
 
 int runStress(const StressOptions& o) {
-    uint32_t w = 0, h = 0;
-    parseResolution(o.resolution, w, h);
     checkStressOptions(o);
     fs::path final_dir = o.out.empty() ? fs::path("out") / ("stress-" + timestampForName()) : fs::path(o.out);
     reports::OutputDir out(final_dir, o.replace);
     fs::path paths_dir = out.path() / "inputs";
     fs::create_directories(paths_dir);
-    std::vector<Case> cases = buildCases(paths_dir, o, w, h);
+    std::vector<Case> cases = buildCases(paths_dir, o, o.resolution.width, o.resolution.height);
 
     reports::CsvTable table({"case", "pipeline", "expectation", "finite", "held", "quality", "detail", "runs"});
     int failed = 0, total = 0;
@@ -165,9 +160,10 @@ int runStress(const StressOptions& o) {
         if (selected(c))
             for (const auto& run : c.runs) run_ids.insert(run.first == "base" ? "base" : c.name + "-" + run.first);
     ProgressBar bar("runs", int(run_ids.size() * o.pipelines.size()));
-    reports::StressPage page{o.resolution, o.validate, variants::variantNames(), {}};
-    for (const auto& pipeline : o.pipelines) {
-        StressPipeline runs(o, out, pipeline, bar);
+    reports::StressPage page{o.resolution.text(), o.validate, variants::variantNames(), {}};
+    for (const Pipeline p : o.pipelines) {
+        const std::string pipeline = pipelineWord(p);
+        StressPipeline runs(o, out, p, bar);
         for (const auto& c : cases) {
             if (!selected(c)) continue;
             std::string links;

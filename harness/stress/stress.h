@@ -5,15 +5,17 @@
 #include <string>
 #include <vector>
 
+#include "harness/jobs/job_values.h"
+
 namespace cbr::harness {
 
 struct StressOptions {
-    std::string resolution = "96x64";
+    Resolution resolution{96, 64};
     std::string out;                 // "" -> out/stress-<date-time>
     bool replace = false;            // --replace: an existing --out (a cbrbench folder) is swapped for the new one
     std::string device;
     std::vector<std::string> cases;  // empty: all
-    std::vector<std::string> pipelines{"forward", "deferred"};
+    std::vector<Pipeline> pipelines{Pipeline::Forward, Pipeline::Deferred};
     bool validate = false;
     std::string cbr_route;           // "" -> the run's auto route
     int static_frames = 1000;        // the static-camera case's length

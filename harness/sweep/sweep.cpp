@@ -20,7 +20,7 @@ namespace {
 // The sweeps of the outer dimensions (harness/jobs/sweep_configs.h) one after another into OUT/<dir>/,
 // then OUT/sweep.csv (every row, naming its path and reference) and the index sweep.html.
 // Every sweep's input is checked before the first renders; OUT appears whole or not at all.
-int runOuterSweeps(const RunOptions& options, const std::vector<OuterSweep>& outer) {
+int runOuterSweeps(const RunOptions& options, const std::vector<std::string>& paths, const std::vector<OuterSweep>& outer) {
     auto sub = [&](const OuterSweep& o, const std::filesystem::path& out) {
         RunOptions s = options;
         s.path = o.path;
@@ -31,7 +31,7 @@ int runOuterSweeps(const RunOptions& options, const std::vector<OuterSweep>& out
     };
     if (outer.size() == 1) return runBenchmark(sub(outer[0], options.out));
     std::string names;
-    for (const auto& path : splitList(options.path)) {
+    for (const auto& path : paths) {
         if (!names.empty()) names += '+';
         names += sweepPathName(path);
     }
@@ -62,10 +62,10 @@ int runOuterSweeps(const RunOptions& options, const std::vector<OuterSweep>& out
 
 }  // namespace
 
-int runSweep(const RunOptions& options) {
+int runSweep(const RunOptions& options, const std::vector<std::string>& paths) {
     // A sweep over paths or reference kinds: one run per combination.
-    auto outer = outerSweeps(options.path, settings::text(*settings::find("reference"), options.tune), options.params);
-    if (outer.size() > 1 || outer[0].params.size() != options.params.size()) return runOuterSweeps(options, outer);
+    auto outer = outerSweeps(paths, settings::text(*settings::find("reference"), options.tune), options.params);
+    if (outer.size() > 1 || outer[0].params.size() != options.params.size()) return runOuterSweeps(options, paths, outer);
     return runBenchmark(options);
 }
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "camera_paths/path.h"
-#include "harness/jobs/options.h"
+#include "harness/jobs/job_values.h"
 #include "harness/jobs/sweep_configs.h"
 #include "tests/fuzz/fuzz_util.h"
 
@@ -34,7 +34,9 @@ void checkResolution(const std::string& text, uint32_t& width, uint32_t& height)
     const bool expected = wellFormed(text, w, h);
     bool accepted = false;
     cbr::fuzz::expectOnlyInvalidArgument("parseResolution", [&] {
-        cbr::harness::parseResolution(text, width, height);
+        const cbr::harness::Resolution r = cbr::harness::parseResolution(text);
+        width = r.width;
+        height = r.height;
         accepted = true;
     });
     require(accepted == expected, "parseResolution " + std::string(accepted ? "accepted" : "rejected") + " \"" + text + "\"");

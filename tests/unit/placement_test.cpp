@@ -194,7 +194,7 @@ TEST(PlacePath, PosesMoveAndScaleOrientationsStay) {
 
 TEST(PlacementOptions, AppliesToSceneAndPathTogether) {
     harness::RunOptions o;
-    o.scene_offset = "1e6,1e6,-1e6";
+    o.scene_offset = harness::parseSceneOffset("1e6,1e6,-1e6");
     o.scene_scale = 2;
     o.near = 1e-4;
     o.far = 1e7;
@@ -219,10 +219,13 @@ TEST(PlacementOptions, BadValuesNameTheOption) {
         return errorOf([&] { harness::applyPlacement(o, s, p); });
     };
     using O = harness::RunOptions;
-    EXPECT_EQ(error([](O& o) { o.scene_offset = "1,2"; }).rfind("--scene-offset 1,2: expected", 0), 0u);
-    EXPECT_EQ(error([](O& o) { o.scene_offset = "1,2,3,4"; }).rfind("--scene-offset", 0), 0u);
-    EXPECT_EQ(error([](O& o) { o.scene_offset = "1,x,3"; }).rfind("--scene-offset", 0), 0u);
-    EXPECT_EQ(error([](O& o) { o.scene_offset = "1,inf,3"; }).rfind("--scene-offset", 0), 0u);
+    // --scene-offset is read with the command line (harness/jobs/job_values.h).
+    auto offset = [](const std::string& text) { return errorOf([&] { harness::parseSceneOffset(text); }); };
+    EXPECT_EQ(offset("1,2").rfind("--scene-offset 1,2: expected", 0), 0u);
+    EXPECT_EQ(offset("1,2,3,4").rfind("--scene-offset", 0), 0u);
+    EXPECT_EQ(offset("1,x,3").rfind("--scene-offset", 0), 0u);
+    EXPECT_EQ(offset("1,inf,3").rfind("--scene-offset", 0), 0u);
+    EXPECT_EQ(offset("0,0,0"), "");
     EXPECT_EQ(error([](O& o) { o.scene_scale = 0; }).rfind("--scene-scale 0: expected", 0), 0u);
     EXPECT_EQ(error([](O& o) { o.scene_scale = NAN; }).rfind("--scene-scale", 0), 0u);
     EXPECT_EQ(error([](O& o) { o.near = -1; }).rfind("--near -1: expected", 0), 0u);
@@ -232,7 +235,7 @@ TEST(PlacementOptions, BadValuesNameTheOption) {
     // Only one plane given: checked against every keyframe's other plane.
     EXPECT_EQ(error([](O& o) { o.near = 100; }).rfind("--near 100: expected less than the far plane", 0), 0u);
     EXPECT_EQ(error([](O& o) { o.far = 0.01; }).rfind("--far 0.01: expected more than the near plane", 0), 0u);
-    EXPECT_EQ(error([](O& o) { o.near = 1e-4, o.far = 1e7, o.scene_offset = "0,0,0"; }), "");
+    EXPECT_EQ(error([](O& o) { o.near = 1e-4, o.far = 1e7, o.scene_offset = glm::dvec3(0.0); }), "");
 }
 
 }  // namespace

@@ -235,7 +235,7 @@ TEST(SweepExpand, RefusesASettingNoWantedVariantUsesNamingWhichWould) {
 }
 
 TEST(SweepOuter, PathsAndReferencesEachGetADirectoryAndLeaveTheInnerParams) {
-    auto outer = outerSweeps("flythrough,paths/orbit.json", "full", {"cbr-lod-bias=-1,0", "reference=full,ssaa"});
+    auto outer = outerSweeps({"flythrough", "paths/orbit.json"}, "full", {"cbr-lod-bias=-1,0", "reference=full,ssaa"});
     ASSERT_EQ(outer.size(), 4u);
     EXPECT_EQ(outer[0].dir, "flythrough_ref=full");
     EXPECT_EQ(outer[1].dir, "flythrough_ref=ssaa");
@@ -243,11 +243,11 @@ TEST(SweepOuter, PathsAndReferencesEachGetADirectoryAndLeaveTheInnerParams) {
     EXPECT_EQ(outer[3].path, "paths/orbit.json");
     EXPECT_EQ(outer[3].reference, "ssaa");
     EXPECT_EQ(outer[3].params, (std::vector<std::string>{"cbr-lod-bias=-1,0"}));
-    auto paths_only = outerSweeps("flythrough,orbit", "ssaa", {});
+    auto paths_only = outerSweeps({"flythrough", "orbit"}, "ssaa", {});
     ASSERT_EQ(paths_only.size(), 2u);
     EXPECT_EQ(paths_only[1].dir, "orbit");
     EXPECT_EQ(paths_only[1].reference, "ssaa");
-    auto one = outerSweeps("flythrough", "full", {"reference=ssaa"});
+    auto one = outerSweeps({"flythrough"}, "full", {"reference=ssaa"});
     ASSERT_EQ(one.size(), 1u);
     EXPECT_EQ(one[0].dir, "");  // a single sweep writes into --out itself
     EXPECT_EQ(one[0].reference, "ssaa");
@@ -255,12 +255,13 @@ TEST(SweepOuter, PathsAndReferencesEachGetADirectoryAndLeaveTheInnerParams) {
 }
 
 TEST(SweepOuter, RefusesRepeatedPathsAndReferences) {
-    for (auto [paths, params] : std::vector<std::pair<std::string, std::vector<std::string>>>{
-             {"orbit,orbit", {}}, {"a/orbit.json,b/orbit.json", {}}, {"orbit,", {}},
-             {"orbit", {"reference=full", "reference=ssaa"}}, {"orbit", {"reference=msaa"}}}) {
+    using Paths = std::vector<std::string>;
+    for (auto [paths, params] : std::vector<std::pair<Paths, std::vector<std::string>>>{
+             {{"orbit", "orbit"}, {}}, {{"a/orbit.json", "b/orbit.json"}, {}}, {{"orbit", ""}, {}},
+             {{"orbit"}, {"reference=full", "reference=ssaa"}}, {{"orbit"}, {"reference=msaa"}}}) {
         try {
             outerSweeps(paths, "full", params);
-            ADD_FAILURE() << paths << " accepted";
+            ADD_FAILURE() << paths.front() << " accepted";
         } catch (const std::invalid_argument& e) {
             std::string what = e.what();
             EXPECT_TRUE(what.rfind("--path", 0) == 0 || what.rfind("--param", 0) == 0) << what;
