@@ -187,6 +187,111 @@ std::vector<uint32_t> toTriangleList(const GltfContext& ctx, int mode, const std
     return out;
 }
 
+// A vertex attribute of `prim` as floats (none when absent): `vertex_count` elements, integer
+// components only when normalized.
+std::vector<float> readAttribute(const GltfContext& ctx, const tinygltf::Primitive& prim, const std::string& p,
+                                 const char* name, int type, std::initializer_list<int> component_types,
+                                 size_t vertex_count) {
+    const auto it = prim.attributes.find(name);
+    if (it == prim.attributes.end()) return {};
+    const std::string where = p + "/attributes/" + name;
+    const View view = viewAccessor(ctx, it->second, where, type, component_types);
+    if (view.count != vertex_count)
+        gltfError(ctx, where, "has " + std::to_string(view.count) + " elements but POSITION has " + std::to_string(vertex_count),
+             "the same count for every attribute");
+    if (view.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !view.normalized)
+        gltfError(ctx, view.pointer + "/normalized", "is false for an integer " + std::string(name), "normalized: true");
+    return readFloats(ctx, view);
+}
+
+// The primitive's indices, each checked against `vertex_count`, or 0 .. vertex_count - 1 when
+// it has none; `index_pointer` is where they came from.
+std::vector<uint32_t> primitiveIndices(const GltfContext& ctx, const tinygltf::Primitive& prim, const std::string& p,
+                                       size_t vertex_count, std::string& index_pointer) {
+    std::vector<uint32_t> indices;
+    index_pointer = p;
+    if (prim.indices >= 0) {
+        index_pointer = p + "/indices";
+        const View view = viewAccessor(ctx, prim.indices, index_pointer, TINYGLTF_TYPE_SCALAR,
+                                       {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                                        TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
+        indices = readIndices(view);
+        for (size_t i = 0; i < indices.size(); ++i)
+            if (indices[i] >= vertex_count)
+                gltfError(ctx, index_pointer, "index " + std::to_string(indices[i]) + " at position " + std::to_string(i) + " of " +
+                                             view.pointer + " is out of range (POSITION has " + std::to_string(vertex_count) + " vertices)",
+                     "indices below " + std::to_string(vertex_count));
+    } else {
+        indices.resize(vertex_count);
+        for (size_t i = 0; i < vertex_count; ++i) indices[i] = uint32_t(i);
+    }
+    return indices;
+}
+
+// The vertices from positions, normals and uvs (either may be empty); counts the file's
+// zero-length normals and the zero-area triangles.
+std::vector<Vertex> primitiveVertices(const std::vector<float>& positions, const std::vector<float>& normals,
+                                      const std::vector<float>& uvs, const std::vector<uint32_t>& triangles,
+                                      size_t& zero_normals, size_t& degenerate) {
+    const size_t vertex_count = positions.size() / 3;
+    std::vector<Vertex> vertices(vertex_count);
+    for (size_t i = 0; i < vertex_count; ++i) {
+        vertices[i].position = glm::vec3(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
+        if (!uvs.empty()) vertices[i].uv = glm::vec2(uvs[2 * i], uvs[2 * i + 1]);
+        else vertices[i].uv = glm::vec2(0.0f);
+        vertices[i].normal = glm::vec3(0.0f);
+    }
+    // Smooth normals, area weighted (the cross product's length is twice the area), for
+    // files without NORMAL and for zero-length normals in files that have it.
+    std::vector<glm::vec3> computed(vertex_count, glm::vec3(0.0f));
+    for (size_t t = 0; t < triangles.size(); t += 3) {
+        const glm::vec3& a = vertices[triangles[t]].position;
+        const glm::vec3 n = glm::cross(vertices[triangles[t + 1]].position - a, vertices[triangles[t + 2]].position - a);
+        if (!std::isfinite(n.x + n.y + n.z)) continue;  // huge coordinates overflow; skip their weight
+        for (int k = 0; k < 3; ++k) computed[triangles[t + size_t(k)]] += n;
+    }
+    zero_normals = degenerate = 0;
+    for (size_t t = 0; t < triangles.size(); t += 3) {
+        const glm::vec3& a = vertices[triangles[t]].position;
+        const glm::vec3 n = glm::cross(vertices[triangles[t + 1]].position - a, vertices[triangles[t + 2]].position - a);
+        degenerate += !(glm::dot(n, n) > 0.0f);
+    }
+    for (size_t i = 0; i < vertex_count; ++i) {
+        glm::vec3 n = normals.empty() ? glm::vec3(0.0f) : glm::vec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
+        if (!normals.empty() && !(glm::dot(n, n) > 1e-12f)) ++zero_normals;
+        if (!(glm::dot(n, n) > 1e-12f)) n = computed[i];
+        vertices[i].normal = glm::dot(n, n) > 1e-30f && std::isfinite(glm::dot(n, n)) ? glm::normalize(n) : glm::vec3(0, 1, 0);
+    }
+    return vertices;
+}
+
+// Appends the primitive's vertices and triangles to the scene as a mesh; returns its index.
+int appendMesh(GltfContext& ctx, size_t mesh_index, size_t prim_index, const std::string& p,
+               const std::vector<Vertex>& vertices, const std::vector<uint32_t>& triangles) {
+    const tinygltf::Mesh& mesh = ctx.model.meshes[mesh_index];
+    Scene& scene = ctx.scene;
+    if (scene.vertices.size() + vertices.size() > size_t(std::numeric_limits<int32_t>::max()) ||
+        scene.indices.size() + triangles.size() > size_t(std::numeric_limits<uint32_t>::max()))
+        gltfError(ctx, p, "the scene exceeds 2^31 vertices or 2^32 indices", "a smaller scene");
+    Mesh out;
+    out.name = (mesh.name.empty() ? "mesh " + std::to_string(mesh_index) : mesh.name) +
+               (mesh.primitives.size() > 1 ? "#" + std::to_string(prim_index) : "");
+    out.first_index = uint32_t(scene.indices.size());
+    out.index_count = uint32_t(triangles.size());
+    out.vertex_offset = int32_t(scene.vertices.size());
+    out.material = gltfMaterial(ctx, mesh.primitives[prim_index].material, p);
+    out.bounds_min = glm::vec3(std::numeric_limits<float>::max());
+    out.bounds_max = glm::vec3(-std::numeric_limits<float>::max());
+    for (const Vertex& v : vertices) {
+        out.bounds_min = glm::min(out.bounds_min, v.position);
+        out.bounds_max = glm::max(out.bounds_max, v.position);
+    }
+    scene.vertices.insert(scene.vertices.end(), vertices.begin(), vertices.end());
+    scene.indices.insert(scene.indices.end(), triangles.begin(), triangles.end());
+    scene.meshes.push_back(std::move(out));
+    return int(scene.meshes.size()) - 1;
+}
+
 int loadPrimitive(GltfContext& ctx, size_t mesh_index, size_t prim_index) {
     const tinygltf::Mesh& mesh = ctx.model.meshes[mesh_index];
     const tinygltf::Primitive& prim = mesh.primitives[prim_index];
@@ -204,70 +309,17 @@ int loadPrimitive(GltfContext& ctx, size_t mesh_index, size_t prim_index) {
                                              {TINYGLTF_COMPONENT_TYPE_FLOAT});
     const std::vector<float> positions = readFloats(ctx, positions_view);
     const size_t vertex_count = positions_view.count;
-    auto attribute = [&](const char* name, int type, std::initializer_list<int> component_types) -> std::vector<float> {
-        const auto it = prim.attributes.find(name);
-        if (it == prim.attributes.end()) return {};
-        const std::string where = p + "/attributes/" + name;
-        const View view = viewAccessor(ctx, it->second, where, type, component_types);
-        if (view.count != vertex_count)
-            gltfError(ctx, where, "has " + std::to_string(view.count) + " elements but POSITION has " + std::to_string(vertex_count),
-                 "the same count for every attribute");
-        if (view.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !view.normalized)
-            gltfError(ctx, view.pointer + "/normalized", "is false for an integer " + std::string(name), "normalized: true");
-        return readFloats(ctx, view);
-    };
-    const std::vector<float> normals = attribute("NORMAL", TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
-    const std::vector<float> uvs = attribute("TEXCOORD_0", TINYGLTF_TYPE_VEC2,
-                                             {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                              TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
-
-    std::vector<uint32_t> indices;
-    std::string index_pointer = p;
-    if (prim.indices >= 0) {
-        index_pointer = p + "/indices";
-        const View view = viewAccessor(ctx, prim.indices, index_pointer, TINYGLTF_TYPE_SCALAR,
-                                       {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                                        TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
-        indices = readIndices(view);
-        for (size_t i = 0; i < indices.size(); ++i)
-            if (indices[i] >= vertex_count)
-                gltfError(ctx, index_pointer, "index " + std::to_string(indices[i]) + " at position " + std::to_string(i) + " of " +
-                                             view.pointer + " is out of range (POSITION has " + std::to_string(vertex_count) + " vertices)",
-                     "indices below " + std::to_string(vertex_count));
-    } else {
-        indices.resize(vertex_count);
-        for (size_t i = 0; i < vertex_count; ++i) indices[i] = uint32_t(i);
-    }
+    const std::vector<float> normals =
+        readAttribute(ctx, prim, p, "NORMAL", TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, vertex_count);
+    const std::vector<float> uvs = readAttribute(ctx, prim, p, "TEXCOORD_0", TINYGLTF_TYPE_VEC2,
+                                                 {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                                                 vertex_count);
+    std::string index_pointer;
+    const std::vector<uint32_t> indices = primitiveIndices(ctx, prim, p, vertex_count, index_pointer);
     const std::vector<uint32_t> triangles = toTriangleList(ctx, mode, indices, index_pointer);
-
-    std::vector<Vertex> vertices(vertex_count);
-    for (size_t i = 0; i < vertex_count; ++i) {
-        vertices[i].position = glm::vec3(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
-        if (!uvs.empty()) vertices[i].uv = glm::vec2(uvs[2 * i], uvs[2 * i + 1]);
-        else vertices[i].uv = glm::vec2(0.0f);
-        vertices[i].normal = glm::vec3(0.0f);
-    }
-    // Smooth normals, area weighted (the cross product's length is twice the area), for
-    // files without NORMAL and for zero-length normals in files that have it.
-    std::vector<glm::vec3> computed(vertex_count, glm::vec3(0.0f));
-    for (size_t t = 0; t < triangles.size(); t += 3) {
-        const glm::vec3& a = vertices[triangles[t]].position;
-        const glm::vec3 n = glm::cross(vertices[triangles[t + 1]].position - a, vertices[triangles[t + 2]].position - a);
-        if (!std::isfinite(n.x + n.y + n.z)) continue;  // huge coordinates overflow; skip their weight
-        for (int k = 0; k < 3; ++k) computed[triangles[t + size_t(k)]] += n;
-    }
     size_t zero_normals = 0, degenerate = 0;
-    for (size_t t = 0; t < triangles.size(); t += 3) {
-        const glm::vec3& a = vertices[triangles[t]].position;
-        const glm::vec3 n = glm::cross(vertices[triangles[t + 1]].position - a, vertices[triangles[t + 2]].position - a);
-        degenerate += !(glm::dot(n, n) > 0.0f);
-    }
-    for (size_t i = 0; i < vertex_count; ++i) {
-        glm::vec3 n = normals.empty() ? glm::vec3(0.0f) : glm::vec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
-        if (!normals.empty() && !(glm::dot(n, n) > 1e-12f)) ++zero_normals;
-        if (!(glm::dot(n, n) > 1e-12f)) n = computed[i];
-        vertices[i].normal = glm::dot(n, n) > 1e-30f && std::isfinite(glm::dot(n, n)) ? glm::normalize(n) : glm::vec3(0, 1, 0);
-    }
+    const std::vector<Vertex> vertices = primitiveVertices(positions, normals, uvs, triangles, zero_normals, degenerate);
 
     Scene& scene = ctx.scene;
     scene.info.morphed_meshes += !prim.targets.empty();
@@ -277,26 +329,7 @@ int loadPrimitive(GltfContext& ctx, size_t mesh_index, size_t prim_index) {
     if (degenerate)
         scene.warnings.push_back(p + ": " + std::to_string(degenerate) +
                                  " zero-area triangle(s) kept (they cover no pixel)");
-    if (scene.vertices.size() + vertex_count > size_t(std::numeric_limits<int32_t>::max()) ||
-        scene.indices.size() + triangles.size() > size_t(std::numeric_limits<uint32_t>::max()))
-        gltfError(ctx, p, "the scene exceeds 2^31 vertices or 2^32 indices", "a smaller scene");
-    Mesh out;
-    out.name = (mesh.name.empty() ? "mesh " + std::to_string(mesh_index) : mesh.name) +
-               (mesh.primitives.size() > 1 ? "#" + std::to_string(prim_index) : "");
-    out.first_index = uint32_t(scene.indices.size());
-    out.index_count = uint32_t(triangles.size());
-    out.vertex_offset = int32_t(scene.vertices.size());
-    out.material = gltfMaterial(ctx, prim.material, p);
-    out.bounds_min = glm::vec3(std::numeric_limits<float>::max());
-    out.bounds_max = glm::vec3(-std::numeric_limits<float>::max());
-    for (const Vertex& v : vertices) {
-        out.bounds_min = glm::min(out.bounds_min, v.position);
-        out.bounds_max = glm::max(out.bounds_max, v.position);
-    }
-    scene.vertices.insert(scene.vertices.end(), vertices.begin(), vertices.end());
-    scene.indices.insert(scene.indices.end(), triangles.begin(), triangles.end());
-    scene.meshes.push_back(std::move(out));
-    return int(scene.meshes.size()) - 1;
+    return appendMesh(ctx, mesh_index, prim_index, p, vertices, triangles);
 }
 
 const std::vector<int>& sceneMeshes(GltfContext& ctx, size_t mesh_index) {
@@ -387,11 +420,13 @@ void addLight(GltfContext& ctx, const tinygltf::Node& node, size_t node_index, c
     ctx.scene.lights.push_back(light);
 }
 
-void flattenNodes(GltfContext& ctx) {
+// The nodes to walk from: the default scene's (the first when none is named), each checked to
+// exist and to be a root; with no scenes, every root node (glTF allows a file to define
+// none). `roots_pointer` names where they came from.
+std::vector<int> sceneRoots(const GltfContext& ctx, const std::vector<int>& parent, std::string& roots_pointer) {
     const auto& model = ctx.model;
-    const std::vector<int> parent = checkTree(ctx);
     std::vector<int> roots;
-    std::string roots_pointer = "/nodes";
+    roots_pointer = "/nodes";
     const int scene_index = model.defaultScene >= 0 ? model.defaultScene : model.scenes.empty() ? -1 : 0;
     if (scene_index >= 0) {
         if (size_t(scene_index) >= model.scenes.size())
@@ -406,10 +441,48 @@ void flattenNodes(GltfContext& ctx) {
                                                                        std::to_string(parent[size_t(roots[k])]),
                      "root nodes only");
         }
-    } else {  // no scenes: every root node (glTF allows a file to define none)
+    } else {
         for (size_t i = 0; i < model.nodes.size(); ++i)
             if (parent[i] < 0) roots.push_back(int(i));
     }
+    return roots;
+}
+
+// A node as the scene keeps it for per-frame transforms: its local transform and its TRS parts.
+Node keptNode(const tinygltf::Node& node, int index, int parent_node, const glm::dmat4& local) {
+    Node n;
+    n.name = node.name;
+    n.parent = parent_node;
+    n.gltf_index = index;
+    n.has_matrix = node.matrix.size() == 16;
+    n.matrix = local;
+    if (node.translation.size() == 3) n.translation = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
+    if (node.rotation.size() == 4)
+        n.rotation = glm::normalize(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
+    if (node.scale.size() == 3) n.scale = glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
+    return n;
+}
+
+// An instance of each of the node's mesh's primitives: at `world`, or under an animated node
+// referring to its scene node (`scene_node`) instead.
+void addNodeMeshes(GltfContext& ctx, const tinygltf::Node& node, int index, const glm::dmat4& world, bool node_animated,
+                   int scene_node) {
+    if (node.mesh < 0) return;
+    const auto& model = ctx.model;
+    if (size_t(node.mesh) >= model.meshes.size())
+        gltfError(ctx, gltfAt("nodes", size_t(index)) + "/mesh", std::to_string(node.mesh) + " does not exist", gltfIndexRange("meshes", model.meshes.size()));
+    for (int mesh : sceneMeshes(ctx, size_t(node.mesh))) {
+        if (node_animated) ctx.scene.instances.push_back({mesh, glm::dmat4(1.0), {}, scene_node});
+        else ctx.scene.instances.push_back({mesh, world, {}, -1});
+        ctx.scene.info.skinned_instances += node.skin >= 0;
+    }
+}
+
+void flattenNodes(GltfContext& ctx) {
+    const auto& model = ctx.model;
+    const std::vector<int> parent = checkTree(ctx);
+    std::string roots_pointer;
+    const std::vector<int> roots = sceneRoots(ctx, parent, roots_pointer);
     // Files with animations or cameras keep their node tree (parents first) for per-frame
     // transforms; instances under an animated node refer to it instead of being flattened.
     const bool keep_nodes = !model.animations.empty() || !model.cameras.empty();
@@ -436,18 +509,8 @@ void flattenNodes(GltfContext& ctx) {
             gltfError(ctx, gltfAt("nodes", size_t(index)) + "/matrix", "is the target of an animation channel",
                       "translation, rotation and scale on an animated node (glTF 2.0 section 3.11)");
         if (keep_nodes) {
-            Node n;
-            n.name = node.name;
-            n.parent = visit.parent_node;
-            n.gltf_index = index;
-            n.has_matrix = node.matrix.size() == 16;
-            n.matrix = local;
-            if (node.translation.size() == 3) n.translation = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
-            if (node.rotation.size() == 4)
-                n.rotation = glm::normalize(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
-            if (node.scale.size() == 3) n.scale = glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
             scene_node[size_t(index)] = int(ctx.scene.nodes.size());
-            ctx.scene.nodes.push_back(std::move(n));
+            ctx.scene.nodes.push_back(keptNode(node, index, visit.parent_node, local));
         }
         // Each local transform fits a float, a product along the path need not (scale 1e30
         // under scale 1e30); the GPU reads the linear part as float.
@@ -456,15 +519,7 @@ void flattenNodes(GltfContext& ctx) {
                 if (!std::isfinite(float(world[c][r])))
                     gltfError(ctx, gltfAt("nodes", size_t(index)), "its world transform (its ancestors' times its own) overflows a float",
                               "scales whose product along the node path stays below 3.4e38");
-        if (node.mesh >= 0) {
-            if (size_t(node.mesh) >= model.meshes.size())
-                gltfError(ctx, gltfAt("nodes", size_t(index)) + "/mesh", std::to_string(node.mesh) + " does not exist", gltfIndexRange("meshes", model.meshes.size()));
-            for (int mesh : sceneMeshes(ctx, size_t(node.mesh))) {
-                if (node_animated) ctx.scene.instances.push_back({mesh, glm::dmat4(1.0), {}, scene_node[size_t(index)]});
-                else ctx.scene.instances.push_back({mesh, world, {}, -1});
-                ctx.scene.info.skinned_instances += node.skin >= 0;
-            }
-        }
+        addNodeMeshes(ctx, node, index, world, node_animated, scene_node[size_t(index)]);
         addLight(ctx, node, size_t(index), world);
         if (node.camera >= 0) gltfCamera(ctx, node, size_t(index), scene_node[size_t(index)]);
         for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)
