@@ -5,10 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "renderer/frame_slot.h"
 #include "renderer/passes/readback_pass.h"
 #include "renderer/scoring/frame_scoring.h"
 #include "renderer/shaders/shared.h"
@@ -42,33 +42,6 @@ glm::dmat4 projection(double fov_y_rad, double aspect, double near, double far) 
     p[3][2] = far * near / (far - near);
     return p;
 }
-
-struct Renderer::Slot {
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    VkFence fence = VK_NULL_HANDLE;
-    graph::QueryPools queries;
-    vk::Buffer frame_ubo;
-    vk::Buffer readback;
-    vk::Buffer diagnostic;  // the variant's diagnostic image, when it has one
-    vk::Buffer analysis;    // the analysis pass's output, when enabled
-    vk::Buffer stats;       // kFrameStats counters as the host reads them (a copy of stats_gpu)
-    // The counters the resolve adds to, in device-local memory (zeroed before the first
-    // timestamp, copied to `stats` after the last): on a GPU the host-visible kind is
-    // system memory, where every group's atomic add would cross the bus.
-    vk::Buffer stats_gpu;
-    vk::Buffer instances;   // model and previous model matrix per instance
-    vk::Buffer lights;      // GpuLight records, positions relative to this frame's camera
-    VkDescriptorSet frame_set = VK_NULL_HANDLE;
-    size_t index = 0;  // in slots_
-    bool in_flight = false;
-    bool has_readback = false;
-    // Collected early (collectNow): what its feedback needs, taken when the slot comes round.
-    std::optional<FrameResult> collected_early;
-    FrameRequest request;
-    graph::RecordedFrame recorded;
-    VkExtent2D render{};
-    double scale = 1;
-};
 
 Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants::Variant& variant,
                    const Settings& settings)
@@ -115,75 +88,16 @@ Renderer::Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants:
         vk::writeBuffer(ctx, spin_set_, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, spin_sink_.buffer, 0, VK_WHOLE_SIZE);
     }
 
-    int n = std::max(1, settings.frames_in_flight);
-    std::initializer_list<vk::Binding> frame_bindings = {
-        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_ALL},
-        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT},
-        {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-        {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_VERTEX_BIT}};
-    frame_pool_ = vk::createPool(ctx, frame_bindings, uint32_t(n));
-    for (int i = 0; i < n; ++i) {
-        auto slot = std::make_unique<Slot>();
-        slot->index = size_t(i);
-        VkCommandBufferAllocateInfo a{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        a.commandPool = ctx.command_pool;
-        a.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        a.commandBufferCount = 1;
-        VK_CHECK(vkAllocateCommandBuffers(ctx.device, &a, &slot->cmd));
-        VkFenceCreateInfo f{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        VK_CHECK(vkCreateFence(ctx.device, &f, nullptr, &slot->fence));
-        VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-        q.queryType = VK_QUERY_TYPE_TIMESTAMP;
-        q.queryCount = graph::kMaxPasses + 1;
-        VK_CHECK(vkCreateQueryPool(ctx.device, &q, nullptr, &slot->queries.timestamps));
-        if (ctx.caps.pipeline_statistics) {
-            VkQueryPoolCreateInfo s{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-            s.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
-            s.queryCount = graph::kMaxPasses;
-            s.pipelineStatistics = VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT;
-            VK_CHECK(vkCreateQueryPool(ctx.device, &s, nullptr, &slot->queries.statistics));
-        }
-        slot->frame_ubo = vk::createBuffer(ctx, sizeof(shaders::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                                           true);
-        constexpr VkDeviceSize kStatsBytes = variants::kFrameStats * sizeof(uint32_t);
-        slot->stats = vk::createBuffer(ctx, kStatsBytes,
-                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-        slot->stats_gpu = vk::createBuffer(ctx, kStatsBytes,
-                                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                                                   VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                               false);
-        slot->instances = vk::createBuffer(ctx, std::max<size_t>(1, scene.cpu->instances.size()) * 2 * sizeof(glm::mat4),
-                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-        slot->lights = vk::createBuffer(ctx, std::max<size_t>(1, lights_.size()) * sizeof(shaders::GpuLight),
-                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-        slot->frame_set = vk::allocateSet(ctx, frame_pool_, scene.frame_layout);
-        vk::writeBuffer(ctx, slot->frame_set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slot->frame_ubo.buffer, 0,
-                        sizeof(shaders::FrameUniforms));
-        vk::writeBuffer(ctx, slot->frame_set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, slot->lights.buffer, 0, VK_WHOLE_SIZE);
-        vk::writeBuffer(ctx, slot->frame_set, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                        (slot->stats_gpu.buffer ? slot->stats_gpu : slot->stats).buffer, 0, VK_WHOLE_SIZE);
-        vk::writeBuffer(ctx, slot->frame_set, 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, slot->instances.buffer, 0,
-                        VK_WHOLE_SIZE);
-        slots_.push_back(std::move(slot));
-    }
+    const int n = std::max(1, settings.frames_in_flight);
+    frame_pool_ = createFramePool(ctx, uint32_t(n));
+    for (int i = 0; i < n; ++i)
+        slots_.push_back(createFrameSlot(ctx, frame_pool_, scene.frame_layout, size_t(i), scene.cpu->instances.size(),
+                                         lights_.size()));
 }
 
 Renderer::~Renderer() {
     vkDeviceWaitIdle(ctx_.device);
-    for (auto& slot : slots_) {
-        vkFreeCommandBuffers(ctx_.device, ctx_.command_pool, 1, &slot->cmd);
-        vkDestroyFence(ctx_.device, slot->fence, nullptr);
-        vkDestroyQueryPool(ctx_.device, slot->queries.timestamps, nullptr);
-        if (slot->queries.statistics) vkDestroyQueryPool(ctx_.device, slot->queries.statistics, nullptr);
-        vk::destroyBuffer(ctx_, slot->frame_ubo);
-        vk::destroyBuffer(ctx_, slot->readback);
-        vk::destroyBuffer(ctx_, slot->diagnostic);
-        vk::destroyBuffer(ctx_, slot->analysis);
-        vk::destroyBuffer(ctx_, slot->stats);
-        vk::destroyBuffer(ctx_, slot->stats_gpu);
-        vk::destroyBuffer(ctx_, slot->instances);
-        vk::destroyBuffer(ctx_, slot->lights);
-    }
+    for (auto& slot : slots_) destroyFrameSlot(ctx_, *slot);
     vkDestroyDescriptorPool(ctx_.device, frame_pool_, nullptr);
     vk::destroyComputeKernel(ctx_, spin_);
     if (spin_pool_) vkDestroyDescriptorPool(ctx_.device, spin_pool_, nullptr);
@@ -266,7 +180,8 @@ void Renderer::addReadbacks(graph::Graph& graph, size_t slot_index, const FrameR
     Slot& slot = *slots_[slot_index];
     const bool host = request.readback, device = request.score && scoring_;
     if (host) {
-        allocateHostReadback(slot);
+        allocateHostReadback(ctx_, slot, settings_.width, settings_.height, variant_->diagnosticImage() != nullptr,
+                             settings_.analysis);
         passes::addReadbackPass(graph, variant_->display(), slot.readback.buffer);
         if (vk::Image* diagnostic = variant_->diagnosticImage()) passes::addReadbackPass(graph, *diagnostic, slot.diagnostic.buffer);
     }
@@ -276,23 +191,6 @@ void Renderer::addReadbacks(graph::Graph& graph, size_t slot_index, const FrameR
     if (device)
         scoring_->addPasses(graph, slot_index, request, variant_->display(), variant_->diagnosticImage(),
                             analysis ? &analysis_ : nullptr);
-}
-
-// Host-visible copies of a quality frame (173 MB a slot at 4K), made on a slot's first host
-// readback: a run scored on the device never needs them.
-void Renderer::allocateHostReadback(Slot& slot) {
-    if (slot.readback.buffer) return;
-    const VkDeviceSize pixels = VkDeviceSize(settings_.width) * settings_.height;
-    slot.readback = vk::createReadbackBuffer(ctx_, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-    if (variant_->diagnosticImage())
-        slot.diagnostic = vk::createReadbackBuffer(ctx_, pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-    if (settings_.analysis) slot.analysis = vk::createReadbackBuffer(ctx_, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-}
-
-void Renderer::releaseHostReadback(Slot& slot) {
-    vk::destroyBuffer(ctx_, slot.readback);
-    vk::destroyBuffer(ctx_, slot.diagnostic);
-    vk::destroyBuffer(ctx_, slot.analysis);
 }
 
 bool Renderer::deviceWorst(int kind, FrameResult& out) { return scoring_ && scoring_->fetchWorst(kind, out); }
@@ -399,7 +297,7 @@ std::vector<FrameResult> Renderer::collectNow() {
         early.index = done.back().index;
         early.gpu_ms = done.back().gpu_ms;
         early.passes = done.back().passes;
-        releaseHostReadback(slot);
+        releaseHostReadback(ctx_, slot);
     }
     return done;
 }

@@ -25,6 +25,8 @@ enum class ScoringRole;
 
 namespace cbr::render {
 
+struct FrameSlot;
+
 class Renderer {
 public:
     Renderer(vk::Context& ctx, const gpu::GpuScene& scene, const variants::Variant& variant, const Settings& settings);
@@ -55,7 +57,7 @@ public:
     const std::vector<std::string>& warmUpPasses() const { return warm_up_passes_; }
 
 private:
-    struct Slot;
+    using Slot = FrameSlot;  // renderer/frame_slot.h
     FrameResult collect(Slot& slot);
     void updateScale(const FrameResult& result);
     void writeUniforms(Slot& slot, const FrameRequest& request, const variants::FrameParams& params);
@@ -66,8 +68,6 @@ private:
     void addReadbacks(graph::Graph& graph, size_t slot_index, const FrameRequest& request,
                       const std::shared_ptr<passes::SceneFrame>& frame);
     void addAnalysis(graph::Graph& graph, const std::shared_ptr<passes::SceneFrame>& frame);
-    void allocateHostReadback(Slot& slot);
-    void releaseHostReadback(Slot& slot);
     void feedback(const FrameResult& collected);
     void addSlowdownSpin(graph::Graph& graph, const FrameRequest& request);
     void recordFrame(Slot& slot, graph::Graph& graph);

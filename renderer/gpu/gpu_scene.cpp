@@ -31,25 +31,10 @@ std::vector<glm::mat4> instanceMatrices(const scene::Scene& scene, double t, glm
     return out;
 }
 
-GpuScene uploadScene(vk::Context& ctx, const scene::Scene& s) {
-    GpuScene g;
-    g.cpu = &s;
-    if (s.vertices.empty() || s.indices.empty()) throw vk::Error("scene " + s.name + " has no geometry");
-    g.vertices = vk::uploadBuffer(ctx, s.vertices.data(), s.vertices.size() * sizeof(scene::Vertex),
-                                  VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    g.indices = vk::uploadBuffer(ctx, s.indices.data(), s.indices.size() * sizeof(uint32_t),
-                                 VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+namespace {
 
-    for (size_t i = 0; i < s.textures.size(); ++i) {
-        const auto& t = s.textures[i];
-        g.textures.push_back(vk::uploadTexture(ctx, t.name.empty() ? "texture" + std::to_string(i) : t.name,
-                                               t.rgba8.data(), uint32_t(t.width), uint32_t(t.height), t.srgb));
-    }
-    g.white_srgb = solidTexture(ctx, "white_srgb", 255, 255, 255, true);
-    g.white_linear = solidTexture(ctx, "white_linear", 255, 255, 255, false);
-    g.flat_normal = solidTexture(ctx, "flat_normal", 128, 128, 255, false);
-    g.sampler = vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT, VK_LOD_CLAMP_NONE);
-
+// One MaterialUniforms per material, each at an offset the device can bind a uniform buffer at.
+void uploadMaterials(vk::Context& ctx, const scene::Scene& s, GpuScene& g) {
     VkDeviceSize align = ctx.properties.limits.minUniformBufferOffsetAlignment;
     g.material_stride = (sizeof(shaders::MaterialUniforms) + align - 1) / align * align;
     std::vector<uint8_t> material_bytes(g.material_stride * s.materials.size());
@@ -70,7 +55,11 @@ GpuScene uploadScene(vk::Context& ctx, const scene::Scene& s) {
     }
     g.materials = vk::uploadBuffer(ctx, material_bytes.data(), material_bytes.size(),
                                    VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+}
 
+// The scene's set layouts (frame, material) and a material set per material: its uniforms and its
+// five textures, a stand-in where it has none.
+void createSceneSets(vk::Context& ctx, const scene::Scene& s, GpuScene& g) {
     constexpr auto kFrag = VK_SHADER_STAGE_FRAGMENT_BIT;
     constexpr auto kAll = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     constexpr auto kSampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
@@ -99,7 +88,10 @@ GpuScene uploadScene(vk::Context& ctx, const scene::Scene& s) {
         }
         g.material_sets.push_back(set);
     }
+}
 
+// Each instance into its material's alpha mode's draw list; opaque and masked sorted by material.
+void sortDraws(const scene::Scene& s, GpuScene& g) {
     for (size_t i = 0; i < s.instances.size(); ++i) {
         const auto& mesh = s.meshes.at(size_t(s.instances[i].mesh));
         DrawItem d{int(i), s.instances[i].mesh, mesh.material, scene::instanceMoves(s, s.instances[i])};
@@ -114,6 +106,31 @@ GpuScene uploadScene(vk::Context& ctx, const scene::Scene& s) {
     };
     std::sort(g.opaque.begin(), g.opaque.end(), by_material);
     std::sort(g.masked.begin(), g.masked.end(), by_material);
+}
+
+}  // namespace
+
+GpuScene uploadScene(vk::Context& ctx, const scene::Scene& s) {
+    GpuScene g;
+    g.cpu = &s;
+    if (s.vertices.empty() || s.indices.empty()) throw vk::Error("scene " + s.name + " has no geometry");
+    g.vertices = vk::uploadBuffer(ctx, s.vertices.data(), s.vertices.size() * sizeof(scene::Vertex),
+                                  VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    g.indices = vk::uploadBuffer(ctx, s.indices.data(), s.indices.size() * sizeof(uint32_t),
+                                 VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+
+    for (size_t i = 0; i < s.textures.size(); ++i) {
+        const auto& t = s.textures[i];
+        g.textures.push_back(vk::uploadTexture(ctx, t.name.empty() ? "texture" + std::to_string(i) : t.name,
+                                               t.rgba8.data(), uint32_t(t.width), uint32_t(t.height), t.srgb));
+    }
+    g.white_srgb = solidTexture(ctx, "white_srgb", 255, 255, 255, true);
+    g.white_linear = solidTexture(ctx, "white_linear", 255, 255, 255, false);
+    g.flat_normal = solidTexture(ctx, "flat_normal", 128, 128, 255, false);
+    g.sampler = vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT, VK_LOD_CLAMP_NONE);
+    uploadMaterials(ctx, s, g);
+    createSceneSets(ctx, s, g);
+    sortDraws(s, g);
     return g;
 }
 

@@ -1,4 +1,4 @@
-// Pass culling, barrier derivation and chained end-of-pass timestamps (method/timing.md).
+// Pass culling, barrier derivation and chained end-of-pass timestamps (docs/method/measurement.md, "Timing").
 #include "renderer/graph/graph.h"
 
 #include <algorithm>

@@ -65,6 +65,152 @@ void bindStandIn(vk::Context& ctx, VkDescriptorSet set, uint32_t binding, const 
 
 }  // namespace
 
+namespace {
+
+// The 1x1 stand-ins (bound where a kernel writes no output or reads no full history) and, with
+// the full history, its two images and their sampler: B10G11R11 where the device can store it
+// (an optional format feature), else RGBA16F.
+void createResolveImages(vk::Context& ctx, const CbrResolveDesc& desc, CbrResolve& r) {
+    const VkFormat stand_in_formats[3] = {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8_UINT, VK_FORMAT_R8G8B8A8_UNORM};
+    for (int i = 0; i < 3; ++i)
+        r.stand_ins[i] = vk::createImage(ctx, {"cbr_resolve_stand_in" + std::to_string(i), stand_in_formats[i], {1, 1},
+                                               VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+    const bool small_storable = vk::storageFormat(ctx, VK_FORMAT_B10G11R11_UFLOAT_PACK32);
+    r.history_format = small_storable ? desc.history_format : render::HistoryFormat::Rgba16f;
+    const bool small = r.history_format == render::HistoryFormat::B10g11r11;
+    const VkFormat small_format = small_storable ? VK_FORMAT_B10G11R11_UFLOAT_PACK32 : VK_FORMAT_R16G16B16A16_SFLOAT;
+    for (int i = 0; i < 3; ++i)
+        r.history_stand_ins[i] = vk::createImage(ctx, {"cbr_history_stand_in" + std::to_string(i),
+                                                       i == 2 ? small_format : VK_FORMAT_R16G16B16A16_SFLOAT, {1, 1},
+                                                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+    if (desc.full_history) {
+        for (int i = 0; i < 2; ++i)
+            r.history[i] = vk::createImage(ctx, {"cbr_history" + std::to_string(i),
+                                                 small ? VK_FORMAT_B10G11R11_UFLOAT_PACK32 : VK_FORMAT_R16G16B16A16_SFLOAT,
+                                                 desc.full_extent,
+                                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+        r.history_sampler = vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 0.0f);
+    }
+}
+
+// cbr_resolve.glsl's bindings: the sampled inputs 0-4 and 10 (the history), the storage outputs
+// 5-7, 11 and 12; deferred, the CFBs at 8 and 9.
+std::vector<vk::Binding> resolveBindings(bool deferred) {
+    constexpr auto kComp = VK_SHADER_STAGE_COMPUTE_BIT;
+    constexpr auto kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    constexpr auto kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    std::vector<vk::Binding> binding_list = {{0, kSampled, kComp}, {1, kSampled, kComp}, {2, kSampled, kComp},
+                                             {3, kSampled, kComp}, {4, kSampled, kComp}, {5, kStorage, kComp},
+                                             {6, kStorage, kComp},  {7, kStorage, kComp},
+                                             {10, kSampled, kComp}, {11, kStorage, kComp},
+                                             {12, kStorage, kComp}};
+    if (deferred) binding_list.insert(binding_list.end(), {{8, kSampled, kComp}, {9, kSampled, kComp}});
+    return binding_list;
+}
+
+// The specialisation constants of the kernel that writes `output` in frames of `parity` (the
+// reference shader takes neither: it reads the parity from the frame).
+std::vector<vk::SpecConstant> resolveSpec(const CbrResolveDesc& desc, const CbrResolve& r, bool has_cfb, Output output,
+                                          int parity) {
+    std::vector<vk::SpecConstant> s = {{/* CHECK_OCCLUSION= */ 1, desc.clip_only ? 2 : desc.check_occlusion ? 1 : 0},
+                                       {/* CSO_ABSOLUTE= */ 2, desc.cso_absolute ? 1 : 0},
+                                       {/* HAS_MOTION= */ 3, desc.has_motion ? 1 : 0}};
+    if (desc.deferred) s.push_back({/* HAS_CFB= */ 4, has_cfb ? 1 : 0});
+    if (desc.impl == ResolveImpl::Reference) return s;
+    s.push_back({/* OUTPUT= */ 5, output});
+    s.push_back({/* PARITY= */ 6, parity});
+    s.push_back({/* FULL_HISTORY= */ 7, desc.full_history ? 1 : 0});
+    s.push_back({/* HISTORY_CATMULL_ROM= */ 8, desc.history_catmull_rom ? 1 : 0});
+    s.push_back({/* HISTORY_FORMAT= */ 9, r.history_format == render::HistoryFormat::B10g11r11 ? 0 : 1});
+    s.push_back({/* GROUP= */ 20, desc.group});
+    for (uint32_t i = 0; i < 8; ++i) s.push_back({/* PATTERN_i= */ 10 + i, r.push.pattern[i]});
+    return s;
+}
+
+// The timed kernel per parity and, tiled, the class-map kernel per parity.
+void createResolveKernels(vk::Context& ctx, const CbrResolveDesc& desc, CbrResolve& r,
+                          const std::vector<vk::Binding>& binding_list, VkDescriptorSetLayout frame_layout,
+                          bool has_cfb) {
+    const bool tiled = desc.impl != ResolveImpl::Reference;
+    Code code = shaderFor(desc);
+    Output timed_output = desc.impl == ResolveImpl::Fused ? kOutputDisplay : kOutputHdr;
+    for (int parity = 0; parity < 2; ++parity) {
+        if (!tiled && parity == 1) {
+            r.kernel[1] = r.kernel[0];  // one reference pipeline reads the parity from the frame
+            break;
+        }
+        r.kernel[parity] = vk::createComputeKernel(ctx, code.spirv, code.size, binding_list, sizeof(CbrResolvePush),
+                                                   resolveSpec(desc, r, has_cfb, timed_output, parity), frame_layout);
+        if (tiled)
+            r.class_kernel[parity] = vk::createComputeKernel(ctx, code.spirv, code.size, binding_list,
+                                                             sizeof(CbrResolvePush),
+                                                             resolveSpec(desc, r, has_cfb, kOutputClasses, parity),
+                                                             frame_layout);
+    }
+}
+
+// The inputs of a set that reads `n` as frame N and `prev` as N-1 (set index `cur`). Without
+// moving objects (or transparency) no motion target (or CFB) exists; the binding still needs
+// an image of the right kind, which the shader never reads.
+void writeResolveInputs(vk::Context& ctx, const CbrResolveDesc& desc, const CbrResolve& r, const CheckerboardSet& n,
+                        const CheckerboardSet& prev, int cur, bool has_cfb, VkDescriptorSet set) {
+    const vk::Image& motion = n.motion.image ? n.motion : n.depth;
+    const vk::Image& colour = desc.deferred ? n.srt : n.color;
+    const vk::Image& prev_colour = desc.deferred ? prev.srt : prev.color;
+    constexpr auto kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    auto sampled = [&](uint32_t binding, const vk::Image& img) {
+        vk::writeImage(ctx, set, binding, kSampled, img.view, vk::sampledLayout(img), r.sampler);
+    };
+    sampled(0, colour);
+    sampled(1, n.depth);
+    sampled(2, motion);
+    sampled(3, prev_colour);
+    sampled(4, prev.depth);
+    if (desc.deferred) {
+        sampled(8, has_cfb ? n.cfb : n.depth);
+        sampled(9, has_cfb ? prev.cfb : prev.depth);
+    }
+    // Frame N (parity cur) reads the history frame N-1 wrote.
+    if (r.full_history)
+        vk::writeImage(ctx, set, 10, kSampled, r.history[1 - cur].view, vk::sampledLayout(r.history[1 - cur]),
+                       r.history_sampler);
+    else
+        vk::writeImage(ctx, set, 10, kSampled, r.history_stand_ins[0].view,
+                       vk::sampledLayout(r.history_stand_ins[0]), r.sampler);
+}
+
+// Per set index: the timed kernel's set (its outputs, stand-ins for the rest) and, tiled, the
+// class map's (`classes` only).
+void writeResolveSets(vk::Context& ctx, const CbrResolveDesc& desc, CbrResolve& r, CheckerboardSet (&sets)[2],
+                      const CbrResolveOutputs& out, bool has_cfb) {
+    const bool tiled = desc.impl != ResolveImpl::Reference;
+    const bool fused = desc.impl == ResolveImpl::Fused;
+    const bool small = r.history_format == render::HistoryFormat::B10g11r11;
+    for (int cur = 0; cur < 2; ++cur) {
+        const CheckerboardSet& n = sets[cur];
+        const CheckerboardSet& prev = sets[1 - cur];
+        VkDescriptorSet set = vk::allocateSet(ctx, r.pool, r.kernel[0].set_layout);
+        writeResolveInputs(ctx, desc, r, n, prev, cur, has_cfb, set);
+        bindStandIn(ctx, set, 5, fused ? nullptr : out.hdr, r.stand_ins[0]);
+        bindStandIn(ctx, set, 6, tiled ? nullptr : out.classes, r.stand_ins[1]);
+        bindStandIn(ctx, set, 7, fused ? out.display : nullptr, r.stand_ins[2]);
+        bindStandIn(ctx, set, 11, r.full_history && !small ? &r.history[cur] : nullptr, r.history_stand_ins[1]);
+        bindStandIn(ctx, set, 12, r.full_history && small ? &r.history[cur] : nullptr, r.history_stand_ins[2]);
+        r.sets[cur] = set;
+        if (!tiled) continue;
+        VkDescriptorSet class_set = vk::allocateSet(ctx, r.pool, r.class_kernel[0].set_layout);
+        writeResolveInputs(ctx, desc, r, n, prev, cur, has_cfb, class_set);
+        bindStandIn(ctx, class_set, 5, nullptr, r.stand_ins[0]);
+        bindStandIn(ctx, class_set, 6, out.classes, r.stand_ins[1]);
+        bindStandIn(ctx, class_set, 7, nullptr, r.stand_ins[2]);
+        bindStandIn(ctx, class_set, 11, nullptr, r.history_stand_ins[1]);
+        bindStandIn(ctx, class_set, 12, nullptr, r.history_stand_ins[2]);
+        r.class_sets[cur] = class_set;
+    }
+}
+
+}  // namespace
+
 CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDescriptorSetLayout frame_layout,
                             CheckerboardSet (&sets)[2], const CbrResolveOutputs& out) {
     CbrResolve r;
@@ -87,117 +233,13 @@ CbrResolve createCbrResolve(vk::Context& ctx, const CbrResolveDesc& desc, VkDesc
         const int* e = &shaders::kCbrPattern[(desc.route * 8 + i) * 3];
         r.push.pattern[i] = (e[0] + 1) | (e[1] + 1) << 4 | (e[2] + 1) << 8;
     }
-    const VkFormat stand_in_formats[3] = {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8_UINT, VK_FORMAT_R8G8B8A8_UNORM};
-    for (int i = 0; i < 3; ++i)
-        r.stand_ins[i] = vk::createImage(ctx, {"cbr_resolve_stand_in" + std::to_string(i), stand_in_formats[i], {1, 1},
-                                               VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
-    // B10G11R11 where the device can store it (an optional format feature), else RGBA16F.
-    const bool small_storable = vk::storageFormat(ctx, VK_FORMAT_B10G11R11_UFLOAT_PACK32);
-    r.history_format = small_storable ? desc.history_format : render::HistoryFormat::Rgba16f;
-    const bool small = r.history_format == render::HistoryFormat::B10g11r11;
-    const VkFormat small_format = small_storable ? VK_FORMAT_B10G11R11_UFLOAT_PACK32 : VK_FORMAT_R16G16B16A16_SFLOAT;
-    for (int i = 0; i < 3; ++i)
-        r.history_stand_ins[i] = vk::createImage(ctx, {"cbr_history_stand_in" + std::to_string(i),
-                                                       i == 2 ? small_format : VK_FORMAT_R16G16B16A16_SFLOAT, {1, 1},
-                                                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
-    if (desc.full_history) {
-        for (int i = 0; i < 2; ++i)
-            r.history[i] = vk::createImage(ctx, {"cbr_history" + std::to_string(i),
-                                                 small ? VK_FORMAT_B10G11R11_UFLOAT_PACK32 : VK_FORMAT_R16G16B16A16_SFLOAT,
-                                                 desc.full_extent,
-                                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
-        r.history_sampler = vk::createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 0.0f);
-    }
-    constexpr auto kComp = VK_SHADER_STAGE_COMPUTE_BIT;
-    constexpr auto kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    constexpr auto kStorage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    std::vector<vk::Binding> binding_list = {{0, kSampled, kComp}, {1, kSampled, kComp}, {2, kSampled, kComp},
-                                             {3, kSampled, kComp}, {4, kSampled, kComp}, {5, kStorage, kComp},
-                                             {6, kStorage, kComp},  {7, kStorage, kComp},
-                                             {10, kSampled, kComp}, {11, kStorage, kComp},
-                                             {12, kStorage, kComp}};
-    if (desc.deferred) binding_list.insert(binding_list.end(), {{8, kSampled, kComp}, {9, kSampled, kComp}});
-    bool has_cfb = desc.deferred && sets[0].cfb.image;
-    bool tiled = desc.impl != ResolveImpl::Reference;
-    auto spec = [&](Output output, int parity) {
-        std::vector<vk::SpecConstant> s = {{/* CHECK_OCCLUSION= */ 1, desc.clip_only ? 2 : desc.check_occlusion ? 1 : 0},
-                                           {/* CSO_ABSOLUTE= */ 2, desc.cso_absolute ? 1 : 0},
-                                           {/* HAS_MOTION= */ 3, desc.has_motion ? 1 : 0}};
-        if (desc.deferred) s.push_back({/* HAS_CFB= */ 4, has_cfb ? 1 : 0});
-        if (!tiled) return s;
-        s.push_back({/* OUTPUT= */ 5, output});
-        s.push_back({/* PARITY= */ 6, parity});
-        s.push_back({/* FULL_HISTORY= */ 7, desc.full_history ? 1 : 0});
-        s.push_back({/* HISTORY_CATMULL_ROM= */ 8, desc.history_catmull_rom ? 1 : 0});
-        s.push_back({/* HISTORY_FORMAT= */ 9, small ? 0 : 1});
-        s.push_back({/* GROUP= */ 20, desc.group});
-        for (uint32_t i = 0; i < 8; ++i) s.push_back({/* PATTERN_i= */ 10 + i, r.push.pattern[i]});
-        return s;
-    };
-    Code code = shaderFor(desc);
-    Output timed_output = desc.impl == ResolveImpl::Fused ? kOutputDisplay : kOutputHdr;
-    for (int parity = 0; parity < 2; ++parity) {
-        if (!tiled && parity == 1) {
-            r.kernel[1] = r.kernel[0];  // one reference pipeline reads the parity from the frame
-            break;
-        }
-        r.kernel[parity] = vk::createComputeKernel(ctx, code.spirv, code.size, binding_list, sizeof(CbrResolvePush),
-                                                   spec(timed_output, parity), frame_layout);
-        if (tiled)
-            r.class_kernel[parity] = vk::createComputeKernel(ctx, code.spirv, code.size, binding_list,
-                                                             sizeof(CbrResolvePush), spec(kOutputClasses, parity),
-                                                             frame_layout);
-    }
+    createResolveImages(ctx, desc, r);
+    const std::vector<vk::Binding> binding_list = resolveBindings(desc.deferred);
+    const bool has_cfb = desc.deferred && sets[0].cfb.image;
+    createResolveKernels(ctx, desc, r, binding_list, frame_layout, has_cfb);
     r.pool = vk::createPool(ctx, binding_list, 4);
     r.sampler = vk::createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, 0.0f);
-    for (int cur = 0; cur < 2; ++cur) {
-        CheckerboardSet& n = sets[cur];
-        CheckerboardSet& prev = sets[1 - cur];
-        // Without moving objects (or transparency) no motion target (or CFB) exists; the
-        // binding still needs an image of the right kind, which the shader never reads.
-        const vk::Image& motion = n.motion.image ? n.motion : n.depth;
-        const vk::Image& colour = desc.deferred ? n.srt : n.color;
-        const vk::Image& prev_colour = desc.deferred ? prev.srt : prev.color;
-        auto inputs = [&](VkDescriptorSet set) {
-            auto sampled = [&](uint32_t binding, const vk::Image& img) {
-                vk::writeImage(ctx, set, binding, kSampled, img.view, vk::sampledLayout(img), r.sampler);
-            };
-            sampled(0, colour);
-            sampled(1, n.depth);
-            sampled(2, motion);
-            sampled(3, prev_colour);
-            sampled(4, prev.depth);
-            if (desc.deferred) {
-                sampled(8, has_cfb ? n.cfb : n.depth);
-                sampled(9, has_cfb ? prev.cfb : prev.depth);
-            }
-            // Frame N (parity cur) reads the history frame N-1 wrote.
-            if (r.full_history)
-                vk::writeImage(ctx, set, 10, kSampled, r.history[1 - cur].view, vk::sampledLayout(r.history[1 - cur]),
-                               r.history_sampler);
-            else
-                vk::writeImage(ctx, set, 10, kSampled, r.history_stand_ins[0].view,
-                               vk::sampledLayout(r.history_stand_ins[0]), r.sampler);
-        };
-        VkDescriptorSet set = vk::allocateSet(ctx, r.pool, r.kernel[0].set_layout);
-        inputs(set);
-        bool fused = desc.impl == ResolveImpl::Fused;
-        bindStandIn(ctx, set, 5, fused ? nullptr : out.hdr, r.stand_ins[0]);
-        bindStandIn(ctx, set, 6, tiled ? nullptr : out.classes, r.stand_ins[1]);
-        bindStandIn(ctx, set, 7, fused ? out.display : nullptr, r.stand_ins[2]);
-        bindStandIn(ctx, set, 11, r.full_history && !small ? &r.history[cur] : nullptr, r.history_stand_ins[1]);
-        bindStandIn(ctx, set, 12, r.full_history && small ? &r.history[cur] : nullptr, r.history_stand_ins[2]);
-        r.sets[cur] = set;
-        if (!tiled) continue;
-        VkDescriptorSet class_set = vk::allocateSet(ctx, r.pool, r.class_kernel[0].set_layout);
-        inputs(class_set);
-        bindStandIn(ctx, class_set, 5, nullptr, r.stand_ins[0]);
-        bindStandIn(ctx, class_set, 6, out.classes, r.stand_ins[1]);
-        bindStandIn(ctx, class_set, 7, nullptr, r.stand_ins[2]);
-        bindStandIn(ctx, class_set, 11, nullptr, r.history_stand_ins[1]);
-        bindStandIn(ctx, class_set, 12, nullptr, r.history_stand_ins[2]);
-        r.class_sets[cur] = class_set;
-    }
+    writeResolveSets(ctx, desc, r, sets, out, has_cfb);
     return r;
 }
 

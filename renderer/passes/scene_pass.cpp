@@ -23,28 +23,112 @@ namespace {
 
 enum class AlphaMode : int { Opaque = 0, Mask = 1, Blend = 2 };
 
+// The fragment shader of desc's pass: analysis, G-buffer or forward; per-sample interpolation
+// (MSAA checkerboard) x motion output: four SPIR-V modules each, because an output with no
+// attachment and a `sample` input are not specialisable.
+VkShaderModule sceneFragmentModule(vk::Context& ctx, const ScenePipelineDesc& desc, bool writes_motion) {
+    auto module = [&](const uint32_t* code, size_t size) { return vk::createShaderModule(ctx, code, size); };
+    return desc.analysis ? module(kSpirv_analysis_frag, sizeof(kSpirv_analysis_frag))
+           : desc.gbuffer
+               ? (desc.sample_shading
+                      ? (writes_motion ? module(kSpirv_gbuffer_sample_motion_frag, sizeof(kSpirv_gbuffer_sample_motion_frag))
+                                     : module(kSpirv_gbuffer_sample_frag, sizeof(kSpirv_gbuffer_sample_frag)))
+                      : (writes_motion ? module(kSpirv_gbuffer_motion_frag, sizeof(kSpirv_gbuffer_motion_frag))
+                                     : module(kSpirv_gbuffer_frag, sizeof(kSpirv_gbuffer_frag))))
+           : desc.sample_shading
+               ? (writes_motion ? module(kSpirv_scene_sample_motion_frag, sizeof(kSpirv_scene_sample_motion_frag))
+                              : module(kSpirv_scene_sample_frag, sizeof(kSpirv_scene_sample_frag)))
+               : (writes_motion ? module(kSpirv_scene_motion_frag, sizeof(kSpirv_scene_motion_frag))
+                              : module(kSpirv_scene_frag, sizeof(kSpirv_scene_frag)));
+}
+
+// The fixed-function state of a scene pipeline that holds no pointers: triangle lists, one
+// dynamic viewport and scissor, back faces culled unless double-sided, reversed-Z depth (BLEND
+// draws test but do not write it).
+struct SceneFixedState {
+    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+};
+
+SceneFixedState sceneFixedState(AlphaMode mode, bool double_sided) {
+    SceneFixedState f;
+    f.assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    f.viewport.viewportCount = 1;
+    f.viewport.scissorCount = 1;
+    f.raster.polygonMode = VK_POLYGON_MODE_FILL;
+    f.raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    f.raster.cullMode = double_sided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+    f.raster.lineWidth = 1.0f;
+    f.depth.depthTestEnable = VK_TRUE;
+    f.depth.depthWriteEnable = mode == AlphaMode::Blend ? VK_FALSE : VK_TRUE;
+    f.depth.depthCompareOp = VK_COMPARE_OP_GREATER_OR_EQUAL;  // reversed Z: near = 1, far = 0
+    return f;
+}
+
+// desc's sample count and sample-rate shading; with programmable sample locations, chained
+// to `locations` (which must outlive the pipeline's creation).
+VkPipelineMultisampleStateCreateInfo sceneMultisample(const ScenePipelineDesc& desc,
+                                                      VkPipelineSampleLocationsStateCreateInfoEXT& locations) {
+    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    ms.rasterizationSamples = desc.samples;
+    // Sample-rate shading: each of the two samples is a separately shaded full-res pixel.
+    ms.sampleShadingEnable = desc.sample_shading ? VK_TRUE : VK_FALSE;
+    ms.minSampleShading = desc.sample_shading ? 1.0f : 0.0f;
+    if (desc.sample_locations) {
+        locations.sampleLocationsEnable = VK_TRUE;
+        locations.sampleLocationsInfo.sType = VK_STRUCTURE_TYPE_SAMPLE_LOCATIONS_INFO_EXT;
+        ms.pNext = &locations;
+    }
+    return ms;
+}
+
+// The attachments' formats and blending: colour (or the G-buffer's three), then motion, masked
+// off unless the shader writes it.
+struct SceneAttachments {
+    std::vector<VkFormat> formats;
+    std::vector<VkPipelineColorBlendAttachmentState> blends;
+};
+
+SceneAttachments sceneAttachments(const ScenePipelineDesc& desc, AlphaMode mode, bool writes_motion) {
+    VkPipelineColorBlendAttachmentState blend{};
+    blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                           VK_COLOR_COMPONENT_A_BIT;
+    if (mode == AlphaMode::Blend) {
+        blend.blendEnable = VK_TRUE;
+        blend.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+        blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        blend.colorBlendOp = VK_BLEND_OP_ADD;
+        // Destination alpha accumulates coverage (what the CFB of the deferred path stores).
+        blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        blend.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
+    VkPipelineColorBlendAttachmentState motion_blend{};
+    motion_blend.colorWriteMask = writes_motion ? VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT : 0;
+    SceneAttachments a;
+    if (desc.gbuffer) {
+        a.formats.assign(std::begin(kGBufferFormats), std::end(kGBufferFormats));
+        a.blends.assign(3, blend);
+    } else {
+        a.formats.push_back(desc.analysis ? kAnalysisFormat : desc.color_format);
+        a.blends.push_back(blend);
+    }
+    if (desc.motion) {
+        a.formats.push_back(kMotionFormat);
+        a.blends.push_back(motion_blend);
+    }
+    return a;
+}
+
 // writes_motion: the fragment shader has the motion output (else a motion attachment, if
 // the desc has one, is masked off).
 VkPipeline createScenePipeline(vk::Context& ctx, VkPipelineLayout layout, const ScenePipelineDesc& desc,
                                AlphaMode mode, bool double_sided, bool writes_motion) {
     VkShaderModule vert = vk::createShaderModule(ctx, kSpirv_scene_vert, sizeof(kSpirv_scene_vert));
-    // Per-sample interpolation (MSAA checkerboard) x motion output: four SPIR-V modules,
-    // because an output with no attachment and a `sample` input are not specialisable.
     writes_motion = writes_motion && desc.motion && mode != AlphaMode::Blend;
-    auto module = [&](const uint32_t* code, size_t size) { return vk::createShaderModule(ctx, code, size); };
-    VkShaderModule frag =
-        desc.analysis ? module(kSpirv_analysis_frag, sizeof(kSpirv_analysis_frag))
-        : desc.gbuffer
-            ? (desc.sample_shading
-                   ? (writes_motion ? module(kSpirv_gbuffer_sample_motion_frag, sizeof(kSpirv_gbuffer_sample_motion_frag))
-                                  : module(kSpirv_gbuffer_sample_frag, sizeof(kSpirv_gbuffer_sample_frag)))
-                   : (writes_motion ? module(kSpirv_gbuffer_motion_frag, sizeof(kSpirv_gbuffer_motion_frag))
-                                  : module(kSpirv_gbuffer_frag, sizeof(kSpirv_gbuffer_frag))))
-        : desc.sample_shading
-            ? (writes_motion ? module(kSpirv_scene_sample_motion_frag, sizeof(kSpirv_scene_sample_motion_frag))
-                           : module(kSpirv_scene_sample_frag, sizeof(kSpirv_scene_sample_frag)))
-            : (writes_motion ? module(kSpirv_scene_motion_frag, sizeof(kSpirv_scene_motion_frag))
-                           : module(kSpirv_scene_frag, sizeof(kSpirv_scene_frag)));
+    VkShaderModule frag = sceneFragmentModule(ctx, desc, writes_motion);
     int32_t alpha_mode = int32_t(mode);
     VkSpecializationMapEntry entry{/* ALPHA_MODE= */ 0, 0, sizeof(int32_t)};
     VkSpecializationInfo spec{1, &entry, sizeof(int32_t), &alpha_mode};
@@ -68,64 +152,14 @@ VkPipeline createScenePipeline(vk::Context& ctx, VkPipelineLayout layout, const 
     vertex_input.pVertexBindingDescriptions = &binding;
     vertex_input.vertexAttributeDescriptionCount = 3;
     vertex_input.pVertexAttributeDescriptions = attributes;
-    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    viewport.viewportCount = 1;
-    viewport.scissorCount = 1;
-    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    raster.polygonMode = VK_POLYGON_MODE_FILL;
-    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-    raster.cullMode = double_sided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
-    raster.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    ms.rasterizationSamples = desc.samples;
-    // Sample-rate shading: each of the two samples is a separately shaded full-res pixel.
-    ms.sampleShadingEnable = desc.sample_shading ? VK_TRUE : VK_FALSE;
-    ms.minSampleShading = desc.sample_shading ? 1.0f : 0.0f;
+    const SceneFixedState fixed = sceneFixedState(mode, double_sided);
     VkPipelineSampleLocationsStateCreateInfoEXT locations{
         VK_STRUCTURE_TYPE_PIPELINE_SAMPLE_LOCATIONS_STATE_CREATE_INFO_EXT};
-    if (desc.sample_locations) {
-        locations.sampleLocationsEnable = VK_TRUE;
-        locations.sampleLocationsInfo.sType = VK_STRUCTURE_TYPE_SAMPLE_LOCATIONS_INFO_EXT;
-        ms.pNext = &locations;
-    }
-    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-    depth.depthTestEnable = VK_TRUE;
-    depth.depthWriteEnable = mode == AlphaMode::Blend ? VK_FALSE : VK_TRUE;
-    depth.depthCompareOp = VK_COMPARE_OP_GREATER_OR_EQUAL;  // reversed Z: near = 1, far = 0
-    VkPipelineColorBlendAttachmentState blend{};
-    blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
-                           VK_COLOR_COMPONENT_A_BIT;
-    if (mode == AlphaMode::Blend) {
-        blend.blendEnable = VK_TRUE;
-        blend.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
-        blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-        blend.colorBlendOp = VK_BLEND_OP_ADD;
-        // Destination alpha accumulates coverage (what the CFB of the deferred path stores).
-        blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-        blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-        blend.alphaBlendOp = VK_BLEND_OP_ADD;
-    }
-    VkPipelineColorBlendAttachmentState motion_blend{};
-    motion_blend.colorWriteMask = writes_motion ? VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT : 0;
-    // Attachments: colour (or the G-buffer's three), then motion.
-    std::vector<VkFormat> formats;
-    std::vector<VkPipelineColorBlendAttachmentState> blends;
-    if (desc.gbuffer) {
-        formats.assign(std::begin(kGBufferFormats), std::end(kGBufferFormats));
-        blends.assign(3, blend);
-    } else {
-        formats.push_back(desc.analysis ? kAnalysisFormat : desc.color_format);
-        blends.push_back(blend);
-    }
-    if (desc.motion) {
-        formats.push_back(kMotionFormat);
-        blends.push_back(motion_blend);
-    }
+    const VkPipelineMultisampleStateCreateInfo ms = sceneMultisample(desc, locations);
+    const SceneAttachments attachments = sceneAttachments(desc, mode, writes_motion);
     VkPipelineColorBlendStateCreateInfo blend_state{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    blend_state.attachmentCount = uint32_t(blends.size());
-    blend_state.pAttachments = blends.data();
+    blend_state.attachmentCount = uint32_t(attachments.blends.size());
+    blend_state.pAttachments = attachments.blends.data();
     std::vector<VkDynamicState> dynamic = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
     if (desc.sample_locations) dynamic.push_back(VK_DYNAMIC_STATE_SAMPLE_LOCATIONS_EXT);
     VkPipelineDynamicStateCreateInfo dynamic_state{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
@@ -133,19 +167,19 @@ VkPipeline createScenePipeline(vk::Context& ctx, VkPipelineLayout layout, const 
     dynamic_state.pDynamicStates = dynamic.data();
     VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
     rendering.viewMask = desc.view_mask;
-    rendering.colorAttachmentCount = uint32_t(formats.size());
-    rendering.pColorAttachmentFormats = formats.data();
+    rendering.colorAttachmentCount = uint32_t(attachments.formats.size());
+    rendering.pColorAttachmentFormats = attachments.formats.data();
     rendering.depthAttachmentFormat = desc.depth_format;
 
     VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
     info.stageCount = 2;
     info.pStages = stages;
     info.pVertexInputState = &vertex_input;
-    info.pInputAssemblyState = &assembly;
-    info.pViewportState = &viewport;
-    info.pRasterizationState = &raster;
+    info.pInputAssemblyState = &fixed.assembly;
+    info.pViewportState = &fixed.viewport;
+    info.pRasterizationState = &fixed.raster;
     info.pMultisampleState = &ms;
-    info.pDepthStencilState = &depth;
+    info.pDepthStencilState = &fixed.depth;
     info.pColorBlendState = &blend_state;
     info.pDynamicState = &dynamic_state;
     info.layout = layout;

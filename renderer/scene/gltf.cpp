@@ -1,4 +1,5 @@
-// glTF 2.0 through tinygltf: checked accessors, triangle primitives, flattened node tree, lights.
+// glTF 2.0 through tinygltf: checked accessors, flattened node tree, lights (triangle
+// primitives: gltf_primitives.cpp).
 //
 // Everything read from a buffer is bounds-checked first and every float is checked to be
 // finite, so no NaN/Inf vertex, out-of-range index or dangling reference reaches the GPU.
@@ -6,7 +7,6 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <limits>
 #include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -151,9 +151,6 @@ std::vector<float> readFloats(const GltfContext& ctx, const View& view) {
     return out;
 }
 
-namespace {
-
-
 std::vector<uint32_t> readIndices(const View& view) {
     std::vector<uint32_t> out(view.count, 0);
     const int bytes = componentBytes(view.component_type);
@@ -166,148 +163,7 @@ std::vector<uint32_t> readIndices(const View& view) {
     return out;
 }
 
-// ---- primitives ------------------------------------------------------------------------
-
-// Strips and fans become lists with the winding glTF 2.0 (section 3.7.2.1) defines.
-std::vector<uint32_t> toTriangleList(const GltfContext& ctx, int mode, const std::vector<uint32_t>& in, const std::string& p) {
-    const std::string what = std::to_string(in.size()) + (p.ends_with("indices") ? " indices" : " vertices");
-    if (mode == TINYGLTF_MODE_TRIANGLES) {
-        if (in.size() % 3 != 0) gltfError(ctx, p, what + " is not a multiple of 3", "whole triangles (TRIANGLES mode)");
-        return in;
-    }
-    if (in.size() < 3) gltfError(ctx, p, what + " make no triangle", "at least 3 for a strip or fan");
-    std::vector<uint32_t> out;
-    out.reserve((in.size() - 2) * 3);
-    for (size_t i = 0; i + 2 < in.size(); ++i) {
-        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
-            out.insert(out.end(), {in[i], in[i + 1 + i % 2], in[i + 2 - i % 2]});
-        else
-            out.insert(out.end(), {in[i + 1], in[i + 2], in[0]});
-    }
-    return out;
-}
-
-int loadPrimitive(GltfContext& ctx, size_t mesh_index, size_t prim_index) {
-    const tinygltf::Mesh& mesh = ctx.model.meshes[mesh_index];
-    const tinygltf::Primitive& prim = mesh.primitives[prim_index];
-    const std::string p = gltfAt("meshes", mesh_index) + "/primitives/" + std::to_string(prim_index);
-    const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-    if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
-        ++ctx.skipped_primitives;
-        return -1;
-    }
-    if (mode > TINYGLTF_MODE_TRIANGLE_FAN) gltfError(ctx, p + "/mode", "is " + std::to_string(mode), "0 to 6");
-
-    const auto position_it = prim.attributes.find("POSITION");
-    if (position_it == prim.attributes.end()) gltfError(ctx, p + "/attributes", "has no POSITION", "a POSITION accessor (VEC3, FLOAT)");
-    const View positions_view = viewAccessor(ctx, position_it->second, p + "/attributes/POSITION", TINYGLTF_TYPE_VEC3,
-                                             {TINYGLTF_COMPONENT_TYPE_FLOAT});
-    const std::vector<float> positions = readFloats(ctx, positions_view);
-    const size_t vertex_count = positions_view.count;
-    auto attribute = [&](const char* name, int type, std::initializer_list<int> component_types) -> std::vector<float> {
-        const auto it = prim.attributes.find(name);
-        if (it == prim.attributes.end()) return {};
-        const std::string where = p + "/attributes/" + name;
-        const View view = viewAccessor(ctx, it->second, where, type, component_types);
-        if (view.count != vertex_count)
-            gltfError(ctx, where, "has " + std::to_string(view.count) + " elements but POSITION has " + std::to_string(vertex_count),
-                 "the same count for every attribute");
-        if (view.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !view.normalized)
-            gltfError(ctx, view.pointer + "/normalized", "is false for an integer " + std::string(name), "normalized: true");
-        return readFloats(ctx, view);
-    };
-    const std::vector<float> normals = attribute("NORMAL", TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
-    const std::vector<float> uvs = attribute("TEXCOORD_0", TINYGLTF_TYPE_VEC2,
-                                             {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                              TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
-
-    std::vector<uint32_t> indices;
-    std::string index_pointer = p;
-    if (prim.indices >= 0) {
-        index_pointer = p + "/indices";
-        const View view = viewAccessor(ctx, prim.indices, index_pointer, TINYGLTF_TYPE_SCALAR,
-                                       {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                                        TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
-        indices = readIndices(view);
-        for (size_t i = 0; i < indices.size(); ++i)
-            if (indices[i] >= vertex_count)
-                gltfError(ctx, index_pointer, "index " + std::to_string(indices[i]) + " at position " + std::to_string(i) + " of " +
-                                             view.pointer + " is out of range (POSITION has " + std::to_string(vertex_count) + " vertices)",
-                     "indices below " + std::to_string(vertex_count));
-    } else {
-        indices.resize(vertex_count);
-        for (size_t i = 0; i < vertex_count; ++i) indices[i] = uint32_t(i);
-    }
-    const std::vector<uint32_t> triangles = toTriangleList(ctx, mode, indices, index_pointer);
-
-    std::vector<Vertex> vertices(vertex_count);
-    for (size_t i = 0; i < vertex_count; ++i) {
-        vertices[i].position = glm::vec3(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
-        if (!uvs.empty()) vertices[i].uv = glm::vec2(uvs[2 * i], uvs[2 * i + 1]);
-        else vertices[i].uv = glm::vec2(0.0f);
-        vertices[i].normal = glm::vec3(0.0f);
-    }
-    // Smooth normals, area weighted (the cross product's length is twice the area), for
-    // files without NORMAL and for zero-length normals in files that have it.
-    std::vector<glm::vec3> computed(vertex_count, glm::vec3(0.0f));
-    for (size_t t = 0; t < triangles.size(); t += 3) {
-        const glm::vec3& a = vertices[triangles[t]].position;
-        const glm::vec3 n = glm::cross(vertices[triangles[t + 1]].position - a, vertices[triangles[t + 2]].position - a);
-        if (!std::isfinite(n.x + n.y + n.z)) continue;  // huge coordinates overflow; skip their weight
-        for (int k = 0; k < 3; ++k) computed[triangles[t + size_t(k)]] += n;
-    }
-    size_t zero_normals = 0, degenerate = 0;
-    for (size_t t = 0; t < triangles.size(); t += 3) {
-        const glm::vec3& a = vertices[triangles[t]].position;
-        const glm::vec3 n = glm::cross(vertices[triangles[t + 1]].position - a, vertices[triangles[t + 2]].position - a);
-        degenerate += !(glm::dot(n, n) > 0.0f);
-    }
-    for (size_t i = 0; i < vertex_count; ++i) {
-        glm::vec3 n = normals.empty() ? glm::vec3(0.0f) : glm::vec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
-        if (!normals.empty() && !(glm::dot(n, n) > 1e-12f)) ++zero_normals;
-        if (!(glm::dot(n, n) > 1e-12f)) n = computed[i];
-        vertices[i].normal = glm::dot(n, n) > 1e-30f && std::isfinite(glm::dot(n, n)) ? glm::normalize(n) : glm::vec3(0, 1, 0);
-    }
-
-    Scene& scene = ctx.scene;
-    scene.info.morphed_meshes += !prim.targets.empty();
-    if (zero_normals)
-        scene.warnings.push_back(p + "/attributes/NORMAL: " + std::to_string(zero_normals) +
-                                 " zero-length normal(s) replaced by area-weighted face normals");
-    if (degenerate)
-        scene.warnings.push_back(p + ": " + std::to_string(degenerate) +
-                                 " zero-area triangle(s) kept (they cover no pixel)");
-    if (scene.vertices.size() + vertex_count > size_t(std::numeric_limits<int32_t>::max()) ||
-        scene.indices.size() + triangles.size() > size_t(std::numeric_limits<uint32_t>::max()))
-        gltfError(ctx, p, "the scene exceeds 2^31 vertices or 2^32 indices", "a smaller scene");
-    Mesh out;
-    out.name = (mesh.name.empty() ? "mesh " + std::to_string(mesh_index) : mesh.name) +
-               (mesh.primitives.size() > 1 ? "#" + std::to_string(prim_index) : "");
-    out.first_index = uint32_t(scene.indices.size());
-    out.index_count = uint32_t(triangles.size());
-    out.vertex_offset = int32_t(scene.vertices.size());
-    out.material = gltfMaterial(ctx, prim.material, p);
-    out.bounds_min = glm::vec3(std::numeric_limits<float>::max());
-    out.bounds_max = glm::vec3(-std::numeric_limits<float>::max());
-    for (const Vertex& v : vertices) {
-        out.bounds_min = glm::min(out.bounds_min, v.position);
-        out.bounds_max = glm::max(out.bounds_max, v.position);
-    }
-    scene.vertices.insert(scene.vertices.end(), vertices.begin(), vertices.end());
-    scene.indices.insert(scene.indices.end(), triangles.begin(), triangles.end());
-    scene.meshes.push_back(std::move(out));
-    return int(scene.meshes.size()) - 1;
-}
-
-const std::vector<int>& sceneMeshes(GltfContext& ctx, size_t mesh_index) {
-    if (!ctx.meshes[mesh_index]) {
-        std::vector<int> list;
-        for (size_t i = 0; i < ctx.model.meshes[mesh_index].primitives.size(); ++i)
-            if (const int m = loadPrimitive(ctx, mesh_index, i); m >= 0) list.push_back(m);
-        ctx.meshes[mesh_index] = std::move(list);
-    }
-    return *ctx.meshes[mesh_index];
-}
+namespace {
 
 // ---- nodes -----------------------------------------------------------------------------
 
@@ -387,11 +243,13 @@ void addLight(GltfContext& ctx, const tinygltf::Node& node, size_t node_index, c
     ctx.scene.lights.push_back(light);
 }
 
-void flattenNodes(GltfContext& ctx) {
+// The nodes to walk from: the default scene's (the first when none is named), each checked to
+// exist and to be a root; with no scenes, every root node (glTF allows a file to define
+// none). `roots_pointer` names where they came from.
+std::vector<int> sceneRoots(const GltfContext& ctx, const std::vector<int>& parent, std::string& roots_pointer) {
     const auto& model = ctx.model;
-    const std::vector<int> parent = checkTree(ctx);
     std::vector<int> roots;
-    std::string roots_pointer = "/nodes";
+    roots_pointer = "/nodes";
     const int scene_index = model.defaultScene >= 0 ? model.defaultScene : model.scenes.empty() ? -1 : 0;
     if (scene_index >= 0) {
         if (size_t(scene_index) >= model.scenes.size())
@@ -406,10 +264,48 @@ void flattenNodes(GltfContext& ctx) {
                                                                        std::to_string(parent[size_t(roots[k])]),
                      "root nodes only");
         }
-    } else {  // no scenes: every root node (glTF allows a file to define none)
+    } else {
         for (size_t i = 0; i < model.nodes.size(); ++i)
             if (parent[i] < 0) roots.push_back(int(i));
     }
+    return roots;
+}
+
+// A node as the scene keeps it for per-frame transforms: its local transform and its TRS parts.
+Node keptNode(const tinygltf::Node& node, int index, int parent_node, const glm::dmat4& local) {
+    Node n;
+    n.name = node.name;
+    n.parent = parent_node;
+    n.gltf_index = index;
+    n.has_matrix = node.matrix.size() == 16;
+    n.matrix = local;
+    if (node.translation.size() == 3) n.translation = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
+    if (node.rotation.size() == 4)
+        n.rotation = glm::normalize(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
+    if (node.scale.size() == 3) n.scale = glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
+    return n;
+}
+
+// An instance of each of the node's mesh's primitives: at `world`, or under an animated node
+// referring to its scene node (`scene_node`) instead.
+void addNodeMeshes(GltfContext& ctx, const tinygltf::Node& node, int index, const glm::dmat4& world, bool node_animated,
+                   int scene_node) {
+    if (node.mesh < 0) return;
+    const auto& model = ctx.model;
+    if (size_t(node.mesh) >= model.meshes.size())
+        gltfError(ctx, gltfAt("nodes", size_t(index)) + "/mesh", std::to_string(node.mesh) + " does not exist", gltfIndexRange("meshes", model.meshes.size()));
+    for (int mesh : gltfMeshes(ctx, size_t(node.mesh))) {
+        if (node_animated) ctx.scene.instances.push_back({mesh, glm::dmat4(1.0), {}, scene_node});
+        else ctx.scene.instances.push_back({mesh, world, {}, -1});
+        ctx.scene.info.skinned_instances += node.skin >= 0;
+    }
+}
+
+void flattenNodes(GltfContext& ctx) {
+    const auto& model = ctx.model;
+    const std::vector<int> parent = checkTree(ctx);
+    std::string roots_pointer;
+    const std::vector<int> roots = sceneRoots(ctx, parent, roots_pointer);
     // Files with animations or cameras keep their node tree (parents first) for per-frame
     // transforms; instances under an animated node refer to it instead of being flattened.
     const bool keep_nodes = !model.animations.empty() || !model.cameras.empty();
@@ -436,18 +332,8 @@ void flattenNodes(GltfContext& ctx) {
             gltfError(ctx, gltfAt("nodes", size_t(index)) + "/matrix", "is the target of an animation channel",
                       "translation, rotation and scale on an animated node (glTF 2.0 section 3.11)");
         if (keep_nodes) {
-            Node n;
-            n.name = node.name;
-            n.parent = visit.parent_node;
-            n.gltf_index = index;
-            n.has_matrix = node.matrix.size() == 16;
-            n.matrix = local;
-            if (node.translation.size() == 3) n.translation = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
-            if (node.rotation.size() == 4)
-                n.rotation = glm::normalize(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
-            if (node.scale.size() == 3) n.scale = glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
             scene_node[size_t(index)] = int(ctx.scene.nodes.size());
-            ctx.scene.nodes.push_back(std::move(n));
+            ctx.scene.nodes.push_back(keptNode(node, index, visit.parent_node, local));
         }
         // Each local transform fits a float, a product along the path need not (scale 1e30
         // under scale 1e30); the GPU reads the linear part as float.
@@ -456,15 +342,7 @@ void flattenNodes(GltfContext& ctx) {
                 if (!std::isfinite(float(world[c][r])))
                     gltfError(ctx, gltfAt("nodes", size_t(index)), "its world transform (its ancestors' times its own) overflows a float",
                               "scales whose product along the node path stays below 3.4e38");
-        if (node.mesh >= 0) {
-            if (size_t(node.mesh) >= model.meshes.size())
-                gltfError(ctx, gltfAt("nodes", size_t(index)) + "/mesh", std::to_string(node.mesh) + " does not exist", gltfIndexRange("meshes", model.meshes.size()));
-            for (int mesh : sceneMeshes(ctx, size_t(node.mesh))) {
-                if (node_animated) ctx.scene.instances.push_back({mesh, glm::dmat4(1.0), {}, scene_node[size_t(index)]});
-                else ctx.scene.instances.push_back({mesh, world, {}, -1});
-                ctx.scene.info.skinned_instances += node.skin >= 0;
-            }
-        }
+        addNodeMeshes(ctx, node, index, world, node_animated, scene_node[size_t(index)]);
         addLight(ctx, node, size_t(index), world);
         if (node.camera >= 0) gltfCamera(ctx, node, size_t(index), scene_node[size_t(index)]);
         for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)

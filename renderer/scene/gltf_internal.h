@@ -59,6 +59,12 @@ View viewAccessor(const GltfContext& ctx, int index, const std::string& used_by,
 // Elements as floats: FLOAT as is, normalized integers per glTF 2.0; a NaN or infinity
 // throws naming the accessor, element and user.
 std::vector<float> readFloats(const GltfContext& ctx, const View& view);
+// Elements of an unsigned scalar accessor as uint32 (ranges are the caller's to check).
+std::vector<uint32_t> readIndices(const View& view);
+
+// The Scene meshes of glTF mesh `mesh_index`, one per triangle primitive, loaded on first use
+// (gltf_primitives.cpp).
+const std::vector<int>& gltfMeshes(GltfContext& ctx, size_t mesh_index);
 
 // Animations and cameras (gltf_animation.cpp). `scene_node[i]` is the Scene::nodes index of
 // glTF node i, -1 for nodes outside the scene. Channels on nodes outside the scene are

@@ -364,6 +364,42 @@ int footprintColumns(const Grid& g) {
     return footprint;
 }
 
+// The columns with head room: free from the air layer to above `head_layer` (open columns
+// count as n.y); returns how many.
+int headRoomColumns(const std::vector<int>& ceiling, int head_layer, std::vector<uint8_t>& candidate) {
+    candidate.assign(ceiling.size(), 0);
+    int candidates = 0;
+    for (size_t i = 0; i < ceiling.size(); ++i)
+        if (ceiling[i] > head_layer) candidate[i] = 1, ++candidates;
+    return candidates;
+}
+
+// An enclosed scene's outcome: the free box (the largest rectangle of enclosed columns), the
+// lowest ceiling over it (the bounds' top where open), its columns' mean enclosed share.
+Interior enclosedInterior(Interior out, const Grid& g, const std::vector<int>& ceiling, const Probes& probes,
+                          glm::ivec2 rect_min, glm::ivec2 rect_max, int best_area, double top_y,
+                          const std::string& grid_text) {
+    out.enclosed = true;
+    out.free_min = {g.origin.x + rect_min.x * g.cell.x, g.origin.z + rect_min.y * g.cell.z};
+    out.free_max = {g.origin.x + (rect_max.x + 1) * g.cell.x, g.origin.z + (rect_max.y + 1) * g.cell.z};
+    int lowest = g.n.y;
+    double share = 0;
+    for (int z = rect_min.y; z <= rect_max.y; ++z)
+        for (int x = rect_min.x; x <= rect_max.x; ++x) {
+            const size_t i = size_t(z) * size_t(g.n.x) + size_t(x);
+            lowest = std::min(lowest, ceiling[i]);
+            share += probes.tally[i].frontShare();
+        }
+    out.ceiling_y = lowest < g.n.y ? g.origin.y + lowest * g.cell.y : top_y;
+    out.enclosed_share = share / best_area;
+    out.reason = format("enclosed: %g%% of level rays at eye height hit surfaces facing them; free box %g x %g "
+                        "at eye height %g above the floor at y = %g, clear to y = %g",
+                        std::round(100 * out.enclosed_share), out.free_max.x - out.free_min.x,
+                        out.free_max.y - out.free_min.y, out.eye_y - out.floor_y, out.floor_y, out.ceiling_y) +
+                 " (" + grid_text + ")";
+    return out;
+}
+
 }  // namespace
 
 Interior findInterior(const Scene& scene) {
@@ -404,18 +440,15 @@ Interior findInterior(const Scene& scene) {
     // Free from the air layer to one layer above the eye: head room.
     const int head_layer = std::min(eye_layer + 1, g.n.y - 1);
 
-    std::vector<uint8_t> candidate(ceiling.size(), 0);
-    int candidates = 0;
-    for (size_t i = 0; i < ceiling.size(); ++i)
-        if (ceiling[i] > head_layer) candidate[i] = 1, ++candidates;  // open columns: n.y
+    std::vector<uint8_t> candidate;
+    const int candidates = headRoomColumns(ceiling, head_layer, candidate);
     if (candidates == 0)
         return notEnclosed(out, format("no head room at eye height %g above the floor at y = %g", out.eye_y - out.floor_y,
                                        out.floor_y) + " (" + grid_text + ")");
 
     const Probes probes = probeColumns(g, candidate, candidates, eye_layer);
-    const int nx = g.n.x;
     glm::ivec2 rect_min(0), rect_max(-1);
-    const int best_area = largestRectangle(probes.enclosed, nx, g.n.z, rect_min, rect_max);
+    const int best_area = largestRectangle(probes.enclosed, g.n.x, g.n.z, rect_min, rect_max);
     out.enclosed_share = probes.best.frontShare();
     const int footprint = footprintColumns(g);
     const int enclosed_columns = int(std::count(probes.enclosed.begin(), probes.enclosed.end(), uint8_t(1)));
@@ -432,25 +465,7 @@ Interior findInterior(const Scene& scene) {
                         100 * probes.best.backShare()) +
                      " (" + grid_text + ")");
 
-    out.enclosed = true;
-    out.free_min = {g.origin.x + rect_min.x * g.cell.x, g.origin.z + rect_min.y * g.cell.z};
-    out.free_max = {g.origin.x + (rect_max.x + 1) * g.cell.x, g.origin.z + (rect_max.y + 1) * g.cell.z};
-    int lowest = g.n.y;
-    double share = 0;
-    for (int z = rect_min.y; z <= rect_max.y; ++z)
-        for (int x = rect_min.x; x <= rect_max.x; ++x) {
-            const size_t i = size_t(z) * size_t(nx) + size_t(x);
-            lowest = std::min(lowest, ceiling[i]);
-            share += probes.tally[i].frontShare();
-        }
-    out.ceiling_y = lowest < g.n.y ? g.origin.y + lowest * g.cell.y : bmax.y;
-    out.enclosed_share = share / best_area;
-    out.reason = format("enclosed: %g%% of level rays at eye height hit surfaces facing them; free box %g x %g "
-                        "at eye height %g above the floor at y = %g, clear to y = %g",
-                        std::round(100 * out.enclosed_share), out.free_max.x - out.free_min.x,
-                        out.free_max.y - out.free_min.y, out.eye_y - out.floor_y, out.floor_y, out.ceiling_y) +
-                 " (" + grid_text + ")";
-    return out;
+    return enclosedInterior(out, g, ceiling, probes, rect_min, rect_max, best_area, bmax.y, grid_text);
 }
 
 }  // namespace cbr::scene

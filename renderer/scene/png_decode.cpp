@@ -60,11 +60,17 @@ bool unfilter(uint8_t filter, uint8_t* row, const uint8_t* prior, size_t length,
     }
 }
 
-}  // namespace
+// IHDR's figures for what this reader takes: 8 bits, no interlacing, greyscale, RGB, or either
+// with alpha.
+struct PngHeader {
+    uint32_t w = 0, h = 0;
+    size_t channels = 0;
+};
 
-bool decodePngRgba8(const uint8_t* bytes, size_t size, int& width, int& height, std::vector<uint8_t>& rgba) {
+// The signature and IHDR (which must come first: an Apple CgBI chunk before it is left to
+// stb_image); false for anything else.
+bool readPngHeader(const uint8_t* bytes, size_t size, PngHeader& header) {
     if (size < 8 + 25 || std::memcmp(bytes, kSignature, 8) != 0) return false;
-    // IHDR must come first (an Apple CgBI chunk before it: left to stb_image).
     const uint8_t* ihdr = bytes + 8;
     if (bigEndian32(ihdr) != 13 || !is(ihdr + 4, "IHDR")) return false;
     const uint32_t w = bigEndian32(ihdr + 8), h = bigEndian32(ihdr + 12);
@@ -82,14 +88,16 @@ bool decodePngRgba8(const uint8_t* bytes, size_t size, int& width, int& height, 
         default: return false;        // palette (3) or invalid
     }
     if ((1u << 30) / w / channels < h) return false;  // stb_image's "too large"
-    const size_t stride = size_t(w) * channels;
-    const size_t raw_size = size_t(h) * (stride + 1);
+    header = {w, h, channels};
+    return true;
+}
 
-    // The IDAT chunks, in order and consecutive: one is inflated where it lies, several are
-    // joined first.
-    std::vector<uint8_t> stream;
-    const uint8_t* single = nullptr;
-    size_t single_size = 0, chunks = 0;
+// The IDAT chunks, in order and consecutive, up to IEND: `single` and `single_size` give the
+// zlib stream, where one chunk lies or, for several, in `stream` joined. False for a truncated
+// file, no IDAT or IEND, or a chunk that is not ours.
+bool pngIdatStream(const uint8_t* bytes, size_t size, std::vector<uint8_t>& stream, const uint8_t*& single,
+                   size_t& single_size) {
+    size_t chunks = 0;
     bool idat_done = false, seen_end = false;
     for (size_t at = 8 + 25; at + 12 <= size && !seen_end;) {
         const uint32_t length = bigEndian32(bytes + at);
@@ -116,36 +124,31 @@ bool decodePngRgba8(const uint8_t* bytes, size_t size, int& width, int& height, 
     }
     if (chunks == 0 || !seen_end) return false;
     if (chunks > 1) single = stream.data(), single_size = stream.size();
-    // Deflate expands at most 1032:1: a header claiming more pixels than its data could hold
-    // is turned down before the buffer for them is allocated.
-    if (single_size * 1032 + 64 < raw_size) return false;
+    return true;
+}
 
-    // The whole image's filtered rows; exactly raw_size bytes, as stb_image requires.
-    std::unique_ptr<uint8_t[]> raw(new uint8_t[raw_size]);
+// Inflates the zlib stream into exactly raw_size bytes, as stb_image requires.
+bool inflatePng(const uint8_t* stream, size_t stream_size, uint8_t* raw, size_t raw_size) {
     struct Free {
         void operator()(libdeflate_decompressor* d) const { libdeflate_free_decompressor(d); }
     };
     std::unique_ptr<libdeflate_decompressor, Free> inflater(libdeflate_alloc_decompressor());
     if (!inflater) return false;
     size_t produced = 0;
-    if (libdeflate_zlib_decompress(inflater.get(), single, single_size, raw.get(), raw_size, &produced) !=
-            LIBDEFLATE_SUCCESS ||
-        produced != raw_size)
-        return false;
+    return libdeflate_zlib_decompress(inflater.get(), stream, stream_size, raw, raw_size, &produced) ==
+               LIBDEFLATE_SUCCESS &&
+           produced == raw_size;
+}
 
-    const uint8_t* prior = nullptr;
-    for (size_t y = 0; y < h; ++y) {
-        uint8_t* row = raw.get() + y * (stride + 1);
-        if (!unfilter(row[0], row + 1, prior, stride, channels)) return false;
-        prior = row + 1;
-    }
-
-    rgba.resize(size_t(w) * h * 4);
+// The unfiltered rows (each after its filter byte) expanded to RGBA8.
+void expandPngRows(const uint8_t* raw, const PngHeader& header, std::vector<uint8_t>& rgba) {
+    const size_t stride = size_t(header.w) * header.channels;
+    rgba.resize(size_t(header.w) * header.h * 4);
     uint8_t* out = rgba.data();
-    for (size_t y = 0; y < h; ++y) {
-        const uint8_t* in = raw.get() + y * (stride + 1) + 1;
-        for (size_t x = 0; x < w; ++x, out += 4, in += channels) {
-            switch (channels) {
+    for (size_t y = 0; y < header.h; ++y) {
+        const uint8_t* in = raw + y * (stride + 1) + 1;
+        for (size_t x = 0; x < header.w; ++x, out += 4, in += header.channels) {
+            switch (header.channels) {
                 case 1: out[0] = out[1] = out[2] = in[0], out[3] = 255; break;
                 case 2: out[0] = out[1] = out[2] = in[0], out[3] = in[1]; break;
                 case 3: out[0] = in[0], out[1] = in[1], out[2] = in[2], out[3] = 255; break;
@@ -153,8 +156,35 @@ bool decodePngRgba8(const uint8_t* bytes, size_t size, int& width, int& height, 
             }
         }
     }
-    width = int(w);
-    height = int(h);
+}
+
+}  // namespace
+
+bool decodePngRgba8(const uint8_t* bytes, size_t size, int& width, int& height, std::vector<uint8_t>& rgba) {
+    PngHeader header;
+    if (!readPngHeader(bytes, size, header)) return false;
+    const size_t stride = size_t(header.w) * header.channels;
+    const size_t raw_size = size_t(header.h) * (stride + 1);
+    std::vector<uint8_t> stream;
+    const uint8_t* single = nullptr;
+    size_t single_size = 0;
+    if (!pngIdatStream(bytes, size, stream, single, single_size)) return false;
+    // Deflate expands at most 1032:1: a header claiming more pixels than its data could hold
+    // is turned down before the buffer for them is allocated.
+    if (single_size * 1032 + 64 < raw_size) return false;
+
+    // The whole image's filtered rows.
+    std::unique_ptr<uint8_t[]> raw(new uint8_t[raw_size]);
+    if (!inflatePng(single, single_size, raw.get(), raw_size)) return false;
+    const uint8_t* prior = nullptr;
+    for (size_t y = 0; y < header.h; ++y) {
+        uint8_t* row = raw.get() + y * (stride + 1);
+        if (!unfilter(row[0], row + 1, prior, stride, header.channels)) return false;
+        prior = row + 1;
+    }
+    expandPngRows(raw.get(), header, rgba);
+    width = int(header.w);
+    height = int(header.h);
     return true;
 }
 

@@ -14,6 +14,7 @@
 #include "metrics/cvvdp.h"
 #include "metrics/flip.h"
 #include "metrics/temporal.h"
+#include "renderer/scoring/device_cvvdp.h"
 #include "renderer/shaders/score_shared.h"
 #include "renderer/vk/pipelines.h"
 #include "renderer/vk/resources.h"
@@ -102,17 +103,16 @@ public:
     // with ColorVideoVDP's window (8 bytes a pixel a frame of it), not with the frames scored.
     VkDeviceSize scratchBytes() const;
     VkDeviceSize chainBytes() const;
-    const metrics::CvvdpModel& cvvdpModel() const { return cvvdp_; }
+    const metrics::CvvdpModel& cvvdpModel() const { return cvvdp_.model(); }
     // For timing (tests, cost measurements): later record()s write timestamps first .. first + 3
     // of `pool` before ColorVideoVDP's passes, after its pyramid, after its bands and after its
     // map (the last with or without a map); VK_NULL_HANDLE stops them.
-    void timeCvvdp(VkQueryPool pool, uint32_t first) {
-        time_pool_ = pool;
-        time_first_ = first;
-    }
+    void timeCvvdp(VkQueryPool pool, uint32_t first) { cvvdp_.time(pool, first); }
     // Each band's per-channel q (metrics/cvvdp.cpp State::band's figures) from a result, the
     // baseband last: what read() pools into cvvdp_q.
-    std::vector<std::array<double, 4>> cvvdpBands(const void* mapped_result) const;
+    std::vector<std::array<double, 4>> cvvdpBands(const void* mapped_result) const {
+        return cvvdp_.bands(mapped_result);
+    }
 
 private:
     void release();
@@ -120,14 +120,6 @@ private:
     // maps: the SCORE_MAP_* bits of the maps to write (score_shared.h).
     void recordFlip(VkCommandBuffer cmd, int maps) const;
     void recordCrawl(VkCommandBuffer cmd, const Chain& chain, bool pair, int maps) const;
-    void recordCvvdp(VkCommandBuffer cmd, const Chain& chain, int maps) const;
-    // ColorVideoVDP's parts of the constructor and of read() (device_metrics.cpp).
-    uint32_t planCvvdp();  // the model and the pyramid's levels; returns the pyramid's floats
-    std::vector<uint8_t> cvvdpParamBytes() const;
-    void createCvvdp(VkDeviceSize pyramid_bytes);  // its buffers and kernels
-    double readCvvdp(const void* mapped_result) const;  // DeviceScores::cvvdp_q
-    void dispatchCvvdp(VkCommandBuffer cmd, const vk::ComputeKernel& kernel, const Chain& chain, int band, int maps,
-                       uint32_t groups_x, uint32_t groups_y, uint32_t groups_z = 1) const;
     VkDeviceSize windowBytes() const;  // one sequence's window: filterFrames() RGBA8 frames
     void dispatch(VkCommandBuffer cmd, const vk::ComputeKernel& kernel, VkDescriptorSet set, int y0, int y1, int r0,
                   int r1, uint32_t groups_x, uint32_t groups_y, int maps = 0) const;
@@ -144,15 +136,10 @@ private:
     vk::Buffer crawl_map_, ssim_map_, flip_map_;  // bindings 8-10, copied to the caller's maps
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     VkDescriptorSet set_ = VK_NULL_HANDLE;  // binding 7 (the previous frame) is `now_`, unused
-    // ColorVideoVDP (score_cvvdp.glsl's bindings: each chain's set holds its window).
-    metrics::CvvdpModel cvvdp_;
-    int window_ = 1;  // frames in the window
-    uint32_t cvvdp_base_ = 0;  // word offset of its partial sums in the result
-    std::vector<shaders::CvvdpLevel> levels_;
-    vk::ComputeKernel cv_channels_, cv_reduce_, cv_band_, cv_pool_, cv_base_, cv_expand_;
-    vk::Buffer cv_params_, pyramid_, cvvdp_map_;
-    VkQueryPool time_pool_ = VK_NULL_HANDLE;
-    uint32_t time_first_ = 0;
+    // ColorVideoVDP (score_cvvdp.glsl's bindings: each chain's set holds its window); its map,
+    // copied to the caller's as the others are.
+    detail::DeviceCvvdp cvvdp_;
+    vk::Buffer cvvdp_map_;
 };
 
 struct DeviceMetrics::Chain {

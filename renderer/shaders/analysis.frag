@@ -1,7 +1,7 @@
 #version 460
 // Analysis pass (untimed, quality frames only): per full-res pixel, the motion to the
 // previous frame, the view depth now and the view depth the same point had then, for the
-// edge-crawl metric's motion compensation and disocclusion test (method/metrics.md).
+// edge-crawl metric's motion compensation and disocclusion test (docs/method/measurement.md).
 #extension GL_GOOGLE_include_directive : require
 #include "shared.h"
 #include "motion.glsl"

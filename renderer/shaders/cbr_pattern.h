@@ -1,4 +1,4 @@
-// The checkerboard sample pattern, one table shared by C++ and GLSL (method/cbr.md):
+// The checkerboard sample pattern, one table shared by C++ and GLSL (docs/method/checkerboard.md):
 // for a route and frame parity, which sample (or multiview layer) of which quarter-res
 // pixel holds each full-res quadrant of a 2x2 block.
 #ifndef CBR_SHADERS_CBR_PATTERN_H

@@ -1,5 +1,5 @@
 // Checkerboard reconstruction (Intel, "Checkerboard Rendering for Real-Time Upscaling on
-// Intel Integrated Graphics", and method/cbr.md), written for SIMD hardware: the rules of
+// Intel Integrated Graphics", and docs/method/checkerboard.md), written for SIMD hardware: the rules of
 // cbr_resolve_reference.glsl without a per-pixel path. One invocation resolves one 2x2
 // block (one quarter pixel); a group (16x16 invocations on CPU drivers, 8x8 on GPUs) loads
 // frame N's samples under its pixels, plus a one-quarter-pixel halo, once into shared
@@ -319,7 +319,7 @@ vec3 reconstruct(ivec2 p, ivec2 quadrant, ivec2 origin, ivec2 size, out uint cls
         vec3 df = directionalFill(nl, nr, nu, nd, f);
         return cls == kReused ? clipped : cls == kClipped ? mix(clipped, df, 0.5) : df;
     }
-    // The class, the first rule that applies last (method/cbr.md, reconstruction steps 2-5).
+    // The class, the first rule that applies last (docs/method/checkerboard.md, "Reconstruction" steps 2-5).
     cls = occluded ? kOccluded : kReused;
     cls = prev_exists ? cls : kOffscreen;
     cls = prev_entry.x >= 0 ? cls : kMissingParity;  // the motion cancelled the jitter

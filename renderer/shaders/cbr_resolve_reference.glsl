@@ -1,5 +1,5 @@
 // Checkerboard reconstruction (Intel, "Checkerboard Rendering for Real-Time Upscaling on
-// Intel Integrated Graphics", and method/cbr.md): one full-res pixel per invocation from
+// Intel Integrated Graphics", and docs/method/checkerboard.md): one full-res pixel per invocation from
 // the two quarter-res sample sets of frames N and N-1. Included by cbr_resolve_array.comp
 // (multiview layers) and cbr_resolve_ms.comp (2x MSAA samples), which define FETCH, and
 // by the deferred cbr_resolve_srt_*.comp, whose colours come from the Shade Resolve Target

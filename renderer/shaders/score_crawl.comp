@@ -1,5 +1,5 @@
 #version 460
-// Edge crawl, steps 3-6 of method/metrics.md ("Edge crawl"), as metrics/temporal.cpp: the valid
+// Edge crawl, steps 3-6 of docs/method/measurement.md ("Edge crawl index"), as metrics/temporal.cpp: the valid
 // mask (margin, warp source inside the margin, no disocclusion by the nearest previous depth),
 // the reference's dilated Sobel edges, the bilinear backward warp of the previous blurred lumas,
 // and per workgroup the sums of (dV - dR)^2, |dV|, max(|dR|, 1/255), edge pixels, valid pixels;

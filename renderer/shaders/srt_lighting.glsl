@@ -1,4 +1,4 @@
-// Checkerboard deferred lighting resolve (method/cbr.md): every sample of the quarter-res
+// Checkerboard deferred lighting resolve (docs/method/checkerboard.md): every sample of the quarter-res
 // G-buffer is lit at its full-res pixel centre and written to the Shade Resolve Target,
 // the same height and twice the width: texel (2x + s, y) holds sample s of pixel (x, y).
 // Included by srt_lighting_array.comp and srt_lighting_ms.comp, which define FETCH.

@@ -43,7 +43,7 @@ int resolveGroup(const vk::Context& ctx) {
     return ctx.description.is_lavapipe ? 16 : 8;
 }
 
-// How an unshaded pixel decides against its reprojected history (method/cbr.md; `clip` is
+// How an unshaded pixel decides against its reprojected history (docs/method/checkerboard.md; `clip` is
 // TAA's rule, issue 17).
 enum class Rule { Aso, Cso, Clip };
 

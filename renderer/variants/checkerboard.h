@@ -1,4 +1,4 @@
-// Checkerboard rendering in the forward pipeline: `cbr-aso` and `cbr-cso` (method/cbr.md).
+// Checkerboard rendering in the forward pipeline: `cbr-aso` and `cbr-cso` (docs/method/checkerboard.md).
 #pragma once
 
 #include <memory>
