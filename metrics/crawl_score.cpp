@@ -166,6 +166,14 @@ CrawlSums scoreRow(const RowInputs& in) {
 }
 
 
+void addCrawlSums(CrawlSums& total, const CrawlSums& part) {
+    total.numerator += part.numerator;
+    total.denominator += part.denominator;
+    total.flicker_variant += part.flicker_variant;
+    total.flicker_reference += part.flicker_reference;
+    total.valid += part.valid;
+}
+
 // Steps 5-6 for the strip [y0, y1): its edge rows, then each row's sums, added in row order.
 CrawlSums scoreStrip(const CrawlPair& pair, const CrawlSettings& settings, int y0, int y1, ScoreScratch& scratch) {
     const int width = pair.width, height = pair.height, margin = settings.margin;
@@ -212,12 +220,7 @@ CrawlSums scoreStrip(const CrawlPair& pair, const CrawlSettings& settings, int y
         in.valid = scratch.valid.data();
         in.source = scratch.source.data();
         in.then = scratch.then.data();
-        const CrawlSums row = scoreRow(in);
-        sums.numerator += row.numerator;
-        sums.denominator += row.denominator;
-        sums.flicker_variant += row.flicker_variant;
-        sums.flicker_reference += row.flicker_reference;
-        sums.valid += row.valid;
+        addCrawlSums(sums, scoreRow(in));
     }
     return sums;
 }
@@ -232,13 +235,7 @@ CrawlSums scoreCrawlPair(const CrawlPair& pair, const CrawlSettings& settings) {
         strip_sums[size_t(y0 / kScoreStripRows)] = scoreStrip(pair, settings, y0, y1, scratch);
     });
     CrawlSums total;
-    for (const CrawlSums& s : strip_sums) {
-        total.numerator += s.numerator;
-        total.denominator += s.denominator;
-        total.flicker_variant += s.flicker_variant;
-        total.flicker_reference += s.flicker_reference;
-        total.valid += s.valid;
-    }
+    for (const CrawlSums& s : strip_sums) addCrawlSums(total, s);
     return total;
 }
 
