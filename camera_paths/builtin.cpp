@@ -16,7 +16,7 @@ constexpr double kFps = 30;
 constexpr double kFovYDeg = 60;
 // Centre-screen image motion of subpixel-pan: a quarter pixel per frame sweeps every edge
 // through sub-pixel phases, where aliasing shows as crawl; whole-pixel pans hide it
-// (method/metrics.md).
+// (docs/method/measurement.md).
 constexpr double kSubpixelPx = 0.25;
 // Clip planes from the bounds diagonal: near 0.05 in the 24-unit atrium; far covers the
 // whole scene from the farthest standpoint (1.5 diagonals from the bounds' far side).

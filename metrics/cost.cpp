@@ -22,7 +22,7 @@ namespace cbr::metrics {
 
 namespace {
 
-// Pan per frame: a fraction of a pixel, as the stress paths use (metrics.md).
+// Pan per frame: a fraction of a pixel, as the stress paths use (docs/camera_paths.md).
 constexpr double kPanX = 0.3;
 constexpr double kPanY = 0.1;
 

@@ -9,7 +9,7 @@ namespace cbr::metrics {
 
 // Interleaved RGB (channels == 3) or single-channel (channels == 1), row-major,
 // values as double. Metrics run on the 8-bit display image converted to [0,1]
-// (metrics.md), so every score can be recomputed from the saved PNGs.
+// (docs/method/measurement.md), so every score can be recomputed from the saved PNGs.
 struct Image {
     int width = 0;
     int height = 0;

@@ -198,35 +198,24 @@ struct TileScratch {
     std::vector<double> luma_means = std::vector<double>(size_t(2) * kTileRows * kTileCols);
 };
 
-// Wang's SSIM for output rows [y0, y1) and columns [x0, x1) of every scored channel
-// (the image's own, then luma when with_luma). Adds per-channel sums of the map to
-// sums; writes the channel mean into map's rows when given. Returns false when an
-// input value of the tile (halo included) is NaN or infinite.
-CBR_SIMD_CLONES
-bool ssimTile(const SsimInput& a, const SsimInput& b, bool with_luma, const double* kernel, int y0, int y1,
-              int x0, int x1, TileScratch& scratch, double* sums, double* map) {
-    const int width = a.width, channels = a.channels;
-    const int out_rows = y1 - y0, out_cols = x1 - x0;
-    const int in_rows = out_rows + 2 * kRadius, in_cols = out_cols + 2 * kRadius;
-    const size_t plane_size = size_t(in_rows) * in_cols;
-    // Planes: a's channels, b's channels, then E[a^2 + b^2] and E[ab] of the channel
-    // being scored.
-    double* image_plane[2][3];
-    for (int c = 0; c < channels; ++c) {
-        image_plane[0][c] = scratch.planes.data() + size_t(c) * plane_size;
-        image_plane[1][c] = scratch.planes.data() + size_t(channels + c) * plane_size;
-    }
-    double* sum_squares = scratch.planes.data() + size_t(2 * channels) * plane_size;
-    double* products = sum_squares + plane_size;
-    double* mean_ya = scratch.luma_means.data();
-    double* mean_yb = mean_ya + size_t(kTileRows) * kTileCols;
+// Where a tile lies: output rows [y0, y0 + out_rows) and columns [x0, x0 + out_cols); its
+// input is out_rows + 2 radius by out_cols + 2 radius values (the halo).
+struct TileSpan {
+    int y0 = 0, x0 = 0;
+    int out_rows = 0, out_cols = 0;
+    int in_rows = 0, in_cols = 0;
+};
 
-    // Deinterleave the tile's input (halo included, so the tiles cover every pixel)
-    // into planes, scanning for NaN/inf on the way: an all-ones exponent (NaN, inf) plus
-    // one carries into the sign bit, integer adds and ORs that vectorise.
+// Deinterleaves the tile's input (halo included, so the tiles cover every pixel) into
+// planes, scanning for NaN/inf on the way: an all-ones exponent (NaN, inf) plus one
+// carries into the sign bit, integer adds and ORs that vectorise. Returns true when a
+// value is NaN or infinite.
+[[gnu::always_inline]] inline bool loadSsimTile(const SsimInput& a, const SsimInput& b, const TileSpan& span,
+                                                double* const (&image_plane)[2][3]) {
+    const int width = a.width, channels = a.channels, in_cols = span.in_cols;
     uint64_t carry = 0;
-    for (int y = 0; y < in_rows; ++y) {
-        const size_t offset = (size_t(y0 - kRadius + y) * width + (x0 - kRadius)) * channels;
+    for (int y = 0; y < span.in_rows; ++y) {
+        const size_t offset = (size_t(span.y0 - kRadius + y) * width + (span.x0 - kRadius)) * channels;
         const size_t row = size_t(y) * in_cols;
         for (int i = 0; i < 2; ++i) {
             const SsimInput& in = i == 0 ? a : b;
@@ -248,7 +237,119 @@ bool ssimTile(const SsimInput& a, const SsimInput& b, bool with_luma, const doub
             }
         }
     }
-    const bool bad = (carry >> 63) != 0;
+    return (carry >> 63) != 0;
+}
+
+// Filters planes [first, kPlanes) into scratch.filtered, one plane at a time over all the
+// tile's rows: the column pass's 11-row window of that plane (18 KB) then stays in L1 from
+// one row to the next.
+[[gnu::always_inline]] inline void filterSsimPlanes(double* const (&plane)[kPlanes], int first, const TileSpan& span,
+                                                    const double* kernel, TileScratch& scratch) {
+    for (int q = first; q < kPlanes; ++q)
+        for (int r = 0; r < span.out_rows; ++r) {
+            double* v = scratch.vertical.data();
+            columnPass(plane[q] + size_t(r) * span.in_cols, size_t(span.in_cols), span.in_cols, kernel, v);
+            rowPass(v, span.out_cols, kernel, scratch.filtered.data() + (size_t(q) * kTileRows + size_t(r)) * kTileCols);
+        }
+}
+
+// Channel c's share of luma's means: the filter is linear, so mean(luma) = 0.2126 mean(R) +
+// 0.7152 mean(G) + ..., summed in bt709Luma's order; its weights read from the one formula.
+[[gnu::always_inline]] inline void addLumaMeans(int c, const double* fa, const double* fb, int out_cols,
+                                                double* row_ya, double* row_yb) {
+    const double w = bt709Luma(c == 0, c == 1, c == 2);
+    if (c == 0) {
+        for (int x = 0; x < out_cols; ++x) row_ya[x] = w * fa[x];
+        for (int x = 0; x < out_cols; ++x) row_yb[x] = w * fb[x];
+    } else {
+        for (int x = 0; x < out_cols; ++x) row_ya[x] += w * fa[x];
+        for (int x = 0; x < out_cols; ++x) row_yb[x] += w * fb[x];
+    }
+}
+
+// Wang's SSIM of one row from the filtered means (fa, fb), E[a^2 + b^2] (fs) and E[ab] (fp).
+[[gnu::always_inline]] inline void ssimRow(const double* fa, const double* fb, const double* fs, const double* fp,
+                                           int out_cols, double* values) {
+    for (int x = 0; x < out_cols; ++x) {
+        const double ux = fa[x], uy = fb[x];
+        // Population (co)variances (use_sample_covariance=False, as Wang):
+        // vx + vy = E[a^2 + b^2] - ux^2 - uy^2.
+        const double means2 = ux * ux + uy * uy;
+        const double vxy = fp[x] - ux * uy;
+        const double a1 = 2 * ux * uy + kC1;
+        const double a2 = 2 * vxy + kC2;
+        const double b1 = means2 + kC1;
+        const double b2 = (fs[x] - means2) + kC2;
+        // b1 >= C1 and b2 >= C2 (less rounding): constant images stay finite.
+        values[x] = (a1 * a2) / (b1 * b2);
+    }
+}
+
+// Scores channel c (c == channels: luma) of the filtered tile; returns the sum of its SSIM
+// values. Adds its share of luma's means when with_luma, and of the map's channel mean when
+// map is given.
+[[gnu::always_inline]] inline double ssimTileChannel(int c, int channels, bool with_luma, int width,
+                                                     const TileSpan& span, TileScratch& scratch, double* map) {
+    const bool is_luma = c == channels;
+    double* values = scratch.values.data();
+    double* mean_ya = scratch.luma_means.data();
+    double* mean_yb = mean_ya + size_t(kTileRows) * kTileCols;
+    double channel_sum = 0;
+    for (int r = 0; r < span.out_rows; ++r) {
+        const double* filtered_row = scratch.filtered.data() + size_t(r) * kTileCols;
+        const double* fa = filtered_row;
+        const double* fb = filtered_row + size_t(kTileRows) * kTileCols;
+        const double* fs = filtered_row + size_t(2 * kTileRows) * kTileCols;
+        const double* fp = filtered_row + size_t(3 * kTileRows) * kTileCols;
+        double* row_ya = mean_ya + size_t(r) * kTileCols;
+        double* row_yb = mean_yb + size_t(r) * kTileCols;
+        if (is_luma) {
+            fa = row_ya;
+            fb = row_yb;
+        } else if (with_luma) {
+            addLumaMeans(c, fa, fb, span.out_cols, row_ya, row_yb);
+        }
+        ssimRow(fa, fb, fs, fp, span.out_cols, values);
+        channel_sum += rowSum(values, span.out_cols);
+        if (map && !is_luma) {
+            double* map_row = map + size_t(span.y0 + r) * width + span.x0;
+            for (int i = 0; i < span.out_cols; ++i) {
+                double& v = map_row[i];
+                v = c == 0 ? values[i] : v + values[i];
+                if (c == channels - 1) v /= channels;
+            }
+        }
+    }
+    return channel_sum;
+}
+
+// Wang's SSIM for output rows [y0, y1) and columns [x0, x1) of every scored channel
+// (the image's own, then luma when with_luma). Adds per-channel sums of the map to
+// sums; writes the channel mean into map's rows when given. Returns false when an
+// input value of the tile (halo included) is NaN or infinite.
+CBR_SIMD_CLONES
+bool ssimTile(const SsimInput& a, const SsimInput& b, bool with_luma, const double* kernel, int y0, int y1,
+              int x0, int x1, TileScratch& scratch, double* sums, double* map) {
+    const int channels = a.channels;
+    TileSpan span;
+    span.y0 = y0;
+    span.x0 = x0;
+    span.out_rows = y1 - y0;
+    span.out_cols = x1 - x0;
+    span.in_rows = span.out_rows + 2 * kRadius;
+    span.in_cols = span.out_cols + 2 * kRadius;
+    const size_t plane_size = size_t(span.in_rows) * span.in_cols;
+    // Planes: a's channels, b's channels, then E[a^2 + b^2] and E[ab] of the channel
+    // being scored.
+    double* image_plane[2][3];
+    for (int c = 0; c < channels; ++c) {
+        image_plane[0][c] = scratch.planes.data() + size_t(c) * plane_size;
+        image_plane[1][c] = scratch.planes.data() + size_t(channels + c) * plane_size;
+    }
+    double* sum_squares = scratch.planes.data() + size_t(2 * channels) * plane_size;
+    double* products = sum_squares + plane_size;
+
+    const bool bad = loadSsimTile(a, b, span, image_plane);
     const int scored = channels + (with_luma ? 1 : 0);
     for (int c = 0; c < scored; ++c) {
         const bool is_luma = c == channels;
@@ -256,66 +357,11 @@ bool ssimTile(const SsimInput& a, const SsimInput& b, bool with_luma, const doub
             lumaProducts(image_plane[0], image_plane[1], plane_size, sum_squares, products);
         else
             channelProducts(image_plane[0][c], image_plane[1][c], plane_size, sum_squares, products);
-        // Luma's means come from the RGB means below: it filters only its two products.
+        // Luma's means come from the RGB means (ssimTileChannel): it filters only its two products.
         double* plane[kPlanes] = {is_luma ? nullptr : image_plane[0][c],
                                   is_luma ? nullptr : image_plane[1][c], sum_squares, products};
-        // One plane at a time over all the tile's rows: the column pass's 11-row window of
-        // that plane (18 KB) then stays in L1 from one row to the next.
-        for (int q = is_luma ? 2 : 0; q < kPlanes; ++q)
-            for (int r = 0; r < out_rows; ++r) {
-                double* v = scratch.vertical.data();
-                columnPass(plane[q] + size_t(r) * in_cols, size_t(in_cols), in_cols, kernel, v);
-                rowPass(v, out_cols, kernel, scratch.filtered.data() + (size_t(q) * kTileRows + size_t(r)) * kTileCols);
-            }
-        double* values = scratch.values.data();
-        double channel_sum = 0;
-        for (int r = 0; r < out_rows; ++r) {
-            const double* filtered_row = scratch.filtered.data() + size_t(r) * kTileCols;
-            const double* fa = filtered_row;
-            const double* fb = filtered_row + size_t(kTileRows) * kTileCols;
-            const double* fs = filtered_row + size_t(2 * kTileRows) * kTileCols;
-            const double* fp = filtered_row + size_t(3 * kTileRows) * kTileCols;
-            double* row_ya = mean_ya + size_t(r) * kTileCols;
-            double* row_yb = mean_yb + size_t(r) * kTileCols;
-            if (is_luma) {
-                fa = row_ya;
-                fb = row_yb;
-            } else if (with_luma) {
-                // The filter is linear: mean(luma) = 0.2126 mean(R) + 0.7152 mean(G) + ...,
-                // summed in bt709Luma's order; its weights read from the one formula.
-                const double w = bt709Luma(c == 0, c == 1, c == 2);
-                if (c == 0) {
-                    for (int x = 0; x < out_cols; ++x) row_ya[x] = w * fa[x];
-                    for (int x = 0; x < out_cols; ++x) row_yb[x] = w * fb[x];
-                } else {
-                    for (int x = 0; x < out_cols; ++x) row_ya[x] += w * fa[x];
-                    for (int x = 0; x < out_cols; ++x) row_yb[x] += w * fb[x];
-                }
-            }
-            for (int x = 0; x < out_cols; ++x) {
-                const double ux = fa[x], uy = fb[x];
-                // Population (co)variances (use_sample_covariance=False, as Wang):
-                // vx + vy = E[a^2 + b^2] - ux^2 - uy^2.
-                const double means2 = ux * ux + uy * uy;
-                const double vxy = fp[x] - ux * uy;
-                const double a1 = 2 * ux * uy + kC1;
-                const double a2 = 2 * vxy + kC2;
-                const double b1 = means2 + kC1;
-                const double b2 = (fs[x] - means2) + kC2;
-                // b1 >= C1 and b2 >= C2 (less rounding): constant images stay finite.
-                values[x] = (a1 * a2) / (b1 * b2);
-            }
-            channel_sum += rowSum(values, out_cols);
-            if (map && !is_luma) {
-                double* map_row = map + size_t(y0 + r) * width + x0;
-                for (int i = 0; i < out_cols; ++i) {
-                    double& v = map_row[i];
-                    v = c == 0 ? values[i] : v + values[i];
-                    if (c == channels - 1) v /= channels;
-                }
-            }
-        }
-        sums[c] += channel_sum;
+        filterSsimPlanes(plane, is_luma ? 2 : 0, span, kernel, scratch);
+        sums[c] += ssimTileChannel(c, channels, with_luma, a.width, span, scratch, map);
     }
     return !bad;
 }

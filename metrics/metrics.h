@@ -1,4 +1,4 @@
-// Full-reference quality metrics: PSNR and SSIM (Wang et al. 2004), as in method/metrics.md.
+// Full-reference quality metrics: PSNR and SSIM (Wang et al. 2004), as in docs/method/measurement.md.
 #pragma once
 
 #include "metrics/image.h"

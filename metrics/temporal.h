@@ -1,5 +1,5 @@
 // Edge crawl index (ECI) and flicker ratio: temporal instability at the reference's edges,
-// after motion compensation with the renderer's own motion vectors (method/metrics.md).
+// after motion compensation with the renderer's own motion vectors (docs/method/measurement.md).
 #pragma once
 
 #include <cstdint>
@@ -25,7 +25,7 @@ struct MotionField {
 };
 
 struct CrawlSettings {
-    double blur_sigma = 1.0;        // removes the warp's resampling floor (metrics.md step 1)
+    double blur_sigma = 1.0;        // removes the warp's resampling floor (measurement.md step 1)
     int margin = 4;                 // pixels near the frame border are not scored
     double edge_threshold = 0.02;   // Sobel magnitude of the blurred reference luma, per pixel
     double disocclusion_tolerance = 0.05;  // relative view-depth mismatch that marks disocclusion
@@ -49,10 +49,10 @@ public:
     // reference and variant: RGB display images in [0,1]; motion: the reference frame's
     // analysis. `cut`: a camera cut lies between the previous frame and this one.
     // Throws std::invalid_argument when shapes disagree.
-    // Conventions where metrics.md is silent: the previous depth is sampled at the warp
-    // source's nearest pixel; a pixel with NaN or infinite motion or depth is invalid;
-    // a NaN or infinite image value throws (the chain is left as it was); a new frame
-    // size without `cut` throws. Without a pair, valid_fraction is 0 and no_edges false;
+    // Conventions where docs/method/measurement.md is silent: the previous depth is sampled
+    // at the warp source's nearest pixel; a pixel with NaN or infinite motion or depth is
+    // invalid; a NaN or infinite image value throws (the chain is left as it was); a new
+    // frame size without `cut` throws. Without a pair, valid_fraction is 0 and no_edges false;
     // crawl_map is 0 wherever nothing was scored.
     CrawlFrame add(const Image& reference, const Image& variant, const MotionField& motion, bool cut,
                    bool want_map = false);
@@ -79,6 +79,12 @@ private:
 
 // Sequence ECI: sqrt(sum of numerators / sum of denominators) over frames with a pair.
 double pooledEci(const std::vector<CrawlFrame>& frames);
+
+// The taps of the crawl's luma blur for CrawlSettings::blur_sigma: scipy.ndimage's
+// gaussian_filter kernel (truncate 4: radius int(4 sigma + 0.5)), so the blurred luma can be
+// recomputed with scipy's defaults; sigma 0 gives {1}, no blur. The device scorer filters
+// with these same taps.
+std::vector<double> crawlBlurKernel(double sigma);
 
 }  // namespace cbr::metrics
 

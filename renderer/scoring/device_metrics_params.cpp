@@ -1,10 +1,12 @@
 // The device scorer's filter taps and constants, computed by the same expressions as the CPU
-// metrics (metrics/metrics.cpp, flip.cpp, temporal.cpp keep theirs private), so that both
-// paths filter with the same single-precision weights. SSIM: Wang et al. 2004; FLIP: Andersson
-// et al. 2020 and NVIDIA's tool (github.com/NVlabs/flip, v1.6).
+// metrics (metrics/metrics.cpp and flip.cpp keep theirs private; the crawl's blur taps are
+// metrics' own, temporal.h), so that both paths filter with the same single-precision
+// weights. SSIM: Wang et al. 2004; FLIP: Andersson et al. 2020 and NVIDIA's tool
+// (github.com/NVlabs/flip, v1.6).
 #include "renderer/scoring/device_metrics_params.h"
 
 #include "metrics/flip_colour.h"
+#include "metrics/temporal.h"
 
 #include <algorithm>
 #include <bit>
@@ -49,21 +51,6 @@ std::vector<double> ssimKernel() {
     for (int i = 0; i < 11; ++i) {
         const double x = i - 5;
         k[size_t(i)] = std::exp(-0.5 / (1.5 * 1.5) * (x * x));
-        sum += k[size_t(i)];
-    }
-    for (double& v : k) v /= sum;
-    return k;
-}
-
-// scipy's gaussian_filter kernel with truncate 4 (temporal.cpp blurKernel); sigma 0: no blur.
-std::vector<double> blurKernel(double sigma) {
-    if (sigma == 0) return {1.0};
-    const int radius = int(4.0 * sigma + 0.5);
-    std::vector<double> k(size_t(2 * radius + 1));
-    double sum = 0;
-    for (int i = 0; i <= 2 * radius; ++i) {
-        const double x = i - radius;
-        k[size_t(i)] = std::exp(-0.5 / (sigma * sigma) * (x * x));
         sum += k[size_t(i)];
     }
     for (double& v : k) v /= sum;
@@ -148,7 +135,8 @@ Params makeParams(const DeviceMetricsSettings& s) {
     checkCrawl("disocclusion_tolerance", s.crawl.disocclusion_tolerance);
     Params p;
     p.head.ssim_taps = append(p.taps, ssimKernel());
-    const std::vector<double> blur = blurKernel(s.crawl.blur_sigma);
+    // The edge crawl's blur: metrics' own taps (temporal.h), the same as the CPU tracker's.
+    const std::vector<double> blur = metrics::crawlBlurKernel(s.crawl.blur_sigma);
     p.head.blur_radius = int(blur.size() / 2);
     p.head.blur_taps = append(p.taps, blur);
     flipColourKernels(s.flip_ppd, p);
