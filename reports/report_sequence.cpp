@@ -57,7 +57,7 @@ std::string summaryTable(const RunData& d, const std::string& name) {
            td(fmt(n("flip_mean"), 4)) + (jod ? td(jodText(n(kJodColumn), kDash)) : std::string()) +
            td(fmt(n("eci"), 4)) + td(fmt(n("eci_p95"), 4)) + td(fmt(n("eci_max"), 4)) +
            td(fmt(n("flicker_ratio_mean"), 3)) + "</tr></table></div>";
-    out += "<p class=\"note\">Metrics on the 8-bit display images (method/metrics.md): sequence PSNR from the mean "
+    out += "<p class=\"note\">Metrics on the 8-bit display images (docs/method/measurement.md): sequence PSNR from the mean "
            "per-frame MSE (\u221e: identical), SSIM per Wang et al. (11\u00d711 Gaussian, \u03c3 1.5), LDR-FLIP mean, "
            "and the edge crawl index pooled over frame pairs, with the reference's motion from the motion "
            "files or, without them, one translation per frame pair (see Inputs). Flicker ratio: how much the test "

@@ -1,5 +1,5 @@
 // Scoring of quality frames on worker threads: PSNR, SSIM and FLIP per frame, edge crawl
-// in frame order per variant, and the worst frames kept for the report (method/metrics.md).
+// in frame order per variant, and the worst frames kept for the report (docs/method/measurement.md).
 #pragma once
 
 #include <condition_variable>

@@ -1,5 +1,5 @@
 // Unit tests for the edge crawl index and flicker ratio: the calibrations of
-// method/metrics.md ("Edge crawl") on synthetic panning scenes, and a naive re-derivation.
+// docs/method/measurement.md (edge crawl) on synthetic panning scenes, and a naive re-derivation.
 #include "metrics/cost.h"
 #include "metrics/image.h"
 #include "metrics/temporal.h"
