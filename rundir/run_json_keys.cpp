@@ -108,7 +108,7 @@ void variantDescriptionKeys(Paths& p, const std::string& v) {
     const char* cbr = "checkerboard variants";
     p.under(v, {kRoute, kRouteReason, kQuarterResolution, kOcclusionRule, kFill, kLostBorder, kResolve, kClassStats,
                 kClassMap, kResolveBytesPerFrame}, cbr);
-    p.add(at(v, kResolveGroup), "checkerboard variants but with --resolve-impl reference");
+    p.add(at(v, kResolveGroup), "checkerboard variants, not with --resolve-impl reference");
     p.under(v, {kCsoTolerance, kCsoMode}, "cbr-cso");
     p.under(v, {kRenderResolution, kJitter, kBlend, kReset}, "taau");
     p.under(v, {kLodBias, kMotion, kHistory, kTonemap}, "checkerboard variants and taau");
@@ -253,7 +253,8 @@ std::vector<KeyPath> sequenceJsonKeys() {
     p.add(at(kScene, scene::kName));
     p.add(at(kPath, path::kName));
     using namespace sequence;
-    p.under(kSequence, {kReference, kTest, kFrames, kMatchedBy, kCuts, kConversions});
+    p.under(kSequence, {kReference, kTest, kFrames, kMatchedBy});
+    for (const char* k : {kCuts, kConversions}) p.add(array(at(kSequence, k)));
     p.add(at(at(kSequence, kMotion), motion::kSource));
     p.add(at(at(kSequence, kMotion), motion::kMethod), "the global shift");
     p.under(at(kSequence, kMotion), {motion::kFiles, motion::kConvention}, "--motion");
