@@ -1,6 +1,5 @@
 // summary.csv and sweep.csv, on the run directory's schema (rundir/), documented in
 // docs/reference/outputs.md; frames.csv is frame_rows.cpp's.
-#include <algorithm>
 #include <cstdio>
 #include <map>
 
@@ -8,6 +7,7 @@
 #include "harness/jobs/sweep_configs.h"
 #include "renderer/variants/variants.h"
 #include "rundir/files.h"
+#include "rundir/setting_columns.h"
 #include "rundir/summary_csv.h"
 #include "rundir/sweep_csv.h"
 #include "settings/table.h"
@@ -84,19 +84,17 @@ namespace {
 // The settings of the variants they change: the swept value, else the run's own.
 void sweepSettingCells(std::map<std::string, Cell>& row, const VariantRun& vr, const RunContext& rc) {
     // The swept rows of the variants they name (shading cost, for all, has a column of its own).
-    for (const auto& r : settings::table())
-        if (r.sweep && !r.variants.empty() && settings::appliesTo(r, vr.variant))
-            row[r.column] = r.type == settings::Type::Word || r.type == settings::Type::Text ? Cell(settings::text(r, rc.settings)) : Cell(r.field.get(rc.settings));
+    for (const settings::Row* r : rundir::sweep::settingRows())
+        if (settings::appliesTo(*r, vr.variant))
+            row[r->column] = r->type == settings::Type::Word || r->type == settings::Type::Text
+                                 ? Cell(settings::text(*r, rc.settings))
+                                 : Cell(r->field.get(rc.settings));
     // A variant that keeps the full history whatever --cbr-history asks (the variant table).
     if (variants::findVariant(vr.variant).full_history) {
         const auto* history = settings::find("cbr-history");
         row[history->column] = std::string(history->words.at(size_t(settings::CbrHistory::Full)));
     }
-    for (const auto& st : vr.settings) {
-        std::string column = st.name;
-        std::replace(column.begin(), column.end(), '-', '_');
-        row[column] = st.word.empty() ? Cell(st.value) : Cell(st.word);
-    }
+    for (const auto& st : vr.settings) row[rundir::settingColumn(st.name)] = st.word.empty() ? Cell(st.value) : Cell(st.word);
 }
 
 }  // namespace
