@@ -33,6 +33,7 @@
 #include "reports/report.h"
 #include "reports/sweep.h"
 #include "settings/options.h"
+#include "rundir/files.h"
 
 namespace cbr::harness {
 namespace {
@@ -140,15 +141,15 @@ Command reportCommand(CLI::App& app) {
                 if (!std::filesystem::is_directory(*dir))
                     throw std::invalid_argument("report " + *dir + ": not a directory; expected a run's output directory");
                 const std::filesystem::path d(*dir);
-                const bool sweep_dir = std::filesystem::exists(d / "sweep.csv");
+                const bool sweep_dir = std::filesystem::exists(d / rundir::kSweepCsv);
                 // A sweep's directory may be copied without its per-frame files: sweep.html alone.
-                if (!sweep_dir || std::filesystem::exists(d / "summary.csv")) {
+                if (!sweep_dir || std::filesystem::exists(d / rundir::kSummaryCsv)) {
                     reports::writeReport(d);
-                    std::printf("report: %s\n", (d / "report.html").c_str());
+                    std::printf("report: %s\n", (d / rundir::kReportHtml).c_str());
                 }
                 if (sweep_dir) {
                     reports::writeSweepReport(d, variantRoles());
-                    std::printf("sweep report: %s\n", (d / "sweep.html").c_str());
+                    std::printf("sweep report: %s\n", (d / rundir::kSweepHtml).c_str());
                 }
                 return 0;
             }};

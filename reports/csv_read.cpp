@@ -7,6 +7,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include "rundir/summary_csv.h"
+
 namespace cbr::reports {
 
 namespace {
@@ -91,7 +93,10 @@ bool isReportNumericColumn(const std::string& name) {
                                       "mse", "fs_invocations", "render_", "time_s", "width", "height", "shift_", "cvvdp"};
     for (const char* p : kPrefixes)
         if (name.rfind(p, 0) == 0) return true;
-    return name == "frames" || name == "repeats" || name == "repeat" || name == "frame" || name == "frame_number";
+    namespace f = rundir::frames;
+    namespace sm = rundir::summary;
+    return name == sm::kFrames || name == sm::kRepeats || name == f::kRepeat || name == f::kFrame ||
+           name == f::kFrameNumber;
 }
 
 namespace {

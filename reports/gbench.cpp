@@ -10,7 +10,12 @@ namespace cbr::reports {
 
 namespace {
 
-std::string text(const nlohmann::json& run, const std::string& pointer) {
+namespace rj = run_json;
+
+// run.json's value at the schema's keys as text ("" where absent).
+template <typename... Keys>
+std::string text(const nlohmann::json& run, const Keys&... keys) {
+    const std::string pointer = rundir::pointer(keys...);
     const nlohmann::json* j = jsonAt(run, pointer);
     if (!j || j->is_null()) return "";
     return j->is_string() ? j->get<std::string>() : j->dump();
@@ -35,22 +40,22 @@ double stddev(const std::vector<double>& v) {
 nlohmann::json context(const RunData& d) {
     const auto& r = d.run;
     nlohmann::json c;
-    c["date"] = text(r, "/date");
-    c["host_name"] = text(r, "/host/name");
+    c["date"] = text(r, rj::kDate);
+    c["host_name"] = text(r, rj::kHost, rj::host::kName);
     c["executable"] = "cbrbench";
-    const nlohmann::json* cpus = jsonAt(r, "/host/cpus");
+    const nlohmann::json* cpus = jsonAt(r, rundir::pointer(rj::kHost, rj::host::kCpus));
     c["num_cpus"] = cpus && cpus->is_number() ? cpus->get<int>() : 0;
     c["mhz_per_cpu"] = 0;
     c["cpu_scaling_enabled"] = false;
     c["caches"] = nlohmann::json::array();
     c["library_build_type"] = "release";
     // cbrbench's own context: what the times were measured on.
-    c["device"] = text(r, "/device/name");
-    c["driver"] = text(r, "/device/driver_name") + " " + text(r, "/device/driver_info");
-    c["driver_version"] = text(r, "/device/driver_version");
-    c["vulkan_api_version"] = text(r, "/device/api_version");
-    c["cbrbench_version"] = text(r, "/tool/version");
-    c["cbrbench_commit"] = text(r, "/tool/commit");
+    c["device"] = text(r, rj::kDevice, rj::device::kName);
+    c["driver"] = text(r, rj::kDevice, rj::device::kDriverName) + " " + text(r, rj::kDevice, rj::device::kDriverInfo);
+    c["driver_version"] = text(r, rj::kDevice, rj::device::kDriverVersion);
+    c["vulkan_api_version"] = text(r, rj::kDevice, rj::device::kApiVersion);
+    c["cbrbench_version"] = text(r, rj::kTool, rj::tool::kVersion);
+    c["cbrbench_commit"] = text(r, rj::kTool, rj::tool::kCommit);
     c["time_source"] = "GPU timestamps, ms per frame (an iteration is one frame)";
     return c;
 }
@@ -60,8 +65,10 @@ nlohmann::json context(const RunData& d) {
 
 nlohmann::json gbenchJson(const RunData& d) {
     const auto& r = d.run;
-    std::string prefix = text(r, "/scene/name") + "/" + text(r, "/path/name") + "/" + text(r, "/settings/pipeline") +
-                         "/" + text(r, "/settings/width") + "x" + text(r, "/settings/height") + "/";
+    namespace ks = rj::settings;
+    std::string prefix = text(r, rj::kScene, rj::scene::kName) + "/" + text(r, rj::kPath, rj::path::kName) + "/" +
+                         text(r, rj::kSettings, ks::kPipeline) + "/" + text(r, rj::kSettings, ks::kWidth) + "x" +
+                         text(r, rj::kSettings, ks::kHeight) + "/";
     nlohmann::json out;
     out["context"] = context(d);
     out["benchmarks"] = nlohmann::json::array();
@@ -72,9 +79,11 @@ nlohmann::json gbenchJson(const RunData& d) {
         if (reps.empty()) continue;
         const std::string name = prefix + v;
         nlohmann::json counters = nlohmann::json::object();
-        for (auto [counter, column] : {std::pair{"psnr_db", "psnr_db_mean"}, {"ssim", "ssim_mean"}, {"flip", "flip_mean"},
-                                       {"cvvdp_jod", kJodColumn}, {"eci", "eci"}, {"speedup_vs_full", "speedup_vs_full"},
-                                       {"speedup_ci_low", "speedup_ci_low"}, {"speedup_ci_high", "speedup_ci_high"}}) {
+        // The user counters: summary.csv's figures, the speed-up and JOD under summary.csv's names.
+        using namespace summary_csv;
+        for (auto [counter, column] : {std::pair{"psnr_db", kPsnrDbMean}, {"ssim", kSsimMean}, {"flip", kFlipMean},
+                                       {kCvvdpJod, kCvvdpJod}, {kEci, kEci}, {kSpeedup, kSpeedup},
+                                       {kSpeedupLow, kSpeedupLow}, {kSpeedupHigh, kSpeedupHigh}}) {
             auto x = summaryNum(d, v, column);
             // PSNR inf (full) has no JSON number; runs without ColorVideoVDP have no cvvdp_jod.
             if (x && std::isfinite(*x)) counters[counter] = *x;

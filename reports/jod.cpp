@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "reports/html.h"
+#include "rundir/run_json.h"
 
 namespace cbr::reports {
 
@@ -23,16 +24,17 @@ std::string displayModelText(const nlohmann::json* display) {
         if (it == display->end() || !it->is_number()) return std::nullopt;
         return it->get<double>();
     };
+    namespace k = rundir::run::settings::display;
     std::string text = "display";
-    for (const char* key : {"spec", "name"})
+    for (const char* key : {k::kSpec, k::kName})
         if (auto it = display->find(key); it != display->end() && it->is_string() && !it->get<std::string>().empty())
             text = it->get<std::string>();
     std::string parts;
     auto add = [&](const std::string& part) { parts += (parts.empty() ? "" : ", ") + part; };
-    if (auto ppd = number("ppd")) add(fmt(ppd, 2) + " pixels per degree");
-    if (auto peak = number("peak")) add("peak " + fmtShort(*peak) + " cd/m\u00b2");
-    if (auto contrast = number("contrast")) add("contrast " + fmtShort(*contrast) + ":1");
-    if (auto lux = number("ambient_lux")) add("ambient " + fmtShort(*lux) + " lux");
+    if (auto ppd = number(k::kPpd)) add(fmt(ppd, 2) + " pixels per degree");
+    if (auto peak = number(k::kPeak)) add("peak " + fmtShort(*peak) + " cd/m\u00b2");
+    if (auto contrast = number(k::kContrast)) add("contrast " + fmtShort(*contrast) + ":1");
+    if (auto lux = number(k::kAmbientLux)) add("ambient " + fmtShort(*lux) + " lux");
     return parts.empty() ? text : text + ": " + parts;
 }
 

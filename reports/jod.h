@@ -10,10 +10,12 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "rundir/summary_csv.h"
+
 namespace cbr::reports {
 
-// The summary.csv and frames.csv column.
-inline constexpr const char* kJodColumn = "cvvdp_jod";
+// The summary.csv, frames.csv and sweep.csv column (rundir/).
+inline constexpr const char* kJodColumn = rundir::summary::kCvvdpJod;
 // Decimals of every printed JOD ("9.42 JOD").
 inline constexpr int kJodDecimals = 2;
 // No visible difference from the reference: the reference's own JOD.

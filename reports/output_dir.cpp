@@ -8,6 +8,8 @@
 #include <system_error>
 #include <unistd.h>
 
+#include "rundir/files.h"
+
 namespace cbr::reports {
 namespace {
 
@@ -16,7 +18,7 @@ namespace {
 bool wroteIt(const std::filesystem::path& dir) {
     std::error_code ec;
     if (!std::filesystem::is_directory(dir, ec)) return false;
-    for (const char* mark : {"run.json", "matrix.json", "stress.csv"})
+    for (const char* mark : {rundir::kRunJson, "matrix.json", "stress.csv"})
         if (std::filesystem::exists(dir / mark, ec)) return true;
     return std::filesystem::is_empty(dir, ec);
 }

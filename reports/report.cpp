@@ -119,8 +119,9 @@ std::string speedupCell(const RunData& d, const std::string& v) { return td(spee
 
 std::string summarySection(const RunData& d) {
     std::string out = "<section id=\"summary\"><h2>Summary per variant</h2>";
-    const bool eci = d.summary.has("eci");
-    const bool flip = d.summary.has("flip_mean");  // runs before FLIP have no column
+    using namespace summary_csv;
+    const bool eci = d.summary.has(kEci);
+    const bool flip = d.summary.has(kFlipMean);  // runs before FLIP have no column
     const bool jod = hasJod(d);                      // nor before ColorVideoVDP (reports/jod.h)
     bool any_cbr = false;
     for (const auto& v : d.variants) any_cbr |= isCheckerboard(d, v);
@@ -136,30 +137,30 @@ std::string summarySection(const RunData& d) {
 
     for (const auto& v : d.variants) {
         auto n = [&](const char* c) { return summaryNum(d, v, c); };
-        std::string status = summaryText(d, v, "status");
+        std::string status = summaryText(d, v, kStatus);
         std::string render = kDash;
-        if (auto w = n("render_width"), h = n("render_height"); w && h) render = fmt(w, 0) + "\u00d7" + fmt(h, 0);
+        if (auto w = n(kRenderWidth), h = n(kRenderHeight); w && h) render = fmt(w, 0) + "\u00d7" + fmt(h, 0);
         out += "<tr><td class=\"variant\" style=\"color:" + esc(variantColor(d, v)) + "\">" + esc(v) + "</td>";
         // unsteady: timed, but on a machine that did not hold still (amber, not red: it ran).
         const char* cls = status == "ok" ? "ok" : statusHasTimes(status) ? "warn" : "bad";
         out += "<td class=\"" + std::string(cls) + "\">" + esc(status.empty() ? kDash : status) +
                "</td>";
-        out += td(render) + td(fmt(n("gpu_ms_median"), 3)) + td(fmt(n("gpu_ms_p95"), 3)) + td(fmt(n("gpu_ms_cv"), 3));
+        out += td(render) + td(fmt(n(kGpuMsMedian), 3)) + td(fmt(n(kGpuMsP95), 3)) + td(fmt(n(kGpuMsCv), 3));
         out += speedupCell(d, v);
-        out += td(fmt(n("psnr_db_mean"), 2)) + td(fmt(n("psnr_db_min"), 2)) + td(fmt(n("ssim_mean"), 4)) +
-               td(fmt(n("ssim_min"), 4));
-        if (flip) out += td(fmt(n("flip_mean"), 4));
-        if (jod) out += td(jodText(n(kJodColumn), kDash));
-        if (eci) out += td(fmt(n("eci"), 4));
+        out += td(fmt(n(kPsnrDbMean), 2)) + td(fmt(n(kPsnrDbMin), 2)) + td(fmt(n(kSsimMean), 4)) +
+               td(fmt(n(kSsimMin), 4));
+        if (flip) out += td(fmt(n(kFlipMean), 4));
+        if (jod) out += td(jodText(n(kCvvdpJod), kDash));
+        if (eci) out += td(fmt(n(kEci), 4));
         out += "</tr>";
     }
     out += "</table></div>";
     std::string notes;
     for (const auto& v : d.variants)
-        if (std::string note = summaryText(d, v, "note"); !note.empty())
+        if (std::string note = summaryText(d, v, kNote); !note.empty())
             notes += "<li><b>" + esc(v) + "</b>: " + esc(note) + "</li>";
     // What loading repaired or left out (skins and morph targets not animated, ...), once.
-    if (const auto* warnings = jsonAt(d.run, "/scene/warnings"); warnings && warnings->is_array())
+    if (const auto* warnings = runAt(d, run_json::kScene, run_json::scene::kWarnings); warnings && warnings->is_array())
         for (const auto& w : *warnings)
             if (w.is_string()) notes += "<li><b>scene</b>: " + esc(w.get<std::string>()) + "</li>";
     if (!notes.empty()) out += "<ul class=\"notes\">" + notes + "</ul>";
@@ -182,7 +183,7 @@ std::string summarySection(const RunData& d) {
             if (!isCheckerboard(d, v)) continue;
             out += "<tr><td class=\"variant\" style=\"color:" + esc(variantColor(d, v)) + "\">" + esc(v) + "</td>";
             for (const auto& pc : kPixelClasses)
-                out += td(fmtPct(summaryNum(d, v, std::string(pc.column) + "_mean"), 1));
+                out += td(fmtPct(summaryNum(d, v, statMean(pc.column)), 1));
             out += "</tr>";
         }
         out += "</table>";
@@ -190,16 +191,27 @@ std::string summarySection(const RunData& d) {
     return out + "</section>";
 }
 
+namespace {
+
+// A variant's run.json passes[], or null.
+const nlohmann::json* variantPasses(const RunData& d, const std::string& variant) {
+    const auto* vj = variantJson(d, variant);
+    const auto* passes = vj ? jsonAt(*vj, rundir::pointer(run_json::variant::kPasses)) : nullptr;
+    return passes && passes->is_array() ? passes : nullptr;
+}
+
+}  // namespace
+
 std::string passesSection(const RunData& d) {
+    namespace kp = run_json::variant::pass;
     std::string out = "<section id=\"passes\"><h2>Passes per variant</h2>";
     // Union of pass names over variants, in first-seen order.
     std::vector<std::string> names;
     for (const auto& v : d.variants) {
-        const auto* vj = variantJson(d, v);
-        const auto* passes = vj ? jsonAt(*vj, "/passes") : nullptr;
-        if (!passes || !passes->is_array()) continue;
+        const auto* passes = variantPasses(d, v);
+        if (!passes) continue;
         for (const auto& p : *passes) {
-            std::string name = jsonText(jsonAt(p, "/name"));
+            std::string name = jsonText(jsonAt(p, rundir::pointer(kp::kName)));
             if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
         }
     }
@@ -214,24 +226,23 @@ std::string passesSection(const RunData& d) {
     for (const auto& name : names) {
         out += "<tr><th>" + esc(name) + "</th>";
         for (const auto& v : d.variants) {
-            const auto* vj = variantJson(d, v);
-            const auto* passes = vj ? jsonAt(*vj, "/passes") : nullptr;
+            const auto* passes = variantPasses(d, v);
             const nlohmann::json* found = nullptr;
-            if (passes && passes->is_array())
+            if (passes)
                 for (const auto& p : *passes)
-                    if (jsonText(jsonAt(p, "/name")) == name) found = &p;
+                    if (jsonText(jsonAt(p, rundir::pointer(kp::kName))) == name) found = &p;
             if (!found) {
                 out += "<td class=\"muted\">" + std::string(kDash) + "</td>";
                 continue;
             }
-            const auto* ran = jsonAt(*found, "/ran");
+            const auto* ran = jsonAt(*found, rundir::pointer(kp::kRan));
             bool did = ran && ran->is_boolean() && ran->get<bool>();
             if (did) {
-                auto ms = summaryNum(d, v, "gpu_ms_" + name + "_median");
+                auto ms = summaryNum(d, v, summary_csv::passMedian(name));
                 out += "<td><span class=\"ok\">ran</span>" + (ms ? " \u00b7 " + fmt(ms, 3) + " ms" : std::string()) +
                        "</td>";
             } else {
-                std::string reason = jsonText(jsonAt(*found, "/reason"));
+                std::string reason = jsonText(jsonAt(*found, rundir::pointer(kp::kReason)));
                 out += "<td><span class=\"bad\">left out</span>: " + esc(reason) + "</td>";
             }
         }
@@ -243,24 +254,25 @@ std::string passesSection(const RunData& d) {
 std::string reportHtml(const std::filesystem::path& run_dir) {
     const RunData d = loadRun(run_dir);
     if (isSequence(d)) return sequenceReportHtml(d);
-    const std::string scene = jsonText(jsonAt(d.run, "/scene/name"));
-    const std::string path = jsonText(jsonAt(d.run, "/path/name"));
-    const std::string res = jsonText(jsonAt(d.run, "/settings/width")) + "\u00d7" +
-                            jsonText(jsonAt(d.run, "/settings/height"));
+    namespace k = run_json;
+    const std::string scene = jsonText(runAt(d, k::kScene, k::scene::kName));
+    const std::string path = jsonText(runAt(d, k::kPath, k::path::kName));
+    const std::string res = jsonText(runAt(d, k::kSettings, k::settings::kWidth)) + "\u00d7" +
+                            jsonText(runAt(d, k::kSettings, k::settings::kHeight));
     const std::string title = "cbrbench: " + scene + " / " + path + " at " + res;
 
     std::string html = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
                        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
                        "<title>" + esc(title) + "</title><style>" + kStyle + "</style></head><body><main>";
     html += "<h1>" + esc(title) + "</h1>";
-    html += "<div class=\"sub\">" + esc(jsonText(jsonAt(d.run, "/device/name"))) + " \u00b7 " +
-            esc(jsonText(jsonAt(d.run, "/date"))) + " \u00b7 commit " + esc(jsonText(jsonAt(d.run, "/tool/commit"))) +
+    html += "<div class=\"sub\">" + esc(jsonText(runAt(d, k::kDevice, k::device::kName))) + " \u00b7 " +
+            esc(jsonText(runAt(d, k::kDate))) + " \u00b7 commit " + esc(jsonText(runAt(d, k::kTool, k::tool::kCommit))) +
             " \u00b7 " + std::to_string(d.frame_ids.size()) + " frames \u00d7 " + std::to_string(d.repeats) +
             " repetitions</div>";
-    if (const auto* note = jsonAt(d.run, "/device/timing_note"); note && note->is_string())
+    if (const auto* note = runAt(d, k::kDevice, k::device::kTimingNote); note && note->is_string())
         html += "<p class=\"callout\"><b>Timing note:</b> " + esc(note->get<std::string>()) + "</p>";
     // A disturbed run says so before any figure (run.json health.line; a quiet run: nothing).
-    if (const auto* line = jsonAt(d.run, "/health/line"); line && line->is_string() && !line->get<std::string>().empty())
+    if (const auto* line = runAt(d, k::kHealth, k::health::kLine); line && line->is_string() && !line->get<std::string>().empty())
         html += "<p class=\"callout\"><b>Measurement:</b> " + esc(line->get<std::string>()) +
                 " (<a href=\"#provenance\">measurement health</a>)</p>";
     html += "<nav><a href=\"#summary\">summary</a><a href=\"#pareto\">error vs time</a><a href=\"#time\">GPU time</a>"
@@ -292,7 +304,7 @@ std::string pageEnd() { return "</main><script>" + std::string(kScript) + "</scr
 void writeReport(const std::filesystem::path& run_dir) {
     // Build everything first: a bad input throws before report.html is touched.
     const std::string html = reportHtml(run_dir);
-    writeTextAtomically(run_dir / "report.html", html);
+    writeTextAtomically(run_dir / rundir::kReportHtml, html);
 }
 
 }  // namespace cbr::reports

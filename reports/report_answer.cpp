@@ -129,8 +129,9 @@ std::vector<CostQuality> costQuality(const RunData& d) {
     std::vector<CostQuality> cq;
     for (const auto& v : d.variants) {
         if (!variantOk(d, v)) continue;
-        cq.push_back({v, summaryNum(d, v, "gpu_ms_median"), summaryNum(d, v, "psnr_db_mean"),
-                      summaryNum(d, v, "ssim_mean"), summarySpeedup(d, v), summaryNum(d, v, kJodColumn)});
+        cq.push_back({v, summaryNum(d, v, summary_csv::kGpuMsMedian), summaryNum(d, v, summary_csv::kPsnrDbMean),
+                      summaryNum(d, v, summary_csv::kSsimMean), summarySpeedup(d, v),
+                      summaryNum(d, v, summary_csv::kCvvdpJod)});
     }
     return cq;
 }

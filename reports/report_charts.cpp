@@ -15,13 +15,13 @@ bool anyValue(const std::vector<std::optional<double>>& v) {
 }
 
 bool isLavapipe(const RunData& d) {
-    const auto* j = jsonAt(d.run, "/device/is_lavapipe");
+    const auto* j = runAt(d, run_json::kDevice, run_json::device::kIsLavapipe);
     return j && j->is_boolean() && j->get<bool>();
 }
 
 std::string statusLine(const RunData& d, const std::string& v) {
-    std::string status = summaryText(d, v, "status");
-    std::string note = summaryText(d, v, "note");
+    std::string status = summaryText(d, v, summary_csv::kStatus);
+    std::string note = summaryText(d, v, summary_csv::kNote);
     return "<p class=\"muted\"><b>" + esc(v) + "</b>: " + esc(status.empty() ? "no rows" : status) +
            (note.empty() ? "" : " \u2013 " + esc(note)) + "; nothing to plot.</p>";
 }
@@ -66,13 +66,13 @@ std::string timeSection(const RunData& d) {
         c.x = d.frame_ids;
         c.value_unit = " ms";
         for (size_t p = 0; p < passes.size(); ++p) {
-            auto values = perFrame(d, v, "gpu_ms_" + passes[p], rep);
+            auto values = perFrame(d, v, frames_csv::passTime(passes[p]), rep);
             if (!anyValue(values)) continue;
             c.layers.push_back({passes[p], passColor(passes[p], p), values});
             if (std::none_of(legend.begin(), legend.end(), [&](const Series& s) { return s.name == passes[p]; }))
                 legend.push_back({passes[p], passColor(passes[p], p), {}});
         }
-        auto total = perFrame(d, v, "gpu_ms", rep);
+        auto total = perFrame(d, v, frames_csv::kGpuMs, rep);
         if (c.layers.empty() && anyValue(total)) c.layers.push_back({"frame", "#7f7f7f", total});
         if (c.layers.empty()) {
             blocks.push_back({v, {}});
@@ -111,7 +111,7 @@ std::string qualitySection(const RunData& d) {
            "\u221e lane at the top (\u25b2) and never stretches the scale.</p>";
     std::vector<std::string> shown;  // variants with any per-frame quality value
     for (const auto& v : d.variants)
-        if (v != d.reference && (anyValue(perFrame(d, v, "psnr_db", 0)) || anyValue(perFrame(d, v, "ssim", 0))))
+        if (v != d.reference && (anyValue(perFrame(d, v, frames_csv::kPsnrDb, 0)) || anyValue(perFrame(d, v, frames_csv::kSsim, 0))))
             shown.push_back(v);
     std::vector<Series> legend;
     for (const auto& v : shown) legend.push_back({v, variantColor(d, v), {}});
@@ -124,13 +124,13 @@ std::string qualitySection(const RunData& d) {
         bool only_where_scored = false;  // no chart nor mention without values (ColorVideoVDP)
     };
     const Metric metrics[] = {
-        {"psnr_db", "PSNR", "PSNR (dB)"},
-        {"ssim", "SSIM", "SSIM (unitless)"},
-        {"flip_mean", "FLIP, mean of the error map (lower is better)", "FLIP (unitless, [0,1])"},
-        {kJodColumn, "ColorVideoVDP, the frame's JOD (higher is better)", "JOD (10: no visible difference)", true},
-        {"eci", "Edge crawl index (ECI), lower is better", "ECI (luma, [0,1] units)"},
-        {"flicker_ratio", "Flicker ratio (1: changes like the reference)", "flicker ratio (x)"},
-        {"crawl_valid_fraction", "Share of pixels scored by ECI", "valid fraction (unitless)"},
+        {frames_csv::kPsnrDb, "PSNR", "PSNR (dB)"},
+        {frames_csv::kSsim, "SSIM", "SSIM (unitless)"},
+        {frames_csv::kFlipMean, "FLIP, mean of the error map (lower is better)", "FLIP (unitless, [0,1])"},
+        {frames_csv::kCvvdpJod, "ColorVideoVDP, the frame's JOD (higher is better)", "JOD (10: no visible difference)", true},
+        {frames_csv::kEci, "Edge crawl index (ECI), lower is better", "ECI (luma, [0,1] units)"},
+        {frames_csv::kFlickerRatio, "Flicker ratio (1: changes like the reference)", "flicker ratio (x)"},
+        {frames_csv::kCrawlValidFraction, "Share of pixels scored by ECI", "valid fraction (unitless)"},
     };
     out += "<div class=\"grid2\">";
     std::vector<std::string> absent;
@@ -221,13 +221,13 @@ std::string paretoSection(const RunData& d) {
            ", ECI 0" + std::string(jod ? ", " + jodText(kJodNoDifference, kDash) : "") +
            ". The answer at the top of the page reads the " + (answersInJod(d) ? "JOD" : "PSNR") + " panel.</p>";
     std::vector<ErrorAxis> axes = {
-        {"ssim_mean", "1 \u2212 SSIM (lower is better)", "1 \u2212 SSIM", false, true, 1.0},
-        {"psnr_db_mean", "PSNR (higher is better)", "PSNR (dB)", true, false, INFINITY},
-        {"eci", "ECI (lower is better)", "ECI", false, false, 0.0},
+        {summary_csv::kSsimMean, "1 \u2212 SSIM (lower is better)", "1 \u2212 SSIM", false, true, 1.0},
+        {summary_csv::kPsnrDbMean, "PSNR (higher is better)", "PSNR (dB)", true, false, INFINITY},
+        {summary_csv::kEci, "ECI (lower is better)", "ECI", false, false, 0.0},
     };
     // ColorVideoVDP only where the run scored it: older runs keep their three panels.
     if (jod)
-        axes.insert(axes.begin() + 2, {kJodColumn, "ColorVideoVDP JOD (higher is better)", "ColorVideoVDP (JOD)",
+        axes.insert(axes.begin() + 2, {summary_csv::kCvvdpJod, "ColorVideoVDP JOD (higher is better)", "ColorVideoVDP (JOD)",
                                        true, false, kJodNoDifference});
     out += "<div class=\"row\">";
     for (const auto& a : axes) {
@@ -244,7 +244,7 @@ std::string paretoSection(const RunData& d) {
         bool all_paired = true;  // the front on the paired speed-up, as the answer takes it, where every point has one
         for (const auto& v : d.variants) {
             if (!variantOk(d, v)) continue;
-            auto x = summaryNum(d, v, "gpu_ms_median");
+            auto x = summaryNum(d, v, summary_csv::kGpuMsMedian);
             if (!x || !std::isfinite(*x)) continue;
             auto y = summaryNum(d, v, a.column);
             if (v == d.reference && !y) y = a.reference;

@@ -35,22 +35,24 @@ nlohmann::json readRunJson(const std::filesystem::path& file) {
     if (!j.is_object())
         throw std::invalid_argument(file.string() + ": the JSON root (pointer \"\") is " + j.type_name() +
                                     "; accepted: an object");
-    if (j.contains("variants")) {
-        const auto& v = j["variants"];
+    if (j.contains(run_json::kVariants)) {
+        const auto& v = j[run_json::kVariants];
         if (!v.is_array())
             throw std::invalid_argument(file.string() + ": /variants is " + std::string(v.type_name()) +
                                         "; accepted: an array of objects");
         for (size_t i = 0; i < v.size(); ++i) {
-            const std::string ptr = "/variants/" + std::to_string(i);
+            const std::string ptr = rundir::pointer(run_json::kVariants, std::to_string(i));
             if (!v[i].is_object())
                 throw std::invalid_argument(file.string() + ": " + ptr + " is " + v[i].type_name() +
                                             "; accepted: an object with name, status and passes");
-            if (v[i].contains("passes") && !v[i]["passes"].is_array())
-                throw std::invalid_argument(file.string() + ": " + ptr + "/passes is " + v[i]["passes"].type_name() +
+            const char* passes = run_json::variant::kPasses;
+            if (v[i].contains(passes) && !v[i][passes].is_array())
+                throw std::invalid_argument(file.string() + ": " + ptr + "/" + passes + " is " + v[i][passes].type_name() +
                                             "; accepted: an array of {name, ran, reason}");
         }
     }
-    for (const char* key : {"device", "settings", "scene", "path", "tool", "validation", "metrics"})
+    for (const char* key : {run_json::kDevice, run_json::kSettings, run_json::kScene, run_json::kPath, run_json::kTool,
+                            run_json::kValidation, run_json::kMetrics})
         if (j.contains(key) && !j[key].is_object())
             throw std::invalid_argument(file.string() + ": /" + key + " is " + j[key].type_name() +
                                         "; accepted: an object");
@@ -95,12 +97,13 @@ std::string jsonText(const nlohmann::json* j) {
 RunData loadRun(const std::filesystem::path& dir) {
     RunData d;
     d.dir = dir;
-    d.summary = readCsv(dir / "summary.csv", isReportNumericColumn, {"variant", "status"});
-    d.frames = readCsv(dir / "frames.csv", isReportNumericColumn, {"variant", "repeat", "frame"});
-    d.run = readRunJson(dir / "run.json");
+    d.summary = readCsv(dir / rundir::kSummaryCsv, isReportNumericColumn, {summary_csv::kVariant, summary_csv::kStatus});
+    d.frames = readCsv(dir / rundir::kFramesCsv, isReportNumericColumn,
+                       {frames_csv::kVariant, frames_csv::kRepeat, frames_csv::kFrame});
+    d.run = readRunJson(dir / rundir::kRunJson);
 
     for (size_t r = 0; r < d.summary.size(); ++r) {
-        const std::string& v = d.summary.text(r, "variant");
+        const std::string& v = d.summary.text(r, summary_csv::kVariant);
         if (v.empty())
             throw std::invalid_argument(d.summary.file.string() + ":" + std::to_string(d.summary.row_lines[r]) +
                                         ": empty variant name; accepted: a variant name such as full or cbr-cso");
@@ -109,30 +112,30 @@ RunData loadRun(const std::filesystem::path& dir) {
     std::set<double> frames;
     std::set<double> repeats;
     for (size_t r = 0; r < d.frames.size(); ++r) {
-        auto f = d.frames.num(r, "frame");
-        auto rep = d.frames.num(r, "repeat");
+        auto f = d.frames.num(r, frames_csv::kFrame);
+        auto rep = d.frames.num(r, frames_csv::kRepeat);
         if (!f || !rep || !std::isfinite(*f) || !std::isfinite(*rep))
             throw std::invalid_argument(d.frames.file.string() + ":" + std::to_string(d.frames.row_lines[r]) +
                                         ": empty or infinite frame or repeat; accepted: integers from 0");
         frames.insert(*f);
         repeats.insert(*rep);
         // frames.csv may list variants that summary.csv lacks (e.g. an interrupted run).
-        const std::string& v = d.frames.text(r, "variant");
+        const std::string& v = d.frames.text(r, frames_csv::kVariant);
         if (!v.empty() && std::find(d.variants.begin(), d.variants.end(), v) == d.variants.end())
             d.variants.push_back(v);
     }
     d.frame_ids.assign(frames.begin(), frames.end());
     d.repeats = int(repeats.size());
-    if (const auto it = d.run.find("reference_variant"); it != d.run.end() && it->is_string())
+    if (const auto it = d.run.find(run_json::kReferenceVariant); it != d.run.end() && it->is_string())
         d.reference = it->get<std::string>();
-    else if (!d.run.contains("kind") && !d.variants.empty())
+    else if (!d.run.contains(run_json::kKind) && !d.variants.empty())
         d.reference = d.variants.front();
     return d;
 }
 
 std::optional<size_t> summaryRow(const RunData& d, const std::string& variant) {
     for (size_t r = 0; r < d.summary.size(); ++r)
-        if (d.summary.text(r, "variant") == variant) return r;
+        if (d.summary.text(r, summary_csv::kVariant) == variant) return r;
     return std::nullopt;
 }
 
@@ -146,33 +149,44 @@ std::string summaryText(const RunData& d, const std::string& variant, const std:
     return r ? d.summary.text(*r, column) : std::string();
 }
 
-bool variantOk(const RunData& d, const std::string& variant) { return statusHasTimes(summaryText(d, variant, "status")); }
+bool variantOk(const RunData& d, const std::string& variant) {
+    return statusHasTimes(summaryText(d, variant, summary_csv::kStatus));
+}
 
 Speedup summarySpeedup(const RunData& d, const std::string& variant) {
-    return {summaryNum(d, variant, "speedup_vs_full"), summaryNum(d, variant, "speedup_ci_low"),
-            summaryNum(d, variant, "speedup_ci_high")};
+    return {summaryNum(d, variant, summary_csv::kSpeedup), summaryNum(d, variant, summary_csv::kSpeedupLow),
+            summaryNum(d, variant, summary_csv::kSpeedupHigh)};
 }
 
 bool hasJod(const RunData& d) {
     for (const auto& v : d.variants)
-        if (auto jod = summaryNum(d, v, kJodColumn); jod && std::isfinite(*jod)) return true;
+        if (auto jod = summaryNum(d, v, summary_csv::kCvvdpJod); jod && std::isfinite(*jod)) return true;
     return false;
 }
 
+std::string deviceText(const RunData& d) {
+    namespace k = run_json::device;
+    auto text = [&](const char* key) {
+        const auto* j = runAt(d, run_json::kDevice, key);
+        return !j || j->is_null() ? std::string() : j->is_string() ? j->get<std::string>() : j->dump();
+    };
+    return "'" + text(k::kName) + "' driver " + text(k::kDriverId) + " " + text(k::kDriverVersion);
+}
+
 const nlohmann::json* variantJson(const RunData& d, const std::string& variant) {
-    auto it = d.run.find("variants");
+    auto it = d.run.find(run_json::kVariants);
     if (it == d.run.end() || !it->is_array()) return nullptr;
     for (const auto& v : *it)
-        if (v.is_object() && v.value("name", std::string()) == variant) return &v;
+        if (v.is_object() && v.value(run_json::variant::kName, std::string()) == variant) return &v;
     return nullptr;
 }
 
 bool isCheckerboard(const RunData& d, const std::string& variant) {
-    if (summaryNum(d, variant, "px_shaded_mean")) return true;
+    if (summaryNum(d, variant, summary_csv::statMean(rundir::pixels::kShaded))) return true;
     const auto* vj = variantJson(d, variant);
-    if (vj && vj->contains("route")) return true;
+    if (vj && vj->contains(run_json::variant::kRoute)) return true;
     for (size_t r = 0; r < d.frames.size(); ++r)
-        if (d.frames.text(r, "variant") == variant && d.frames.num(r, "px_shaded")) return true;
+        if (d.frames.text(r, frames_csv::kVariant) == variant && d.frames.num(r, rundir::pixels::kShaded)) return true;
     return false;
 }
 
@@ -180,9 +194,9 @@ std::map<int, std::vector<double>> gpuMsByRepetition(const RunData& d, const std
     std::map<int, std::vector<double>> reps;
     const auto& f = d.frames;
     for (size_t i = 0; i < f.size(); ++i) {
-        if (f.text(i, "variant") != variant || f.text(i, "status") != "ok") continue;
-        auto ms = f.num(i, "gpu_ms");
-        auto rep = f.num(i, "repeat");
+        if (f.text(i, frames_csv::kVariant) != variant || f.text(i, frames_csv::kStatus) != "ok") continue;
+        auto ms = f.num(i, frames_csv::kGpuMs);
+        auto rep = f.num(i, frames_csv::kRepeat);
         if (ms && rep && std::isfinite(*ms) && *rep < max_repeats) reps[int(*rep)].push_back(*ms);
     }
     return reps;
@@ -193,11 +207,11 @@ std::vector<std::optional<double>> perFrame(const RunData& d, const std::string&
     std::vector<std::vector<double>> values(d.frame_ids.size());
     if (d.frames.has(column)) {
         for (size_t r = 0; r < d.frames.size(); ++r) {
-            if (d.frames.text(r, "variant") != variant) continue;
-            if (repeat >= 0 && d.frames.num(r, "repeat") != double(repeat)) continue;
+            if (d.frames.text(r, frames_csv::kVariant) != variant) continue;
+            if (repeat >= 0 && d.frames.num(r, frames_csv::kRepeat) != double(repeat)) continue;
             auto v = d.frames.num(r, column);
             if (!v || std::isnan(*v)) continue;
-            auto f = d.frames.num(r, "frame");
+            auto f = d.frames.num(r, frames_csv::kFrame);
             auto it = std::lower_bound(d.frame_ids.begin(), d.frame_ids.end(), *f);
             values[size_t(it - d.frame_ids.begin())].push_back(*v);
         }
@@ -225,9 +239,8 @@ std::optional<int> extremeFrame(const RunData& d, const std::string& variant, co
 
 std::vector<std::string> passNames(const RunData& d) {
     std::vector<std::string> out;
-    const std::string prefix = "gpu_ms_";
     for (const auto& h : d.frames.header)
-        if (h.rfind(prefix, 0) == 0 && h.size() > prefix.size()) out.push_back(h.substr(prefix.size()));
+        if (auto pass = frames_csv::passOfColumn(h); !pass.empty()) out.push_back(pass);
     return out;
 }
 

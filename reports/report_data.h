@@ -13,8 +13,22 @@
 #include "reports/csv_read.h"
 #include "reports/jod.h"
 #include "reports/speedup.h"
+#include "rundir/files.h"
+#include "rundir/frames_csv.h"
+#include "rundir/pixel_classes.h"
+#include "rundir/pointer.h"
+#include "rundir/run_json.h"
+#include "rundir/run_json_health.h"
+#include "rundir/run_json_sequence.h"
+#include "rundir/run_json_variants.h"
+#include "rundir/summary_csv.h"
 
 namespace cbr::reports {
+
+// The run directory's schema (rundir/), as the report's files name it.
+namespace frames_csv = rundir::frames;
+namespace summary_csv = rundir::summary;
+namespace run_json = rundir::run;
 
 struct RunData {
     std::filesystem::path dir;
@@ -48,6 +62,9 @@ Speedup summarySpeedup(const RunData& d, const std::string& variant);
 bool hasJod(const RunData& d);
 // A checkerboard variant: summary.csv has its pixel-class shares, or run.json a route.
 bool isCheckerboard(const RunData& d, const std::string& variant);
+// The device a run's times belong to, "'NAME' driver ID VERSION" (run.json device): compare and
+// ab refuse two runs where it differs.
+std::string deviceText(const RunData& d);
 // run.json's variants[] entry of a variant, or nullptr.
 const nlohmann::json* variantJson(const RunData& d, const std::string& variant);
 
@@ -79,5 +96,10 @@ std::string passColor(const std::string& pass, size_t index);
 // null or absent "–", arrays of scalars joined by ", ".
 std::string jsonText(const nlohmann::json* j);
 const nlohmann::json* jsonAt(const nlohmann::json& j, const std::string& pointer);
+// run.json's value at the schema's keys, e.g. runAt(d, run_json::kDevice, run_json::device::kName); null where absent.
+template <typename... Keys>
+const nlohmann::json* runAt(const RunData& d, const Keys&... keys) {
+    return jsonAt(d.run, rundir::pointer(keys...));
+}
 
 }  // namespace cbr::reports

@@ -70,9 +70,9 @@ Embedded embed(const fs::path& file) {
 // The page copy of a worst-frame file named in run.json (worst[].page), linked to the
 // full-resolution file (worst[].files); the full file itself in runs without copies.
 Embedded embedWorst(const RunData& d, const nlohmann::json& entry, const char* what) {
-    const nlohmann::json* full = jsonAt(entry, std::string("/files/") + what);
+    const nlohmann::json* full = jsonAt(entry, rundir::pointer(run_json::worst::kFiles, what));
     if (!full || !full->is_string()) return {};
-    const nlohmann::json* page = jsonAt(entry, std::string("/page/") + what);
+    const nlohmann::json* page = jsonAt(entry, rundir::pointer(run_json::worst::kPage, what));
     Embedded e = page && page->is_string() ? embed(d.dir / page->get<std::string>()) : Embedded{};
     if (e.uri.empty()) e = embed(d.dir / full->get<std::string>());
     if (!e.uri.empty()) e.link = full->get<std::string>();
@@ -133,7 +133,7 @@ std::string frameLabel(const RunData& d, const std::string& v, const char* colum
     std::optional<double> value;
     for (size_t i = 0; i < d.frame_ids.size(); ++i)
         if (int(d.frame_ids[i]) == *f) value = values[i];
-    const std::string name = std::string(column) == "ssim" ? "SSIM" : std::string(column) == "eci" ? "ECI" : column;
+    const std::string name = std::string(column) == frames_csv::kSsim ? "SSIM" : std::string(column) == frames_csv::kEci ? "ECI" : column;
     return "frame " + std::to_string(*f) + " (" + name + " " + fmtShort(value.value_or(NAN), 4) + ")";
 }
 
@@ -141,10 +141,10 @@ std::string frameLabel(const RunData& d, const std::string& v, const char* colum
 fs::path savedFrame(const RunData& d, const std::string& v, int frame, const char* suffix) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "_%04d%s.png", frame, suffix);
-    fs::path p = d.dir / "frames" / (v + buf);
+    fs::path p = d.dir / rundir::kFramesDir / (v + buf);
     std::error_code ec;
     if (fs::exists(p, ec)) return p;
-    return d.dir / "frames" / (v + "_" + std::to_string(frame) + suffix + ".png");
+    return d.dir / rundir::kFramesDir / (v + "_" + std::to_string(frame) + suffix + ".png");
 }
 
 std::string fromWorstDir(const RunData& d, const std::string& v) {
@@ -154,9 +154,12 @@ std::string fromWorstDir(const RunData& d, const std::string& v) {
         const char* column;
         bool highest;
     };
-    const Kind kinds[] = {{"ssim", "Lowest SSIM", "ssim", false}, {"eci", "Highest edge crawl (ECI)", "eci", true}};
+    namespace kw = run_json::worst;
+    namespace image = kw::image;
+    const Kind kinds[] = {{kw::kSsim, "Lowest SSIM", frames_csv::kSsim, false},
+                          {kw::kEci, "Highest edge crawl (ECI)", frames_csv::kEci, true}};
     const bool cbr = isCheckerboard(d, v);
-    const nlohmann::json* listed = jsonAt(d.run, "/worst");
+    const nlohmann::json* listed = runAt(d, run_json::kWorst);
     std::string out;
     for (const auto& k : kinds) {
         auto file = [&](const char* what) { return std::string(v) + "_" + k.kind + "_" + what + ".png"; };
@@ -165,17 +168,17 @@ std::string fromWorstDir(const RunData& d, const std::string& v) {
         const nlohmann::json* entry = nullptr;
         if (listed && listed->is_array())
             for (const auto& e : *listed)
-                if (e.value("variant", "") == v && e.value("kind", "") == k.kind) entry = &e;
+                if (e.value(kw::kVariant, "") == v && e.value(kw::kKind, "") == k.kind) entry = &e;
         auto get = [&](const char* what) {
             if (listed && listed->is_array()) return entry ? embedWorst(d, *entry, what) : Embedded{};
-            return embed(d.dir / "worst" / file(what));
+            return embed(d.dir / rundir::kWorstDir / file(what));
         };
-        Embedded ref = get("reference"), var = get("variant");
-        Embedded err = get("error"), ssim = get("ssim_map");
-        Embedded flip = get("flip_map");  // absent in runs before FLIP
-        Embedded cvvdp = get("cvvdp_map");  // absent in runs before ColorVideoVDP (or without it)
-        Embedded crawl = get("crawl_map");
-        Embedded cls = cbr ? get("class_map") : Embedded{};
+        Embedded ref = get(image::kReference), var = get(image::kVariant);
+        Embedded err = get(image::kError), ssim = get(image::kSsimMap);
+        Embedded flip = get(image::kFlipMap);  // absent in runs before FLIP
+        Embedded cvvdp = get(image::kCvvdpMap);  // absent in runs before ColorVideoVDP (or without it)
+        Embedded crawl = get(image::kCrawlMap);
+        Embedded cls = cbr ? get(image::kClassMap) : Embedded{};
         bool any = !ref.uri.empty() || !var.uri.empty() || !err.uri.empty() || !ssim.uri.empty() ||
                    !crawl.uri.empty() || !cls.uri.empty();
         std::string label = frameLabel(d, v, k.column, k.highest);
@@ -187,18 +190,18 @@ std::string fromWorstDir(const RunData& d, const std::string& v) {
         }
         out += "<div class=\"compare\">";
         if (!ref.uri.empty() && !var.uri.empty()) out += wipe(ref, var, v);
-        else out += mapFigure(var.uri.empty() ? ref : var, var.uri.empty() ? "reference" : v, var.uri.empty() ? file("variant") : file("reference"));
+        else out += mapFigure(var.uri.empty() ? ref : var, var.uri.empty() ? "reference" : v, var.uri.empty() ? file(image::kVariant) : file(image::kReference));
         // Error and SSIM maps always come with a worst frame, the crawl map with the ECI one,
         // the class map with checkerboard variants: only those are marked when absent.
-        const bool eci_kind = std::string(k.kind) == "eci";
+        const bool eci_kind = std::string(k.kind) == kw::kEci;
         out += "<div class=\"maps\">";
-        out += mapFigure(err, "error |variant \u2212 reference|", file("error"));
-        out += mapFigure(ssim, "1 \u2212 SSIM map", file("ssim_map"));
-        if (!flip.uri.empty()) out += mapFigure(flip, "FLIP error map", file("flip_map"));
-        if (!cvvdp.uri.empty()) out += mapFigure(cvvdp, "ColorVideoVDP difference map", file("cvvdp_map"));
+        out += mapFigure(err, "error |variant \u2212 reference|", file(image::kError));
+        out += mapFigure(ssim, "1 \u2212 SSIM map", file(image::kSsimMap));
+        if (!flip.uri.empty()) out += mapFigure(flip, "FLIP error map", file(image::kFlipMap));
+        if (!cvvdp.uri.empty()) out += mapFigure(cvvdp, "ColorVideoVDP difference map", file(image::kCvvdpMap));
         if (eci_kind || !crawl.uri.empty())
-            out += mapFigure(crawl, "edge crawl |e\u209c \u2212 warp(e\u209c\u208b\u2081)|", file("crawl_map"));
-        if (cbr) out += mapFigure(cls, "pixel classes", file("class_map")) + classLegend();
+            out += mapFigure(crawl, "edge crawl |e\u209c \u2212 warp(e\u209c\u208b\u2081)|", file(image::kCrawlMap));
+        if (cbr) out += mapFigure(cls, "pixel classes", file(image::kClassMap)) + classLegend();
         out += "<p class=\"note heat\">Maps: black \u2192 red \u2192 yellow \u2192 white as the value grows.</p>";
         out += "</div></div>";
     }
@@ -206,16 +209,16 @@ std::string fromWorstDir(const RunData& d, const std::string& v) {
 }
 
 std::string fromSavedFrames(const RunData& d, const std::string& v) {
-    auto f = extremeFrame(d, v, "ssim", false);
+    auto f = extremeFrame(d, v, frames_csv::kSsim, false);
     if (!f) return "<p class=\"muted\">No per-frame SSIM for " + esc(v) + ".</p>";
     Embedded ref = embed(savedFrame(d, d.reference, *f, "")), var = embed(savedFrame(d, v, *f, ""));
     if (ref.uri.empty() || var.uri.empty())
         return "<p class=\"muted\">frames/ lacks frame " + std::to_string(*f) + " of " + esc(v) + " or of " + esc(d.reference) + ".</p>";
-    std::string out = "<h4>Lowest SSIM: " + esc(frameLabel(d, v, "ssim", false)) + ", from frames/</h4>";
+    std::string out = "<h4>Lowest SSIM: " + esc(frameLabel(d, v, frames_csv::kSsim, false)) + ", from frames/</h4>";
     out += "<div class=\"compare\">" + wipe(ref, var, v) + "<div class=\"maps\">";
     if (isCheckerboard(d, v)) {
         Embedded cls = embed(savedFrame(d, v, *f, "_class"));
-        out += mapFigure(cls, "pixel classes", "frames/" + v + "_class.png") + classLegend();
+        out += mapFigure(cls, "pixel classes", std::string(rundir::kFramesDir) + "/" + v + "_class.png") + classLegend();
     }
     return out + "</div></div>";
 }
@@ -249,8 +252,8 @@ std::string embedOnce(const std::string& html) {
 std::string imagesSection(const RunData& d) {
     std::string out = "<section id=\"images\"><h2>Worst frames</h2>";
     std::error_code ec;
-    const bool worst = fs::is_directory(d.dir / "worst", ec);
-    const bool saved = fs::is_directory(d.dir / "frames", ec);
+    const bool worst = fs::is_directory(d.dir / rundir::kWorstDir, ec);
+    const bool saved = fs::is_directory(d.dir / rundir::kFramesDir, ec);
     if (worst) {
         out += "<p class=\"note\">Per variant, the frame with the lowest SSIM and the one with the highest edge crawl, "
                "from worst/. Drag the slider (or press flip) to compare the reference with the variant; maps at "
@@ -266,7 +269,7 @@ std::string imagesSection(const RunData& d) {
     for (const auto& v : d.variants) {
         if (v == d.reference) continue;
         out += "<div class=\"variant-images\"><h3>" + esc(v) + "</h3>";
-        if (!variantOk(d, v)) out += "<p class=\"muted\">" + esc(v) + " did not run (" + esc(summaryText(d, v, "status")) + ").</p>";
+        if (!variantOk(d, v)) out += "<p class=\"muted\">" + esc(v) + " did not run (" + esc(summaryText(d, v, summary_csv::kStatus)) + ").</p>";
         else out += worst ? fromWorstDir(d, v) : fromSavedFrames(d, v);
         out += "</div>";
     }

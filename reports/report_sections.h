@@ -60,18 +60,18 @@ std::string legendHtml(const std::vector<Series>& series, const std::string& ext
 
 // Pixel classes of the checkerboard reconstruction, in stacking order, with the class-map colours.
 struct PixelClass {
-    const char* column;  // frames.csv column; summary.csv adds "_mean"
+    const char* column;  // frames.csv column (rundir/pixel_classes.h); summary.csv its statMean
     const char* label;
     const char* color;
 };
 // The colours are the class maps' (harness/quality/quality.cpp classColours), so legend and map agree.
 inline constexpr PixelClass kPixelClasses[] = {
-    {"px_shaded", "shaded", "#606060"},
-    {"px_reused", "reused", "#28c83c"},
-    {"px_missing_parity", "missing (parity)", "#f0dc28"},
-    {"px_occluded", "occluded", "#e62828"},
-    {"px_offscreen", "off-screen", "#285af0"},
-    {"px_reset", "reset", "#dc3cdc"},
-    {"px_clipped", "reused, clipped (full history)", "#28c8c8"},
+    {rundir::pixels::kShaded, "shaded", "#606060"},
+    {rundir::pixels::kReused, "reused", "#28c83c"},
+    {rundir::pixels::kMissingParity, "missing (parity)", "#f0dc28"},
+    {rundir::pixels::kOccluded, "occluded", "#e62828"},
+    {rundir::pixels::kOffscreen, "off-screen", "#285af0"},
+    {rundir::pixels::kReset, "reset", "#dc3cdc"},
+    {rundir::pixels::kClipped, "reused, clipped (full history)", "#28c8c8"},
 };
 }  // namespace cbr::reports

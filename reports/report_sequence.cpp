@@ -5,35 +5,43 @@
 #include "reports/jod.h"
 #include "reports/report.h"
 #include "reports/report_sections.h"
+#include "rundir/setting_columns.h"
 
 namespace cbr::reports {
 
 namespace {
 
-std::string runText(const RunData& d, const std::string& pointer) { return jsonText(jsonAt(d.run, pointer)); }
+namespace rj = run_json;
+
+template <typename... Keys>
+std::string runText(const RunData& d, const Keys&... keys) {
+    return jsonText(runAt(d, keys...));
+}
 
 std::string row(const std::string& k, const std::string& v) {
     return "<tr><th>" + esc(k) + "</th><td>" + esc(v) + "</td></tr>";
 }
 
 std::string verdictBox(const RunData& d, const std::string& name) {
-    const std::string verdict = runText(d, "/thresholds/verdict");
-    std::string text = name + " against the reference over " + std::to_string(d.frame_ids.size()) +
-                       " frames: PSNR " + fmt(summaryNum(d, name, "psnr_db_mean"), 2) + " dB (worst frame " +
-                       fmt(summaryNum(d, name, "psnr_db_min"), 2) + "), SSIM " +
-                       fmt(summaryNum(d, name, "ssim_mean"), 4) + ", FLIP " + fmt(summaryNum(d, name, "flip_mean"), 4) +
-                       ", ECI " + fmt(summaryNum(d, name, "eci"), 4) +
-                       (hasJod(d) ? ", ColorVideoVDP " + jodText(summaryNum(d, name, kJodColumn), kDash) : "") + ".";
-    const auto* crossed = jsonAt(d.run, "/thresholds/crossed");
-    const bool judged = jsonAt(d.run, "/thresholds/warn") && (!jsonAt(d.run, "/thresholds/warn")->empty() ||
-                                                              !jsonAt(d.run, "/thresholds/fail")->empty());
+    using namespace summary_csv;
+    namespace th = rj::thresholds;
+    const std::string verdict = runText(d, rj::kThresholds, th::kVerdict);
+    auto n = [&](const char* c) { return summaryNum(d, name, c); };
+    std::string text = name + " against the reference over " + std::to_string(d.frame_ids.size()) + " frames: PSNR " +
+                       fmt(n(kPsnrDbMean), 2) + " dB (worst frame " + fmt(n(kPsnrDbMin), 2) + "), SSIM " +
+                       fmt(n(kSsimMean), 4) + ", FLIP " + fmt(n(kFlipMean), 4) + ", ECI " + fmt(n(kEci), 4) +
+                       (hasJod(d) ? ", ColorVideoVDP " + jodText(n(kCvvdpJod), kDash) : "") + ".";
+    const auto* crossed = runAt(d, rj::kThresholds, th::kCrossed);
+    const auto* warn = runAt(d, rj::kThresholds, th::kWarn);
+    const bool judged = warn && (!warn->empty() || !runAt(d, rj::kThresholds, th::kFail)->empty());
     if (judged) {
         text += " Verdict: " + verdict + ".";
         if (crossed && crossed->is_array())
-            for (const auto& c : *crossed)
-                text += " " + jsonText(jsonAt(c, "/metric")) + " " + jsonText(jsonAt(c, "/value")) + " at frame " +
-                        jsonText(jsonAt(c, "/frame_number")) + " crosses --" + jsonText(jsonAt(c, "/level")) + " " +
-                        jsonText(jsonAt(c, "/threshold")) + ".";
+            for (const auto& c : *crossed) {
+                auto at = [&](const char* key) { return jsonText(jsonAt(c, rundir::pointer(key))); };
+                text += " " + at(th::kMetric) + " " + at(th::kValue) + " at frame " + at(th::crossed::kFrameNumber) +
+                        " crosses --" + at(th::crossed::kLevel) + " " + at(th::crossed::kThreshold) + ".";
+            }
     }
     const char* cls = verdict == "FAILURE" ? "callout" : "answer";
     return "<p class=\"" + std::string(cls) + "\"><b>" + (judged ? verdict : std::string("Result")) + ":</b> " +
@@ -41,6 +49,7 @@ std::string verdictBox(const RunData& d, const std::string& name) {
 }
 
 std::string summaryTable(const RunData& d, const std::string& name) {
+    using namespace summary_csv;
     auto n = [&](const char* c) { return summaryNum(d, name, c); };
     auto td = [](const std::string& t) { return "<td class=\"num\">" + esc(t) + "</td>"; };
     const bool jod = hasJod(d);  // sequences scored before ColorVideoVDP have no column
@@ -52,11 +61,10 @@ std::string summaryTable(const RunData& d, const std::string& name) {
                       "<th class=\"num\">ECI</th><th class=\"num\">ECI p95</th><th class=\"num\">ECI max</th>"
                       "<th class=\"num\">flicker ratio</th></tr>";
     out += "<tr><td class=\"variant\" style=\"color:" + esc(variantColor(d, name)) + "\">" + esc(name) + "</td>" +
-           td(fmt(n("frames"), 0)) + td(fmt(n("psnr_db_mean"), 2)) + td(fmt(n("psnr_db_min"), 2)) +
-           td(fmt(n("psnr_db_p5"), 2)) + td(fmt(n("ssim_mean"), 4)) + td(fmt(n("ssim_min"), 4)) +
-           td(fmt(n("flip_mean"), 4)) + (jod ? td(jodText(n(kJodColumn), kDash)) : std::string()) +
-           td(fmt(n("eci"), 4)) + td(fmt(n("eci_p95"), 4)) + td(fmt(n("eci_max"), 4)) +
-           td(fmt(n("flicker_ratio_mean"), 3)) + "</tr></table></div>";
+           td(fmt(n(kFrames), 0)) + td(fmt(n(kPsnrDbMean), 2)) + td(fmt(n(kPsnrDbMin), 2)) + td(fmt(n(kPsnrDbP5), 2)) +
+           td(fmt(n(kSsimMean), 4)) + td(fmt(n(kSsimMin), 4)) + td(fmt(n(kFlipMean), 4)) +
+           (jod ? td(jodText(n(kCvvdpJod), kDash)) : std::string()) + td(fmt(n(kEci), 4)) + td(fmt(n(kEciP95), 4)) +
+           td(fmt(n(kEciMax), 4)) + td(fmt(n(kFlickerRatioMean), 3)) + "</tr></table></div>";
     out += "<p class=\"note\">Metrics on the 8-bit display images (docs/method/measurement.md): sequence PSNR from the mean "
            "per-frame MSE (\u221e: identical), SSIM per Wang et al. (11\u00d711 Gaussian, \u03c3 1.5), LDR-FLIP mean, "
            "and the edge crawl index pooled over frame pairs, with the reference's motion from the motion "
@@ -69,31 +77,35 @@ std::string summaryTable(const RunData& d, const std::string& name) {
 }
 
 std::string inputsSection(const RunData& d) {
+    namespace sq = rj::sequence;
+    auto motion = [&](const char* key) { return runAt(d, rj::kSequence, sq::kMotion, key); };
     std::string out = "<section id=\"provenance\"><h2>Inputs</h2><table class=\"kv\">";
-    out += row("reference", runText(d, "/sequence/reference")) + row("test", runText(d, "/sequence/test"));
-    out += row("frames matched by", runText(d, "/sequence/matched_by"));
-    out += row("frame size", runText(d, "/settings/width") + "\u00d7" + runText(d, "/settings/height"));
-    out += row("motion for the edge crawl", runText(d, "/sequence/motion/source"));
-    if (const auto* m = jsonAt(d.run, "/sequence/motion/method")) out += row("how", jsonText(m));
-    if (const auto* m = jsonAt(d.run, "/sequence/motion/convention")) out += row("convention", jsonText(m));
-    if (const auto* m = jsonAt(d.run, "/sequence/motion/scale")) out += row("motion scale", jsonText(m));
-    out += row("cuts", runText(d, "/sequence/cuts"));
-    out += row("display conversion", runText(d, "/sequence/conversions"));
-    out += row("FLIP pixels per degree", runText(d, "/settings/flip_ppd"));
-    if (const auto* display = jsonAt(d.run, "/settings/display"); display && display->is_object()) {
+    out += row("reference", runText(d, rj::kSequence, sq::kReference)) + row("test", runText(d, rj::kSequence, sq::kTest));
+    out += row("frames matched by", runText(d, rj::kSequence, sq::kMatchedBy));
+    out += row("frame size", runText(d, rj::kSettings, rj::settings::kWidth) + "\u00d7" +
+                                 runText(d, rj::kSettings, rj::settings::kHeight));
+    out += row("motion for the edge crawl", jsonText(motion(sq::motion::kSource)));
+    if (const auto* m = motion(sq::motion::kMethod)) out += row("how", jsonText(m));
+    if (const auto* m = motion(sq::motion::kConvention)) out += row("convention", jsonText(m));
+    if (const auto* m = motion(sq::motion::kScale)) out += row("motion scale", jsonText(m));
+    out += row("cuts", runText(d, rj::kSequence, sq::kCuts));
+    out += row("display conversion", runText(d, rj::kSequence, sq::kConversions));
+    out += row("FLIP pixels per degree", runText(d, rj::kSettings, rundir::settingColumn("flip-ppd")));
+    if (const auto* display = runAt(d, rj::kSettings, rundir::settingColumn("display")); display && display->is_object()) {
         out += row("ColorVideoVDP display model", displayModelText(display));
-        if (const auto* fps = jsonAt(d.run, "/settings/cvvdp_fps")) out += row("ColorVideoVDP frames per second", jsonText(fps));
+        if (const auto* fps = runAt(d, rj::kSettings, rj::settings::kCvvdpFps))
+            out += row("ColorVideoVDP frames per second", jsonText(fps));
     }
-    out += row("command line", runText(d, "/command_line"));
-    out += row("cbrbench", runText(d, "/tool/version") + ", commit " + runText(d, "/tool/commit"));
-    out += row("host", runText(d, "/host/name") + ", " + runText(d, "/host/cpus") + " CPUs");
+    out += row("command line", runText(d, rj::kCommandLine));
+    out += row("cbrbench", runText(d, rj::kTool, rj::tool::kVersion) + ", commit " + runText(d, rj::kTool, rj::tool::kCommit));
+    out += row("host", runText(d, rj::kHost, rj::host::kName) + ", " + runText(d, rj::kHost, rj::host::kCpus) + " CPUs");
     return out + "</table></section>";
 }
 
 // Without motion files: the translation found per frame pair and how sure the correlation was.
 std::string shiftSection(const RunData& d, const std::string& name) {
-    if (!d.frames.has("shift_dx")) return {};
-    auto dx = perFrame(d, name, "shift_dx", 0), dy = perFrame(d, name, "shift_dy", 0);
+    if (!d.frames.has(frames_csv::kShiftDx)) return {};
+    auto dx = perFrame(d, name, frames_csv::kShiftDx, 0), dy = perFrame(d, name, frames_csv::kShiftDy, 0);
     bool any = false;
     for (const auto& v : dx) any |= v.has_value();
     if (!any) return {};
@@ -111,7 +123,7 @@ std::string shiftSection(const RunData& d, const std::string& name) {
     response.x = d.frame_ids;
     response.y_min = 0;
     response.y_max = 1;
-    response.series = {{"response", "#009e73", perFrame(d, name, "shift_response", 0)}};
+    response.series = {{"response", "#009e73", perFrame(d, name, frames_csv::kShiftResponse, 0)}};
     out += "<div><h3>Translation</h3>" + legendHtml(shift.series) + lineChartSvg(shift) + "</div>";
     out += "<div><h3>Phase-correlation peak</h3>" + lineChartSvg(response) + "</div>";
     return out + "</div></section>";
@@ -119,15 +131,15 @@ std::string shiftSection(const RunData& d, const std::string& name) {
 
 }  // namespace
 
-bool isSequence(const RunData& d) { return jsonText(jsonAt(d.run, "/kind")) == "score-seq"; }
+bool isSequence(const RunData& d) { return jsonText(runAt(d, run_json::kKind)) == run_json::kScoreSeqKind; }
 
 std::string sequenceReportHtml(const RunData& d) {
     const std::string name = d.variants.empty() ? std::string("test") : d.variants.front();
-    const std::string title = "cbrbench score-seq: " + name + " against " + runText(d, "/sequence/reference");
+    const std::string title = "cbrbench score-seq: " + name + " against " + runText(d, rj::kSequence, rj::sequence::kReference);
     std::string html = pageStart(title);
     html += "<h1>" + esc(title) + "</h1>";
-    html += "<div class=\"sub\">" + esc(runText(d, "/date")) + " \u00b7 " + std::to_string(d.frame_ids.size()) +
-            " frames \u00b7 " + esc(runText(d, "/settings/width")) + "\u00d7" + esc(runText(d, "/settings/height")) + "</div>";
+    html += "<div class=\"sub\">" + esc(runText(d, rj::kDate)) + " \u00b7 " + std::to_string(d.frame_ids.size()) +
+            " frames \u00b7 " + esc(runText(d, rj::kSettings, rj::settings::kWidth)) + "\u00d7" + esc(runText(d, rj::kSettings, rj::settings::kHeight)) + "</div>";
     html += "<nav><a href=\"#summary\">summary</a><a href=\"#quality\">quality per frame</a>"
             "<a href=\"#images\">worst frames</a><a href=\"#provenance\">inputs</a></nav>";
     html += verdictBox(d, name);

@@ -1,6 +1,5 @@
-// sweep.csv's schema, reading it back, and combining the sweeps of outer dimensions.
+// sweep.csv read back (its schema: rundir/sweep_csv.h), and the sweeps of outer dimensions combined.
 #include "reports/sweep.h"
-#include "settings/table.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,16 +13,16 @@
 #include "reports/jod.h"
 #include "reports/report_sections.h"
 #include "reports/sweep_detail.h"
+#include "rundir/files.h"
+#include "rundir/sweep_csv.h"
+#include "settings/table.h"
 
 namespace cbr::reports {
 namespace {
 
-const char* kTextColumns[] = {"config", "variant", "path", "reference", "pipeline", "drr_filter", "cso_mode",
-                              "cbr_route", "cbr_history", "status", "note"};
+namespace sweep_csv = rundir::sweep;
 
-bool isSweepNumeric(const std::string& name) {
-    return std::find(std::begin(kTextColumns), std::end(kTextColumns), name) == std::end(kTextColumns);
-}
+bool isSweepNumeric(const std::string& name) { return !sweep_csv::isTextColumn(name); }
 
 }  // namespace
 
@@ -90,26 +89,11 @@ bool sweepRanksByJod(const std::vector<SweepPoint>& points) {
 const std::vector<SweepSettingField>& sweepSettingFields() {
     static const std::vector<SweepSettingField> fields = [] {
         std::vector<SweepSettingField> out;
-        for (const auto& row : settings::table())
-            if (row.sweep && !row.outer && !row.variants.empty())
-                out.push_back({row.name, row.column, row.type != settings::Type::Word});
+        for (const settings::Row* row : sweep_csv::settingRows())
+            out.push_back({row->name, row->column, row->type != settings::Type::Word});
         return out;
     }();
     return fields;
-}
-
-const std::vector<std::string>& sweepColumns() {
-    static const std::vector<std::string> cols = [] {
-        std::vector<std::string> out = {"config", "variant", "path", "reference", "pipeline", "shading_cost"};
-        for (const auto& f : sweepSettingFields()) out.push_back(f.column);
-        for (const char* c : {"status", "note", "frames", "repeats", "gpu_ms_median", "gpu_ms_ci_low", "gpu_ms_ci_high",
-                              "noise_cv", "speedup_vs_full", "speedup_ci_low", "speedup_ci_high", "psnr_db", "ssim", "eci",
-                              "flicker_ratio", kJodColumn, "px_shaded", "px_reused", "px_missing_parity", "px_occluded",
-                              "px_offscreen", "px_reset", "px_clipped"})
-            out.push_back(c);
-        return out;
-    }();
-    return cols;
 }
 
 const SweepSettingField* findSweepSetting(const std::string& name) {
@@ -141,43 +125,52 @@ std::string sweepGroupDir(const std::string& path, const std::string& reference,
     return dir;
 }
 
+namespace {
+
+// One sweep.csv row as a point.
+SweepPoint sweepPoint(const CsvData& csv, size_t r) {
+    using namespace sweep_csv;
+    SweepPoint p;
+    p.config = csv.text(r, kConfig);
+    p.variant = csv.text(r, kVariant);
+    p.status = csv.text(r, kStatus);
+    if (p.config.empty() || p.variant.empty())
+        throw std::invalid_argument(csv.file.string() + ": line " + std::to_string(csv.row_lines[r]) +
+                                    ": empty config or variant; expected a configuration label and a variant name");
+    p.path = csv.text(r, kPath);
+    p.reference = csv.text(r, referenceColumn());
+    p.shading_cost = csv.num(r, shadingCostColumn()).value_or(1);
+    for (const auto& f : sweepSettingFields()) {
+        if (!f.number) {
+            if (auto w = csv.text(r, f.column); !w.empty()) p.words[f.column] = w;
+        } else if (auto v = csv.num(r, f.column)) {
+            p.numbers[f.column] = *v;
+        }
+    }
+    p.gpu_ms = csv.num(r, kGpuMsMedian);
+    p.gpu_ms_low = csv.num(r, kGpuMsCiLow);
+    p.gpu_ms_high = csv.num(r, kGpuMsCiHigh);
+    p.speedup = {csv.num(r, kSpeedup), csv.num(r, kSpeedupLow), csv.num(r, kSpeedupHigh)};
+    p.psnr_db = csv.num(r, kPsnrDb);
+    p.ssim = csv.num(r, kSsim);
+    p.eci = csv.num(r, kEci);
+    p.flicker = csv.num(r, kFlickerRatio);
+    p.jod = csv.num(r, kCvvdpJod);  // absent in sweeps from before ColorVideoVDP
+    for (const auto& pc : kPixelClasses)
+        if (auto v = csv.num(r, pc.column)) p.classes[pc.column] = *v;
+    return p;
+}
+
+}  // namespace
+
 SweepData loadSweep(const std::filesystem::path& dir) {
+    using namespace sweep_csv;
     SweepData d;
     d.dir = dir;
-    CsvData csv = readCsv(dir / "sweep.csv", isSweepNumeric,
-                          {"config", "variant", "status", "shading_cost", "gpu_ms_median", "psnr_db", "ssim", "eci"});
-    for (size_t r = 0; r < csv.size(); ++r) {
-        SweepPoint p;
-        p.config = csv.text(r, "config");
-        p.variant = csv.text(r, "variant");
-        p.status = csv.text(r, "status");
-        if (p.config.empty() || p.variant.empty())
-            throw std::invalid_argument((dir / "sweep.csv").string() + ": line " + std::to_string(csv.row_lines[r]) +
-                                        ": empty config or variant; expected a configuration label and a variant name");
-        p.path = csv.text(r, "path");
-        p.reference = csv.text(r, "reference");
-        p.shading_cost = csv.num(r, "shading_cost").value_or(1);
-        for (const auto& f : sweepSettingFields()) {
-            if (!f.number) {
-                if (auto w = csv.text(r, f.column); !w.empty()) p.words[f.column] = w;
-            } else if (auto v = csv.num(r, f.column)) {
-                p.numbers[f.column] = *v;
-            }
-        }
-        p.gpu_ms = csv.num(r, "gpu_ms_median");
-        p.gpu_ms_low = csv.num(r, "gpu_ms_ci_low");
-        p.gpu_ms_high = csv.num(r, "gpu_ms_ci_high");
-        p.speedup = {csv.num(r, "speedup_vs_full"), csv.num(r, "speedup_ci_low"), csv.num(r, "speedup_ci_high")};
-        p.psnr_db = csv.num(r, "psnr_db");
-        p.ssim = csv.num(r, "ssim");
-        p.eci = csv.num(r, "eci");
-        p.flicker = csv.num(r, "flicker_ratio");
-        p.jod = csv.num(r, kJodColumn);  // absent in sweeps from before ColorVideoVDP
-        for (const auto& pc : kPixelClasses)
-            if (auto v = csv.num(r, pc.column)) p.classes[pc.column] = *v;
-        d.points.push_back(std::move(p));
-    }
-    auto run_file = dir / "run.json";
+    CsvData csv = readCsv(dir / rundir::kSweepCsv, isSweepNumeric,
+                          {kConfig, kVariant, kStatus, shadingCostColumn(), kGpuMsMedian, kPsnrDb, kSsim, kEci});
+    for (size_t r = 0; r < csv.size(); ++r) d.points.push_back(sweepPoint(csv, r));
+    auto run_file = dir / rundir::kRunJson;
     if (std::filesystem::exists(run_file)) {
         std::ifstream in(run_file);
         d.run = nlohmann::json::parse(in, nullptr, false);
@@ -190,9 +183,10 @@ SweepData loadSweep(const std::filesystem::path& dir) {
 void combineSweeps(const std::filesystem::path& dir, const std::vector<std::string>& subdirs) {
     std::string text;
     for (const auto& sub : subdirs) {
-        CsvData csv = readCsv(dir / sub / "sweep.csv", isSweepNumeric, {"config", "path", "reference"});
-        if (csv.header != sweepColumns())
-            throw std::invalid_argument((dir / sub / "sweep.csv").string() +
+        const auto file = dir / sub / rundir::kSweepCsv;
+        CsvData csv = readCsv(file, isSweepNumeric, {sweep_csv::kConfig, sweep_csv::kPath, sweep_csv::referenceColumn()});
+        if (csv.header != sweep_csv::columns())
+            throw std::invalid_argument(file.string() +
                                         ": other columns than this cbrbench writes; expected one sweep's sweep.csv");
         auto line = [](const std::vector<std::string>& cells) {
             std::string out;
@@ -205,7 +199,7 @@ void combineSweeps(const std::filesystem::path& dir, const std::vector<std::stri
         if (text.empty()) text = line(csv.header);
         for (size_t r = 0; r < csv.size(); ++r) text += line(csv.row(r));
     }
-    writeTextAtomically(dir / "sweep.csv", text);
+    writeTextAtomically(dir / rundir::kSweepCsv, text);
 }
 
 }  // namespace cbr::reports

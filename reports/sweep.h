@@ -39,9 +39,6 @@ struct SweepPoint {
     std::map<std::string, double> classes;  // px_* mean shares
 };
 
-// The columns of sweep.csv, in order (the pixel classes follow).
-const std::vector<std::string>& sweepColumns();
-
 // The settings a sweep can vary per configuration (shading cost is the workload, not a
 // choice): the settings table's rows that sweep and name their variants, in its order, with
 // their sweep.csv column and whether they hold a number or a word.

@@ -9,6 +9,7 @@
 #include "reports/html.h"
 #include "reports/jod.h"
 #include "reports/sweep_detail.h"
+#include "rundir/setting_columns.h"
 
 namespace cbr::reports {
 namespace {
@@ -31,10 +32,10 @@ std::vector<const SweepPoint*> peerConfigs(const std::vector<SweepPoint>& points
         const SweepPoint* best = nullptr;
         for (const auto& p : points) {
             if (p.variant != v || p.shading_cost != cost || !p.hasTimes() || !p.gpu_ms) continue;
-            bool at_choice = !p.number("cso_tolerance") || choices.empty();
+            bool at_choice = !p.number(rundir::settingColumn("cso-tolerance")) || choices.empty();
             for (const auto& ch : choices)
                 at_choice = at_choice || (ch.shading_cost == cost && ch.tolerance &&
-                                          fmtShort(*p.number("cso_tolerance")) == fmtShort(*ch.tolerance));
+                                          fmtShort(*p.number(rundir::settingColumn("cso-tolerance"))) == fmtShort(*ch.tolerance));
             if (at_choice && (!best || q.key(p) > q.key(*best))) best = &p;
         }
         if (best) peers.push_back(best);
@@ -44,7 +45,7 @@ std::vector<const SweepPoint*> peerConfigs(const std::vector<SweepPoint>& points
 
 // A configuration as the sentences name it: cbr-cso (tolerance 0.01), taau.
 std::string configName(const SweepPoint& c) {
-    return c.number("cso_tolerance") ? c.variant + " (tolerance " + fmtShort(*c.number("cso_tolerance")) + ")"
+    return c.number(rundir::settingColumn("cso-tolerance")) ? c.variant + " (tolerance " + fmtShort(*c.number(rundir::settingColumn("cso-tolerance"))) + ")"
                                      : c.variant;
 }
 
@@ -111,14 +112,14 @@ EqualCost matchAtEqualCost(const SweepPoint& c, const std::vector<const SweepPoi
         double f = span > 0 ? (e.cbr_ms - *lo->gpu_ms) / span : 0.0;
         e.matched = true;
         e.drr_ms = e.cbr_ms;
-        e.drr_scale = lerp(lo->number("drr_scale"), hi->number("drr_scale"), f);
+        e.drr_scale = lerp(lo->number(rundir::settingColumn("drr-scale")), hi->number(rundir::settingColumn("drr-scale")), f);
         e.drr_psnr = lerp(lo->psnr_db, hi->psnr_db, f);
         e.drr_ssim = lerp(lo->ssim, hi->ssim, f);
         e.drr_eci = lerp(lo->eci, hi->eci, f);
         e.drr_jod = lerp(lo->jod, hi->jod, f);
     } else {
         const SweepPoint* near = e.cbr_ms < *by_time.front()->gpu_ms ? by_time.front() : by_time.back();
-        e.drr_scale = near->number("drr_scale");
+        e.drr_scale = near->number(rundir::settingColumn("drr-scale"));
         e.drr_ms = near->gpu_ms;
         e.drr_psnr = near->psnr_db;
         e.drr_ssim = near->ssim;

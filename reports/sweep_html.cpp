@@ -31,7 +31,7 @@ std::vector<std::string> variantsOf(const std::vector<SweepPoint>& points) {
 
 const char* kCostColours[] = {"#009e73", "#0072b2", "#d55e00", "#cc79a7", "#e69f00", "#56b4e9", "#a08c00"};
 
-std::string jsonString(const nlohmann::json& j, const char* ptr) {
+std::string jsonString(const nlohmann::json& j, const std::string& ptr) {
     try {
         const auto& v = j.at(nlohmann::json::json_pointer(ptr));
         return v.is_string() ? v.get<std::string>() : v.dump();
@@ -59,8 +59,8 @@ const std::vector<Metric>& metrics() {
 }
 const std::vector<Metric>& classMetrics() {
     static const std::vector<Metric> m = {
-        {"px_reused share", [](const SweepPoint& p) { return classShare(p, "px_reused"); }},
-        {"px_occluded share", [](const SweepPoint& p) { return classShare(p, "px_occluded"); }}};
+        {"px_reused share", [](const SweepPoint& p) { return classShare(p, rundir::pixels::kReused); }},
+        {"px_occluded share", [](const SweepPoint& p) { return classShare(p, rundir::pixels::kOccluded); }}};
     return m;
 }
 
@@ -314,8 +314,8 @@ std::string tableSection(const std::vector<SweepPoint>& points, const VariantRol
                 (jod ? "</td><td class=\"num\">" + jodText(p.jod, kDash) : std::string()) + "</td><td class=\"num\">" +
                 fmt(p.psnr_db, 2) +
                 "</td><td class=\"num\">" + fmt(p.ssim, 4) + "</td><td class=\"num\">" + fmt(p.eci, 4) +
-                "</td><td class=\"num\">" + fmtPct(classShare(p, "px_reused"), 1) + "</td><td class=\"num\">" +
-                fmtPct(classShare(p, "px_occluded"), 1) + "</td></tr>";
+                "</td><td class=\"num\">" + fmtPct(classShare(p, rundir::pixels::kReused), 1) + "</td><td class=\"num\">" +
+                fmtPct(classShare(p, rundir::pixels::kOccluded), 1) + "</td></tr>";
     }
     return html + "</table></div><p class=\"note\">From sweep.csv. GPU ms: median over all frames and repetitions; the "
                   "interval is a 95% bootstrap interval of the median over repetitions. Speed-up: the median of paired "
@@ -324,11 +324,14 @@ std::string tableSection(const std::vector<SweepPoint>& points, const VariantRol
 }
 
 std::string runTitle(const nlohmann::json& run) {
-    std::string where = jsonString(run, "/scene/name") + " / " + jsonString(run, "/path/name") + " at " +
-                        jsonString(run, "/settings/width") + "\u00d7" + jsonString(run, "/settings/height");
+    std::string where = jsonString(run, rundir::pointer(run_json::kScene, run_json::scene::kName)) + " / " +
+                        jsonString(run, rundir::pointer(run_json::kPath, run_json::path::kName)) + " at " +
+                        jsonString(run, rundir::pointer(run_json::kSettings, run_json::settings::kWidth)) + "\u00d7" +
+                        jsonString(run, rundir::pointer(run_json::kSettings, run_json::settings::kHeight));
     std::string pipeline;
-    for (const auto& v : run.value("variants", nlohmann::json::array()))
-        if (v.is_object() && v.contains("pipeline") && v["pipeline"].is_string()) pipeline = v["pipeline"];
+    for (const auto& v : run.value(run_json::kVariants, nlohmann::json::array()))
+        if (v.is_object() && v.contains(run_json::variant::kPipeline) && v[run_json::variant::kPipeline].is_string())
+            pipeline = v[run_json::variant::kPipeline];
     return "cbrbench sweep: " + where + (pipeline.empty() ? "" : " (" + pipeline + ")");
 }
 
@@ -338,11 +341,12 @@ std::string sweepHtml(const std::filesystem::path& dir, const VariantRoles& role
     const SweepData d = loadSweep(dir);
     const std::string title = runTitle(d.run);
     std::string html = pageStart(title);
-    html += "<h1>" + esc(title) + "</h1><div class=\"sub\">" + esc(jsonString(d.run, "/device/name")) + " \u00b7 " +
-            esc(jsonString(d.run, "/date")) + " \u00b7 commit " + esc(jsonString(d.run, "/tool/commit")) + " \u00b7 " +
+    html += "<h1>" + esc(title) + "</h1><div class=\"sub\">" + esc(jsonString(d.run, rundir::pointer(run_json::kDevice, run_json::device::kName))) + " \u00b7 " +
+            esc(jsonString(d.run, rundir::pointer(run_json::kDate))) + " \u00b7 commit " +
+            esc(jsonString(d.run, rundir::pointer(run_json::kTool, run_json::tool::kCommit))) + " \u00b7 " +
             std::to_string(d.points.size()) + " configurations, interleaved in one process \u00b7 <a href=\"report.html\">"
             "the run's full report</a></div>";
-    if (auto note = jsonString(d.run, "/device/timing_note"); !note.empty())
+    if (auto note = jsonString(d.run, rundir::pointer(run_json::kDevice, run_json::device::kTimingNote)); !note.empty())
         html += "<p class=\"callout\"><b>Timing note:</b> " + esc(note) + "</p>";
     html += "<nav><a href=\"#answer\">answer</a><a href=\"#equal\">equal cost</a><a href=\"#plane\">error vs time</a>"
             "<a href=\"#params\">settings</a><a href=\"#table\">configurations</a></nav>";
@@ -357,11 +361,12 @@ std::string sweepIndexHtml(const std::filesystem::path& dir, const VariantRoles&
     const bool paths_vary = pathsVary(gs), refs_vary = referencesVary(gs);
     nlohmann::json first_run;
     if (!gs.empty()) first_run = loadSweep(dir / sweepGroupDir(gs[0].path, gs[0].reference, paths_vary, refs_vary)).run;
-    std::string title = "cbrbench sweep: " + jsonString(first_run, "/scene/name") + " over " + std::to_string(gs.size()) +
+    std::string title = "cbrbench sweep: " + jsonString(first_run, rundir::pointer(run_json::kScene, run_json::scene::kName)) + " over " + std::to_string(gs.size()) +
                         " sweeps (" + (paths_vary ? "paths" : "") + (paths_vary && refs_vary ? " \u00d7 " : "") +
                         (refs_vary ? "reference kinds" : "") + ")";
     std::string html = pageStart(title) + "<h1>" + esc(title) + "</h1><div class=\"sub\">" +
-                       esc(jsonString(first_run, "/device/name")) + " \u00b7 " + esc(jsonString(first_run, "/date")) +
+                       esc(jsonString(first_run, rundir::pointer(run_json::kDevice, run_json::device::kName))) + " \u00b7 " +
+                       esc(jsonString(first_run, rundir::pointer(run_json::kDate))) +
                        " \u00b7 each sweep a run of its own (its reference rendered once), one after another</div>";
     const auto choices = recommendSettings(d.points, roles);
     for (const auto& w : pathDisagreements(choices))
@@ -390,8 +395,8 @@ std::string sweepIndexHtml(const std::filesystem::path& dir, const VariantRoles&
     html += "</table></div><p class=\"note\">Rule: " + esc(rule) + ". Hover a value for its sentence.</p>";
     for (const auto& g : gs) {
         const std::string sub = sweepGroupDir(g.path, g.reference, paths_vary, refs_vary);
-        html += "<h3>" + esc(groupName(g, paths_vary, refs_vary)) + ": <a href=\"" + esc(sub) + "/sweep.html\">sweep.html"
-                "</a> \u00b7 <a href=\"" + esc(sub) + "/report.html\">report.html</a></h3>";
+        html += "<h3>" + esc(groupName(g, paths_vary, refs_vary)) + ": <a href=\"" + esc(sub) + "/" + rundir::kSweepHtml + "\">" + rundir::kSweepHtml +
+                "</a> \u00b7 <a href=\"" + esc(sub) + "/" + rundir::kReportHtml + "\">" + rundir::kReportHtml + "</a></h3>";
         for (const auto& c : choices)
             if (c.path == g.path && c.reference == g.reference) html += "<p class=\"answer\">" + esc(c.sentence) + "</p>";
     }
@@ -403,7 +408,7 @@ std::string sweepIndexHtml(const std::filesystem::path& dir, const VariantRoles&
 void writeSweepReport(const std::filesystem::path& dir, const VariantRoles& roles) {
     const bool index = groups(loadSweep(dir).points).size() > 1;
     const std::string html = index ? sweepIndexHtml(dir, roles) : sweepHtml(dir, roles);
-    writeTextAtomically(dir / "sweep.html", html);
+    writeTextAtomically(dir / rundir::kSweepHtml, html);
 }
 
 }  // namespace cbr::reports

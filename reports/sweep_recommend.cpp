@@ -14,6 +14,7 @@
 #include "reports/html.h"
 #include "reports/jod.h"
 #include "reports/sweep_detail.h"
+#include "rundir/setting_columns.h"
 
 namespace cbr::reports {
 namespace {
@@ -55,7 +56,7 @@ TolerancePick pickTolerance(const std::vector<const SweepPoint*>& cso, const Swe
         if (q.key(*p) >= top - q.tie()) t.plateau.push_back(p), low_eci = std::min(low_eci, p->eci.value_or(1e300));
     for (const auto* p : t.plateau)
         if (p->eci.value_or(1e300) <= low_eci + 1e-4 &&
-            (!t.best || *p->number("cso_tolerance") > *t.best->number("cso_tolerance")))
+            (!t.best || *p->number(rundir::settingColumn("cso-tolerance")) > *t.best->number(rundir::settingColumn("cso-tolerance"))))
             t.best = p;
     t.worst = cso.front();
     for (const auto* p : cso)
@@ -86,7 +87,7 @@ std::string toleranceSentence(const TolerancePick& t, size_t n_cso, const SweepP
     s += ", with ECI " + fmt(best->eci, 4) + (aso ? " (" + bound + " " + fmt(aso->eci, 4) + ")" : std::string());
     const auto top = q.of(*best), low = q.of(*t.worst);
     if (t.worst != best && top && low && *top - *low >= 0.01)
-        s += ", while tolerance " + fmtShort(*t.worst->number("cso_tolerance")) + " loses " + q.diff(*top - *low);
+        s += ", while tolerance " + fmtShort(*t.worst->number(rundir::settingColumn("cso-tolerance"))) + " loses " + q.diff(*top - *low);
     else
         s += "; " + q.brief() + " varies less than " + q.diff(0.01) + " across the tolerances";
     return s + ".";
@@ -101,7 +102,7 @@ std::vector<ToleranceChoice> recommendTolerance(const std::vector<SweepPoint>& p
     for (double cost : shadingCosts(points)) {
         std::vector<const SweepPoint*> cso;
         for (const auto& p : points)
-            if (p.shading_cost == cost && p.hasTimes() && p.gpu_ms && p.number("cso_tolerance"))
+            if (p.shading_cost == cost && p.hasTimes() && p.gpu_ms && p.number(rundir::settingColumn("cso-tolerance")))
                 cso.push_back(&p);
         if (cso.empty()) continue;
         const std::string bound = toleranceBound(cso, roles);
@@ -109,7 +110,7 @@ std::vector<ToleranceChoice> recommendTolerance(const std::vector<SweepPoint>& p
         const TolerancePick t = pickTolerance(cso, aso, margin, q);
         ToleranceChoice c;
         c.shading_cost = cost;
-        c.tolerance = t.best->number("cso_tolerance");
+        c.tolerance = t.best->number(rundir::settingColumn("cso-tolerance"));
         c.sentence = "cso-tolerance " + fmtShort(*c.tolerance) + costSuffix(points, cost) + ": " +
                      toleranceSentence(t, cso.size(), aso, bound, margin, q);
         out.push_back(c);
@@ -222,7 +223,7 @@ std::optional<SettingChoice> chooseSetting(const Group& g, double cost, const Sw
         for (const auto& t : tolerances)
             if (t.shading_cost == cost && t.tolerance)
                 for (const auto* p : ran)
-                    if (p->number("cso_tolerance") && !best && fmtShort(*p->number("cso_tolerance")) == fmtShort(*t.tolerance))
+                    if (p->number(rundir::settingColumn("cso-tolerance")) && !best && fmtShort(*p->number(rundir::settingColumn("cso-tolerance"))) == fmtShort(*t.tolerance))
                         best = p, c.sentence = t.sentence;
     }
     if (!best) {

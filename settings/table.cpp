@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "settings/display_keys.h"
+
 namespace cbr::settings {
 namespace {
 
@@ -111,13 +113,14 @@ Row displayRow() {
                            .set = [](Tunables& t, const std::string& v) { t.display = metrics::parseDisplay(v); },
                            .json = [](const Tunables& t) {
                                const auto& d = t.display;
-                               return nlohmann::json{{"name", d.name},          {"spec", d.spec()},
-                                                     {"ppd", d.ppd()},          {"width", d.width},
-                                                     {"height", d.height},      {"distance_m", d.distance_m},
-                                                     {"diagonal_in", d.diagonal_in}, {"fov_diagonal_deg", d.fov_diagonal_deg},
-                                                     {"peak", d.peak},          {"contrast", d.contrast},
-                                                     {"ambient_lux", d.ambient_lux}, {"k_refl", d.k_refl},
-                                                     {"description", d.describe()}};
+                               namespace k = display_keys;
+                               return nlohmann::json{{k::kName, d.name},          {k::kSpec, d.spec()},
+                                                     {k::kPpd, d.ppd()},          {k::kWidth, d.width},
+                                                     {k::kHeight, d.height},      {k::kDistanceM, d.distance_m},
+                                                     {k::kDiagonalIn, d.diagonal_in}, {k::kFovDiagonalDeg, d.fov_diagonal_deg},
+                                                     {k::kPeak, d.peak},          {k::kContrast, d.contrast},
+                                                     {k::kAmbientLux, d.ambient_lux}, {k::kKRefl, d.k_refl},
+                                                     {k::kDescription, d.describe()}};
                            }}};
 }
 

@@ -15,6 +15,7 @@
 #include "harness/base/process.h"
 #include "reports/output_dir.h"
 #include "reports/report_data.h"
+#include "rundir/summary_csv.h"
 
 namespace cbr::harness {
 namespace ab {
@@ -128,14 +129,6 @@ std::string runName(char side, int index) {
     return b;
 }
 
-std::string deviceOf(const reports::RunData& d) {
-    auto text = [&](const char* ptr) {
-        const auto* j = reports::jsonAt(d.run, ptr);
-        return !j || j->is_null() ? std::string() : j->is_string() ? j->get<std::string>() : j->dump();
-    };
-    return "'" + text("/device/name") + "' driver " + text("/device/driver_id") + " " + text("/device/driver_version");
-}
-
 // One child `BIN run ARGS --repeat R --quiet --out DIR/runs/NAME`, read back.
 reports::RunData runSide(const Plan& p, const Side& s, int index, const fs::path& dir, State& st) {
     const std::string name = runName(s.letter, index);
@@ -164,10 +157,10 @@ reports::RunData runSide(const Plan& p, const Side& s, int index, const fs::path
 
 // After the first block: the cells (variants both sides ran), the device, the quality verdicts.
 void setUpCells(const Plan& p, State& st, const reports::RunData& a, const reports::RunData& b) {
-    if (deviceOf(a) != deviceOf(b))
-        throw std::invalid_argument("ab: the sides ran on different devices or drivers: A " + deviceOf(a) + ", B " +
-                                    deviceOf(b) + "; accepted: one device (the same --device on both sides)");
-    st.device = deviceOf(a);
+    if (reports::deviceText(a) != reports::deviceText(b))
+        throw std::invalid_argument("ab: the sides ran on different devices or drivers: A " + reports::deviceText(a) + ", B " +
+                                    reports::deviceText(b) + "; accepted: one device (the same --device on both sides)");
+    st.device = reports::deviceText(a);
     for (const auto& v : a.variants)
         if (std::find(b.variants.begin(), b.variants.end(), v) != b.variants.end()) st.variants.push_back(v);
     st.cells.resize(st.variants.size());
@@ -179,9 +172,9 @@ void setUpCells(const Plan& p, State& st, const reports::RunData& a, const repor
             x.base = reports::summaryNum(a, v, column);
             x.cur = reports::summaryNum(b, v, column);
         };
-        read(q.psnr, "psnr_db_mean");
-        read(q.ssim, "ssim_mean");
-        read(q.eci, "eci");
+        read(q.psnr, rundir::summary::kPsnrDbMean);
+        read(q.ssim, rundir::summary::kSsimMean);
+        read(q.eci, rundir::summary::kEci);
         judgeQuality(q.psnr, true, p.o.psnr_db, false);
         judgeQuality(q.ssim, true, p.o.ssim, false);
         judgeQuality(q.eci, false, p.eci, true);

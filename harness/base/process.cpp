@@ -10,6 +10,8 @@
 #include <fstream>
 #include <malloc.h>
 #include <thread>
+
+#include "rundir/run_json.h"
 #include <unistd.h>
 
 #include "renderer/vk/sanitizers.h"
@@ -84,12 +86,13 @@ nlohmann::json hostJson() {
     // and glibc asked ("madvise" with the tunable at 1), or glibc maps hugetlbfs pages (2).
     const int tunable = hugeTunable();
     bool huge = tunable == 2 || (tunable != 0 && thp == "always") || (tunable == 1 && thp == "madvise");
-    return {{"name", std::string(host)},
-            {"cpus", std::thread::hardware_concurrency()},
-            {"memory",
-             {{"keeps_freed_memory", true},
-              {"transparent_huge_pages", thp.empty() ? "unknown" : thp},
-              {"heap_huge_pages", huge}}}};
+    namespace k = rundir::run::host;
+    return {{k::kName, std::string(host)},
+            {k::kCpus, std::thread::hardware_concurrency()},
+            {k::kMemory,
+             {{k::memory::kKeepsFreedMemory, true},
+              {k::memory::kTransparentHugePages, thp.empty() ? "unknown" : thp},
+              {k::memory::kHeapHugePages, huge}}}};
 }
 
 ChildExit runChildProcess(const std::vector<std::string>& argv, const std::filesystem::path& out_log,

@@ -2,20 +2,19 @@
 #include "harness/base/wall_account.h"
 
 #include <cstdio>
+#include <iterator>
+
+#include "rundir/run_json_health.h"
 
 namespace cbr::harness {
 
-const char* wallPartKey(WallPart part) {
-    static const char* const kKeys[kWallParts] = {
-        "scene_load", "device_open", "upload",       "pipelines", "scorer_setup", "warm_up",   "quality_render", "readback",
-        "scoring",    "timed_frames", "worst_images", "bandwidth", "outputs",  "report",         "other"};
-    return kKeys[size_t(part)];
-}
+// run.json's wall.parts_s and wall.worker_cpu_s keys, in the enums' order (rundir/run_json_health.h).
+static_assert(std::size(rundir::run::wall::kParts) == kWallParts);
+static_assert(std::size(rundir::run::wall::kWorkerTasks) == kWorkerTasks);
 
-const char* workerTaskKey(WorkerTask task) {
-    static const char* const kKeys[kWorkerTasks] = {"psnr", "ssim", "flip", "eci", "cvvdp", "image_encode"};
-    return kKeys[size_t(task)];
-}
+const char* wallPartKey(WallPart part) { return rundir::run::wall::kParts[size_t(part)]; }
+
+const char* workerTaskKey(WorkerTask task) { return rundir::run::wall::kWorkerTasks[size_t(task)]; }
 
 void WallAccount::close() {
     total_ = elapsed();

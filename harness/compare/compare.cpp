@@ -20,6 +20,11 @@
 #include "reports/junit.h"
 #include "reports/report_data.h"
 #include "settings/table.h"
+#include "rundir/files.h"
+#include "rundir/pointer.h"
+#include "rundir/run_json.h"
+#include "rundir/setting_columns.h"
+#include "rundir/summary_csv.h"
 
 namespace cbr::harness {
 
@@ -58,8 +63,12 @@ struct Cell {
 };
 
 
-std::string jsonString(const nlohmann::json& run, const std::string& pointer) {
-    const nlohmann::json* j = reports::jsonAt(run, pointer);
+namespace rj = rundir::run;
+
+// run.json's value at the schema's keys as text ("" where absent; numbers as JSON writes them).
+template <typename... Keys>
+std::string jsonString(const nlohmann::json& run, const Keys&... keys) {
+    const nlohmann::json* j = reports::jsonAt(run, rundir::pointer(keys...));
     if (!j || j->is_null()) return "";
     if (j->is_string()) return j->get<std::string>();
     return j->dump();
@@ -72,23 +81,24 @@ Side loadSide(const std::string& dir, const std::string& role) {
     try {
         s.data = reports::loadRun(dir);
     } catch (const nlohmann::json::exception& e) {
-        throw std::invalid_argument("compare: " + role + " " + (fs::path(dir) / "run.json").string() + ": " + e.what());
+        throw std::invalid_argument("compare: " + role + " " + (fs::path(dir) / rundir::kRunJson).string() + ": " + e.what());
     } catch (const std::invalid_argument& e) {
         throw std::invalid_argument("compare: " + role + " " + e.what());
     }
     const auto& run = s.data.run;
-    s.scene = jsonString(run, "/scene/name") + "#" + jsonString(run, "/scene/hash");
-    s.path = jsonString(run, "/path/name") + "#" + jsonString(run, "/path/hash");
-    s.pipeline = jsonString(run, "/settings/pipeline");
+    s.scene = jsonString(run, rj::kScene, rj::scene::kName) + "#" + jsonString(run, rj::kScene, rj::scene::kHash);
+    s.path = jsonString(run, rj::kPath, rj::path::kName) + "#" + jsonString(run, rj::kPath, rj::path::kHash);
+    s.pipeline = jsonString(run, rj::kSettings, rj::settings::kPipeline);
     if (s.pipeline.empty()) s.pipeline = "forward";
-    s.resolution = jsonString(run, "/settings/width") + "x" + jsonString(run, "/settings/height");
+    s.resolution =
+        jsonString(run, rj::kSettings, rj::settings::kWidth) + "x" + jsonString(run, rj::kSettings, rj::settings::kHeight);
     if (s.resolution == "x")
-        throw std::invalid_argument("compare: " + role + " " + (fs::path(dir) / "run.json").string() +
+        throw std::invalid_argument("compare: " + role + " " + (fs::path(dir) / rundir::kRunJson).string() +
                                     ": /settings/width and /settings/height missing; expected a cbrbench run.json");
     for (const auto& k : kKeySettings) {
-        std::string v = jsonString(run, "/settings/" + k);
+        std::string v = jsonString(run, rj::kSettings, k);
         // Older runs record the reference only under metrics.
-        if (v.empty() && k == "reference") v = jsonString(run, "/metrics/reference_kind");
+        if (v.empty() && k == rundir::settingColumn("reference")) v = jsonString(run, rj::kMetrics, rj::metrics::kReferenceKind);
         s.key_values.push_back(v);
     }
     return s;
@@ -107,11 +117,6 @@ void keySides(Side& a, Side& b) {
         }
         s->context = s->scene + "|" + s->path + "|" + s->pipeline + "|" + s->resolution + "|" + s->settings;
     }
-}
-
-std::string deviceText(const RunData& d) {
-    return "'" + jsonString(d.run, "/device/name") + "' driver " + jsonString(d.run, "/device/driver_id") + " " +
-           jsonString(d.run, "/device/driver_version");
 }
 
 std::string num(std::optional<double> v) { return v ? reports::Cell(*v).text() : std::string(); }
@@ -154,7 +159,7 @@ reports::ComparePage comparePage(const CompareOptions& o, const Side& base, cons
                                  const std::vector<Cell>& cells, double threshold, double eci_threshold,
                                  const std::string& outcome) {
     reports::ComparePage page{.outcome = outcome, .baseline_dir = base.data.dir.string(),
-                              .current_dir = cur.data.dir.string(), .device = deviceText(cur.data),
+                              .current_dir = cur.data.dir.string(), .device = reports::deviceText(cur.data),
                               .threshold = threshold, .alpha = o.alpha, .psnr_db = o.psnr_db, .ssim = o.ssim,
                               .eci_threshold = eci_threshold, .jod = o.jod, .time_rule = kTimeRule};
     page.exit_rule = "Exit code 1 for any SLOWER or WORSE cell; 2 when no cell was decided (or, with --strict, any "
@@ -342,7 +347,7 @@ int writeCompare(const CompareOptions& o, const Side& base, const Side& cur, con
     reports::writeTextAtomically(out / "compare.html",
                                  reports::compareHtml(comparePage(o, base, cur, cells, threshold, eci_threshold, outcome)));
     if (!o.junit.empty())
-        reports::writeTextAtomically(o.junit, compareJunit(cells, threshold, jsonString(cur.data.run, "/date")));
+        reports::writeTextAtomically(o.junit, compareJunit(cells, threshold, jsonString(cur.data.run, rj::kDate)));
 
     if (!matched)
         std::fprintf(stderr, "cbrbench: compare: no cell matches (scene, path, pipeline, resolution or settings differ)\n");
@@ -402,10 +407,10 @@ std::vector<Cell> compareCells(const CompareOptions& o, const Side& base, const 
                 q.base = reports::summaryNum(base_side->data, v, column);
                 q.cur = reports::summaryNum(cur_side->data, v, column);
             };
-            quality(cell.psnr, "psnr_db_mean");
-            quality(cell.ssim, "ssim_mean");
-            quality(cell.eci, "eci");
-            quality(cell.jod, reports::kJodColumn);
+            quality(cell.psnr, rundir::summary::kPsnrDbMean);
+            quality(cell.ssim, rundir::summary::kSsimMean);
+            quality(cell.eci, rundir::summary::kEci);
+            quality(cell.jod, rundir::summary::kCvvdpJod);
             judgeQuality(cell.psnr, true, o.psnr_db, false);
             judgeQuality(cell.ssim, true, o.ssim, false);
             judgeQuality(cell.eci, false, eci_threshold, true);
@@ -421,8 +426,8 @@ std::vector<Cell> compareCells(const CompareOptions& o, const Side& base, const 
 void neverSameIfUnsteady(Cell& c) {
     std::string why;
     for (auto [side, role] : {std::pair{c.base, "baseline"}, std::pair{c.cur, "current"}}) {
-        if (reports::summaryText(side->data, c.variant, "status") != kUnsteadyStatus) continue;
-        const std::string note = reports::summaryText(side->data, c.variant, "note");
+        if (reports::summaryText(side->data, c.variant, rundir::summary::kStatus) != kUnsteadyStatus) continue;
+        const std::string note = reports::summaryText(side->data, c.variant, rundir::summary::kNote);
         why += std::string(why.empty() ? "" : "; ") + role + " unsteady" + (note.empty() ? "" : " (" + note + ")");
     }
     if (why.empty()) return;
@@ -447,10 +452,10 @@ int runCompare(const CompareOptions& o) {
         return kCompareBadInput;
     }
     // Different devices or drivers are never a regression: refuse, naming both.
-    if (deviceText(base.data) != deviceText(cur.data)) {
+    if (reports::deviceText(base.data) != reports::deviceText(cur.data)) {
         std::fprintf(stderr,
                      "cbrbench: compare: refusing to compare different devices or drivers: baseline %s, current %s\n",
-                     deviceText(base.data).c_str(), deviceText(cur.data).c_str());
+                     reports::deviceText(base.data).c_str(), reports::deviceText(cur.data).c_str());
         return kCompareBadInput;
     }
 

@@ -12,6 +12,7 @@
 #include "harness/output/exports.h"
 #include "reports/csv.h"
 #include "reports/report_data.h"
+#include "rundir/files.h"
 
 namespace cbr::harness {
 
@@ -28,7 +29,7 @@ int runExport(const std::string& run_dir, ExportFormat format, const std::string
     try {
         d = reports::loadRun(run_dir);
     } catch (const nlohmann::json::exception& e) {
-        throw std::invalid_argument("export " + (fs::path(run_dir) / "run.json").string() + ": " + e.what());
+        throw std::invalid_argument("export " + (fs::path(run_dir) / rundir::kRunJson).string() + ": " + e.what());
     }
     reports::writeTextAtomically(out, exportText(d, format));
     std::printf("export: %s\n", out.c_str());

@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "rundir/run_json.h"
+
 namespace cbr::harness {
 
 double peakRssMib() {
@@ -29,17 +31,18 @@ std::string sceneLoadLine(const scene::Scene& scene, const SceneLoad& load) {
 }
 
 void addSceneCost(nlohmann::json& j, const scene::Scene& scene, const SceneLoad& load) {
+    namespace k = rundir::run::scene;
     const scene::SceneInfo& si = scene.info;
-    j["draws"] = si.draws;
-    j["materials"] = si.materials;
-    j["textures"] = si.textures;
-    j["texture_bytes"] = si.texture_bytes;
-    j["texture_gpu_bytes"] = si.texture_gpu_bytes;
-    j["load_s"] = load.load_s;
-    j["upload_s"] = load.upload_s;
-    j["peak_rss_mib_loaded"] = load.peak_rss_mib_loaded;
-    j["peak_rss_mib_end"] = load.peak_rss_mib_end;
-    j["cost_note"] =
+    j[k::kDraws] = si.draws;
+    j[k::kMaterials] = si.materials;
+    j[k::kTextures] = si.textures;
+    j[k::kTextureBytes] = si.texture_bytes;
+    j[k::kTextureGpuBytes] = si.texture_gpu_bytes;
+    j[k::kLoadS] = load.load_s;
+    j[k::kUploadS] = load.upload_s;
+    j[k::kPeakRssMibLoaded] = load.peak_rss_mib_loaded;
+    j[k::kPeakRssMibEnd] = load.peak_rss_mib_end;
+    j[k::kCostNote] =
         "draws: opaque + masked + blend, one per instance; textures: images used as colour and as data count twice; "
         "texture_bytes: RGBA8 base levels as decoded and copied to the device, texture_gpu_bytes: with their mip "
         "chains; load_s: wall clock of reading, parsing, decoding images (up to " +

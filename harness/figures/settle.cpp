@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "harness/figures/stats.h"
+#include "rundir/summary_csv.h"
 
 namespace cbr::harness {
 
@@ -58,7 +59,7 @@ LookPlan planLooks(int max_runs, int runs_per_block, int repeat, SampleUnit unit
 }
 
 RunSample runSampleOf(const reports::RunData& d, const std::string& variant) {
-    return {repetitionMedians(d, variant), reports::summaryText(d, variant, "status") == kUnsteadyStatus};
+    return {repetitionMedians(d, variant), reports::summaryText(d, variant, rundir::summary::kStatus) == kUnsteadyStatus};
 }
 
 TimeSamples samplesOf(const CellRuns& c, int runs, SampleUnit unit) {

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/scene/interior.h"
+#include "rundir/run_json.h"
 
 namespace cbr::harness {
 
@@ -41,8 +42,9 @@ paths::BuiltinContext builtinContext(const scene::Scene& scene, const std::strin
 }
 
 nlohmann::json placementJson(const PathPlacement& placement, const glm::dmat4& to_world) {
-    nlohmann::json j = {{"rule", placement.rule}, {"reason", placement.reason}};
-    if (placement.grid != glm::ivec3(0)) j["grid"] = {placement.grid.x, placement.grid.y, placement.grid.z};
+    namespace k = rundir::run::path::placement;
+    nlohmann::json j = {{k::kRule, placement.rule}, {k::kReason, placement.reason}};
+    if (placement.grid != glm::ivec3(0)) j[k::kGrid] = {placement.grid.x, placement.grid.y, placement.grid.z};
     if (placement.region) {
         const paths::InteriorRegion& r = *placement.region;
         const auto world = [&](glm::dvec3 p) {
@@ -50,7 +52,9 @@ nlohmann::json placementJson(const PathPlacement& placement, const glm::dmat4& t
             return nlohmann::json{w.x, w.y, w.z};
         };
         const glm::dvec3 eye(0.5 * (r.min.x + r.max.x), r.eye_y, 0.5 * (r.min.z + r.max.z));
-        j["region"] = {{"min", world(r.min)}, {"max", world(r.max)}, {"eye_y", glm::dvec3(to_world * glm::dvec4(eye, 1.0)).y}};
+        j[k::kRegion] = {{k::region::kMin, world(r.min)},
+                         {k::region::kMax, world(r.max)},
+                         {k::region::kEyeY, glm::dvec3(to_world * glm::dvec4(eye, 1.0)).y}};
     }
     return j;
 }

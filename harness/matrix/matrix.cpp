@@ -21,6 +21,9 @@
 #include "reports/csv_read.h"
 #include "reports/output_dir.h"
 #include "renderer/variants/variants.h"
+#include "rundir/files.h"
+#include "rundir/run_json.h"
+#include "rundir/summary_csv.h"
 
 namespace cbr::harness {
 namespace {
@@ -51,9 +54,10 @@ json readJsonFile(const std::filesystem::path& p, const std::string& expected) {
 
 // The device a run's timings belong to: name and driver.
 std::string deviceKey(const json& run) {
-    const json& d = run.value("device", json::object());
+    namespace kd = rundir::run::device;
+    const json& d = run.value(rundir::run::kDevice, json::object());
     auto text = [&](const char* k) { return d.contains(k) ? (d[k].is_string() ? d[k].get<std::string>() : d[k].dump()) : ""; };
-    return text("name") + " / " + text("driver_name") + " " + text("driver_info") + " (" + text("driver_version") + ")";
+    return text(kd::kName) + " / " + text(kd::kDriverName) + " " + text(kd::kDriverInfo) + " (" + text(kd::kDriverVersion) + ")";
 }
 
 // Every job's summary.csv rows under the job's columns, in job order; column sets may
@@ -62,7 +66,8 @@ void writeCombinedSummary(const std::filesystem::path& dir, const std::vector<st
     std::vector<std::string> columns = {"job", "scene", "path", "pipeline", "resolution"};
     std::vector<reports::CsvData> tables;
     for (const auto& [meta, job_dir] : jobs) {
-        auto t = reports::readCsv(dir / job_dir / "summary.csv", [](const std::string&) { return false; }, {"variant"});
+        auto t = reports::readCsv(dir / job_dir / rundir::kSummaryCsv, [](const std::string&) { return false; },
+                                  {rundir::summary::kVariant});
         for (const auto& h : t.header)
             if (std::find(columns.begin(), columns.end(), h) == columns.end()) columns.push_back(h);
         tables.push_back(std::move(t));
@@ -78,7 +83,7 @@ void writeCombinedSummary(const std::filesystem::path& dir, const std::vector<st
             out.addRow(row);
         }
     }
-    out.write(dir / "summary.csv");
+    out.write(dir / rundir::kSummaryCsv);
 }
 
 json jobMeta(const Job& j) {
@@ -208,7 +213,7 @@ int runMatrix(const MatrixSpec& spec, const Shard& shard) {
             row["note"] = e.what();
         }
         if (row["status"] == "ok") {
-            json run = readJsonFile(out.path() / jobs[k].id / "run.json", "the job's run.json");
+            json run = readJsonFile(out.path() / jobs[k].id / rundir::kRunJson, "the job's run.json");
             device = deviceKey(run);
             done.push_back({row, jobs[k].id});
         } else {
@@ -263,11 +268,11 @@ int mergeRuns(const std::vector<std::string>& dirs, const std::string& out_dir, 
             json row;
             for (const auto& h : table.header) row[h] = table.text(r, h);
             if (table.text(r, "status") == "ok") {
-                json run = readJsonFile(dir / id / "run.json", "the job's run.json");
+                json run = readJsonFile(dir / id / rundir::kRunJson, "the job's run.json");
                 std::string dev = deviceKey(run);
                 if (device.empty()) device = dev, device_from = (dir / id).string();
                 if (dev != device)
-                    throw std::invalid_argument((dir / id / "run.json").string() + ": device " + dev + " differs from " +
+                    throw std::invalid_argument((dir / id / rundir::kRunJson).string() + ": device " + dev + " differs from " +
                                                 device_from + "'s " + device +
                                                 "; expected results from one device and driver");
             }

@@ -6,6 +6,7 @@
 
 #include "harness/output/output_cells.h"  // optional(): an absent score, an empty cell
 #include "metrics/cvvdp.h"
+#include "rundir/frames_csv.h"
 
 namespace cbr::harness {
 
@@ -61,66 +62,53 @@ void FrameDigest::add(const FrameRow& row) {
 }
 
 std::map<std::string, reports::Cell> frameCells(const FrameRow& row, uint32_t width, uint32_t height) {
+    using namespace rundir::frames;
     std::map<std::string, reports::Cell> m;
-    m["variant"] = row.variant;
-    m["repeat"] = row.repeat;
-    m["frame"] = row.frame;
-    m["time_s"] = row.time_s;
-    m["width"] = unsigned(width);
-    m["height"] = unsigned(height);
-    m["status"] = row.status;
+    m[kVariant] = row.variant;
+    m[kRepeat] = row.repeat;
+    m[kFrame] = row.frame;
+    m[kTimeS] = row.time_s;
+    m[kWidth] = unsigned(width);
+    m[kHeight] = unsigned(height);
+    m[kStatus] = row.status;
     std::string note = row.note;
     if (!row.quality.note.empty()) note += (note.empty() ? "" : "; ") + row.quality.note;
-    m["note"] = note;
+    m[kNote] = note;
     if (row.status != "ok") return m;
-    m["render_width"] = unsigned(row.render_width);
-    m["render_height"] = unsigned(row.render_height);
-    m["render_scale"] = row.render_scale;
-    m["gpu_ms"] = row.gpu_ms;
-    m["timing_ok"] = row.timing_ok;
-    m["psnr_db"] = optional(row.quality.psnr_db);
-    m["ssim"] = optional(row.quality.ssim);
-    m["ssim_luma"] = optional(row.quality.ssim_luma);
-    m["mse"] = optional(row.quality.mse);
-    m["eci"] = optional(row.quality.eci);
-    m["flicker_ratio"] = optional(row.quality.flicker_ratio);
-    m["crawl_valid_fraction"] = optional(row.quality.crawl_valid_fraction);
-    m["flip_mean"] = optional(row.quality.flip_mean);
-    m["flip_q1"] = optional(row.quality.flip_q1);
-    m["flip_median"] = optional(row.quality.flip_median);
-    m["flip_q3"] = optional(row.quality.flip_q3);
-    if (row.quality.cvvdp_q) m["cvvdp_jod"] = metrics::cvvdpJod(*row.quality.cvvdp_q);
+    m[kRenderWidth] = unsigned(row.render_width);
+    m[kRenderHeight] = unsigned(row.render_height);
+    m[kRenderScale] = row.render_scale;
+    m[kGpuMs] = row.gpu_ms;
+    m[kTimingOk] = row.timing_ok;
+    m[kPsnrDb] = optional(row.quality.psnr_db);
+    m[kSsim] = optional(row.quality.ssim);
+    m[kSsimLuma] = optional(row.quality.ssim_luma);
+    m[kMse] = optional(row.quality.mse);
+    m[kEci] = optional(row.quality.eci);
+    m[kFlickerRatio] = optional(row.quality.flicker_ratio);
+    m[kCrawlValidFraction] = optional(row.quality.crawl_valid_fraction);
+    m[kFlipMean] = optional(row.quality.flip_mean);
+    m[kFlipQ1] = optional(row.quality.flip_q1);
+    m[kFlipMedian] = optional(row.quality.flip_median);
+    m[kFlipQ3] = optional(row.quality.flip_q3);
+    if (row.quality.cvvdp_q) m[kCvvdpJod] = metrics::cvvdpJod(*row.quality.cvvdp_q);
     for (const auto& [name, value] : row.stats) m[name] = value;
     long long fs = 0;
     bool any = false;
     for (const auto& pt : row.passes) {
-        m["gpu_ms_" + pt.name] = pt.gpu_ms;
+        m[passTime(pt.name)] = pt.gpu_ms;
         if (pt.fs_invocations >= 0) {
-            m["fs_invocations_" + pt.name] = (long long)pt.fs_invocations;
+            m[passInvocations(pt.name)] = (long long)pt.fs_invocations;
             fs += pt.fs_invocations;
             any = true;
         }
     }
-    if (any) m["fs_invocations"] = fs;
+    if (any) m[kFsInvocations] = fs;
     return m;
 }
 
 std::vector<std::string> framesCsvColumns(const FrameColumns& c) {
-    std::vector<std::string> cols = {"variant",      "repeat",        "frame",        "time_s",
-                                     "width",        "height",        "render_width", "render_height",
-                                     "render_scale", "gpu_ms",        "timing_ok",    "psnr_db",
-                                     "ssim",         "ssim_luma",     "mse",          "eci",
-                                     "flicker_ratio", "crawl_valid_fraction", "flip_mean",
-                                     "flip_q1",      "flip_median",   "flip_q3",      "cvvdp_jod",
-                                     "fs_invocations",
-                                     "status",       "note"};
-    cols.insert(cols.end(), c.stats.begin(), c.stats.end());
-    for (const auto& p : c.passes) cols.push_back("gpu_ms_" + p);
-    // Invocation columns only for passes that report them (graphics passes, where the
-    // device has pipeline statistics).
-    for (const auto& p : c.passes)
-        if (c.fs_reported.count(p)) cols.push_back("fs_invocations_" + p);
-    return cols;
+    return rundir::frames::columns(c.stats, c.passes, c.fs_reported);
 }
 
 namespace {

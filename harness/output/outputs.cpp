@@ -13,6 +13,7 @@
 #include "metrics/metrics.h"
 #include "renderer/vk/context.h"
 #include "reports/speedup.h"
+#include "rundir/files.h"
 
 namespace cbr::harness {
 namespace {
@@ -144,11 +145,11 @@ std::vector<VariantSummary> summarize(const RunResults& r) {
 
 // frames.csv, summary.csv, run.json; the NaN cells of both tables are counted in run.json.
 void writeOutputs(const std::filesystem::path& dir, const RunContext& rc) {
-    const NanCells frames_nan = writeFramesCsv(dir / "frames.csv", dir / kFramesSpill, rc.results.digest.columns);
-    size_t nan_cells = reportNaNs(frames_nan.count, frames_nan.where, "frames.csv");
+    const NanCells frames_nan = writeFramesCsv(dir / rundir::kFramesCsv, dir / kFramesSpill, rc.results.digest.columns);
+    size_t nan_cells = reportNaNs(frames_nan.count, frames_nan.where, rundir::kFramesCsv);
     auto summaries = summarize(rc.results);
-    nan_cells += writeSummaryCsv(dir / "summary.csv", rc.results, summaries);
-    writeRunJson(dir / "run.json", rc, summaries, nan_cells);
+    nan_cells += writeSummaryCsv(dir / rundir::kSummaryCsv, rc.results, summaries);
+    writeRunJson(dir / rundir::kRunJson, rc, summaries, nan_cells);
 }
 
 void printSummary(std::ostream& out, const std::filesystem::path& dir, const RunContext& rc) {
@@ -186,7 +187,7 @@ void printSummary(std::ostream& out, const std::filesystem::path& dir, const Run
             << " errors, " << val.warnings.load() << " warnings)\n";
     // A quiet run says nothing extra; a disturbed one says so in one line (run.json health).
     if (!rc.results.health.line.empty()) out << "cbrbench: " << rc.results.health.line << "\n";
-    out << "report:  " << (dir / "report.html").string() << "\n";
+    out << "report:  " << (dir / rundir::kReportHtml).string() << "\n";
     out << "results: " << dir.string() << "/ (summary.csv, frames.csv, run.json"
         << (rc.options.save_frames ? ", frames/" : "") << ")\n";
 }

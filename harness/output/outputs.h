@@ -55,7 +55,7 @@ std::vector<VariantSummary> summarize(const RunResults& results);
 void writeOutputs(const std::filesystem::path& dir, const RunContext& rc);
 // Rewrites run.json's wall account (and wall_seconds) once the report is written.
 void updateRunJsonWall(const std::filesystem::path& dir, const RunContext& rc);
-// sweep.csv: one row per configuration (reports/sweep.h sweepColumns()).
+// sweep.csv: one row per configuration (rundir/sweep_csv.h columns()).
 void writeSweepCsv(const std::filesystem::path& dir, const RunContext& rc);
 void printSummary(std::ostream& out, const std::filesystem::path& dir, const RunContext& rc);
 

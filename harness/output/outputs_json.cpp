@@ -19,6 +19,11 @@
 #include "renderer/variants/variants.h"
 #include "renderer/vk/context.h"
 #include "reports/csv.h"
+#include "rundir/files.h"
+#include "rundir/run_json.h"
+#include "rundir/run_json_health.h"
+#include "rundir/run_json_variants.h"
+#include "rundir/setting_columns.h"
 #include "settings/table.h"
 
 namespace cbr::harness {
@@ -55,10 +60,11 @@ std::string sceneHash(const scene::Scene& s) {
 
 // run.json scene.animations: every glTF animation that targets nodes, and whether it played.
 nlohmann::json animationsJson(const scene::Scene& s) {
+    namespace k = rundir::run::scene::animation;
     nlohmann::json list = nlohmann::json::array();
     for (const auto& a : s.animations)
-        list.push_back({{"name", a.name}, {"index", a.gltf_index}, {"length_s", a.length},
-                        {"channels", a.channels.size()}, {"played", a.played}});
+        list.push_back({{k::kName, a.name}, {k::kIndex, a.gltf_index}, {k::kLengthS, a.length},
+                        {k::kChannels, a.channels.size()}, {k::kPlayed, a.played}});
     return list;
 }
 
@@ -80,27 +86,28 @@ nlohmann::json number(const std::optional<double>& v) {
 
 // The device, its timestamp and statistics abilities, and the measured copy bandwidth.
 json deviceJson(const RunContext& rc) {
+    namespace k = rundir::run::device;
     const RunResults& r = rc.results;
     const auto& d = rc.ctx.description;
-    json out = {{"index", d.index},
-                {"name", d.name},
-                {"type", d.device_type},
-                {"vendor_id", d.vendor_id},
-                {"device_id", d.device_id},
-                {"driver_name", d.driver_name},
-                {"driver_info", d.driver_info},
-                {"driver_id", d.driver_id},
-                {"driver_version", d.driver_version},
-                {"api_version", d.api_version},
-                {"is_lavapipe", d.is_lavapipe},
-                {"timestamp_period_ns", rc.ctx.caps.timestamp_period_ns},
-                {"timestamp_valid_bits", rc.ctx.caps.timestamp_valid_bits},
-                {"pipeline_statistics", rc.ctx.caps.pipeline_statistics},
-                {"target_clear", rc.ctx.compute_clears ? "compute" : "load-op"},
-                {"target_clear_rule", rc.ctx.target_clear_rule},
-                {"copy_bandwidth_gb_per_s", r.copy_bandwidth.gb_per_s},
-                {"transfer_bandwidth_gb_per_s", r.copy_bandwidth.transfer_gb_per_s},
-                {"copy_bandwidth_rule",
+    json out = {{k::kIndex, d.index},
+                {k::kName, d.name},
+                {k::kType, d.device_type},
+                {k::kVendorId, d.vendor_id},
+                {k::kDeviceId, d.device_id},
+                {k::kDriverName, d.driver_name},
+                {k::kDriverInfo, d.driver_info},
+                {k::kDriverId, d.driver_id},
+                {k::kDriverVersion, d.driver_version},
+                {k::kApiVersion, d.api_version},
+                {k::kIsLavapipe, d.is_lavapipe},
+                {k::kTimestampPeriodNs, rc.ctx.caps.timestamp_period_ns},
+                {k::kTimestampValidBits, rc.ctx.caps.timestamp_valid_bits},
+                {k::kPipelineStatistics, rc.ctx.caps.pipeline_statistics},
+                {k::kTargetClear, rc.ctx.compute_clears ? "compute" : "load-op"},
+                {k::kTargetClearRule, rc.ctx.target_clear_rule},
+                {k::kCopyBandwidthGbPerS, r.copy_bandwidth.gb_per_s},
+                {k::kTransferBandwidthGbPerS, r.copy_bandwidth.transfer_gb_per_s},
+                {k::kCopyBandwidthRule,
                  r.copy_bandwidth.copies == 0
                      ? std::string("not measured (lavapipe's timestamps do not bracket a lone copy)")
                      : "median of " + std::to_string(r.copy_bandwidth.copies) + " compute-shader copies (16-byte " +
@@ -108,7 +115,7 @@ json deviceJson(const RunContext& rc) {
                            " MiB between device-local buffers, bytes read + written; transfer_bandwidth_gb_per_s: "
                            "the same with vkCmdCopyBuffer"}};
     if (d.is_lavapipe)
-        out["timing_note"] =
+        out[k::kTimingNote] =
             "lavapipe timestamps measure CPU rasterisation: ratios between variants are meaningful, absolute times "
             "are not GPU times";
     return out;
@@ -116,216 +123,226 @@ json deviceJson(const RunContext& rc) {
 
 // The render settings every configuration starts from, and the run's shape.
 json settingsJson(const RunContext& rc) {
+    namespace k = rundir::run::settings;
     const RunResults& r = rc.results;
     const auto& s = rc.settings;
-    json out = {{"width", s.width},
-            {"height", s.height},
-            {"pipeline", s.deferred ? "deferred" : "forward"},
-            {"frames", r.frames},
-            {"repeat", r.repeats},
-            {"warmup_frames", rc.options.warmup},
-            {"warmup_rule", "at least warmup_frames of the path's first pose per variant and timed repetition, then until steady (health.rule; frames used: health.variants)"},
-            {"variant_order", r.order},
-            {"drr_control",
-             {{"min_scale", s.drr_control.min_scale},
-              {"max_scale", s.drr_control.max_scale},
-              {"dead_band", s.drr_control.dead_band},
-              {"step", s.drr_control.step}}},
-            {"frames_in_flight", s.frames_in_flight},
-            {"depth", "reversed-Z, D32_SFLOAT"},
-            {"save_frames", rc.options.save_frames},
-            {"cvvdp_fps", rc.results.cvvdp_fps}};
-    for (const auto& row : settings::table())
-        if (row.run_json)
-            out[row.column] = row.json_float ? json(float(row.field.get(s))) : settings::toJson(row, s);
+    json out = {{k::kWidth, s.width},
+            {k::kHeight, s.height},
+            {k::kPipeline, s.deferred ? "deferred" : "forward"},
+            {k::kFrames, r.frames},
+            {k::kRepeat, r.repeats},
+            {k::kWarmupFrames, rc.options.warmup},
+            {k::kWarmupRule, "at least warmup_frames of the path's first pose per variant and timed repetition, then until steady (health.rule; frames used: health.variants)"},
+            {k::kVariantOrder, r.order},
+            {k::kDrrControl,
+             {{k::drr_control::kMinScale, s.drr_control.min_scale},
+              {k::drr_control::kMaxScale, s.drr_control.max_scale},
+              {k::drr_control::kDeadBand, s.drr_control.dead_band},
+              {k::drr_control::kStep, s.drr_control.step}}},
+            {k::kFramesInFlight, s.frames_in_flight},
+            {k::kDepth, "reversed-Z, D32_SFLOAT"},
+            {k::kSaveFrames, rc.options.save_frames},
+            {k::kCvvdpFps, rc.results.cvvdp_fps}};
+    for (const settings::Row* row : rundir::runJsonSettings())
+        out[row->column] = row->json_float ? json(float(row->field.get(s))) : settings::toJson(*row, s);
     return out;
 }
 
 // The scene: source, content hash, counts, load cost, animations and cameras.
 json sceneJson(const RunContext& rc) {
+    namespace k = rundir::run::scene;
     const RunResults& r = rc.results;
     const auto& si = rc.scene.info;
-    json out = {{"name", rc.scene.name},
-                {"source", rc.scene.source},
-                {"hash", sceneHash(rc.scene)},
-                {"triangles", si.triangles},
-                {"opaque_draws", si.opaque_draws},
-                {"masked_draws", si.masked_draws},
-                {"blend_draws", si.blend_draws},
-                {"animated_instances", si.animated_instances},
-                {"lights", rc.scene.lights.size()},
-                {"default_light", si.default_light},
-                {"recentred_meshes", si.recentred_meshes},
-                {"bounds_min", {rc.scene.bounds_min.x, rc.scene.bounds_min.y, rc.scene.bounds_min.z}},
-                {"bounds_max", {rc.scene.bounds_max.x, rc.scene.bounds_max.y, rc.scene.bounds_max.z}},
-                {"warnings", rc.scene.warnings}};
+    json out = {{k::kName, rc.scene.name},
+                {k::kSource, rc.scene.source},
+                {k::kHash, sceneHash(rc.scene)},
+                {k::kTriangles, si.triangles},
+                {k::kOpaqueDraws, si.opaque_draws},
+                {k::kMaskedDraws, si.masked_draws},
+                {k::kBlendDraws, si.blend_draws},
+                {k::kAnimatedInstances, si.animated_instances},
+                {k::kLights, rc.scene.lights.size()},
+                {k::kDefaultLight, si.default_light},
+                {k::kRecentredMeshes, si.recentred_meshes},
+                {k::kBoundsMin, {rc.scene.bounds_min.x, rc.scene.bounds_min.y, rc.scene.bounds_min.z}},
+                {k::kBoundsMax, {rc.scene.bounds_max.x, rc.scene.bounds_max.y, rc.scene.bounds_max.z}},
+                {k::kWarnings, rc.scene.warnings}};
     addSceneCost(out, rc.scene, r.scene_load);
-    out["animations"] = animationsJson(rc.scene);
-    out["cameras"] = nlohmann::json::array();
+    out[k::kAnimations] = animationsJson(rc.scene);
+    out[k::kCameras] = nlohmann::json::array();
     for (const auto& c : rc.scene.cameras)
-        out["cameras"].push_back({{"name", c.name}, {"type", c.perspective ? "perspective" : "orthographic"}});
+        out[k::kCameras].push_back(
+            {{k::camera::kName, c.name}, {k::camera::kType, c.perspective ? "perspective" : "orthographic"}});
     return out;
 }
 
 // The camera path: source, hash of the sampled poses and times, frames and cuts.
 json pathJson(const RunContext& rc) {
-    json out = {{"name", rc.path.name},
-                {"source", rc.options.path},
-                {"hash", pathHash(rc.poses, rc.times)},
-                {"fps", rc.path.fps},
-                {"duration_s", rc.path.duration()},
-                {"frames", rc.poses.size()},
-                {"cuts", std::count_if(rc.poses.begin(), rc.poses.end(), [](const auto& p) { return p.cut; })}};
-    if (rc.placement) out["placement"] = placementJson(*rc.placement, rc.scene.placement);
+    namespace k = rundir::run::path;
+    json out = {{k::kName, rc.path.name},
+                {k::kSource, rc.options.path},
+                {k::kHash, pathHash(rc.poses, rc.times)},
+                {k::kFps, rc.path.fps},
+                {k::kDurationS, rc.path.duration()},
+                {k::kFrames, rc.poses.size()},
+                {k::kCuts, std::count_if(rc.poses.begin(), rc.poses.end(), [](const auto& p) { return p.cut; })}};
+    if (rc.placement) out[k::kPlacement] = placementJson(*rc.placement, rc.scene.placement);
     return out;
 }
 
 // How quality is measured, and against which reference.
 json metricsJson(const RunContext& rc) {
+    namespace k = rundir::run::metrics;
     const RunResults& r = rc.results;
-    json out = {{"on", "8-bit sRGB display image, as the saved PNGs, converted to [0,1]"},
-                {"reference", "full at the same frame, unjittered, one sample per pixel"},
-                {"psnr", "10 log10(1/MSE), MSE over all pixels and RGB channels; sequence PSNR from the mean MSE"},
-                {"ssim", "Wang et al. 2004: Gaussian 11x11 sigma 1.5, K1 0.01, K2 0.03, L 1, population "
+    json out = {{k::kOn, "8-bit sRGB display image, as the saved PNGs, converted to [0,1]"},
+                {k::kReference, "full at the same frame, unjittered, one sample per pixel"},
+                {k::kPsnr, "10 log10(1/MSE), MSE over all pixels and RGB channels; sequence PSNR from the mean MSE"},
+                {k::kSsim, "Wang et al. 2004: Gaussian 11x11 sigma 1.5, K1 0.01, K2 0.03, L 1, population "
                          "statistics, 5-pixel border excluded, mean of per-channel SSIM"},
-                {"eci", "edge crawl index: luma blurred with sigma 1, e = Y(V) - Y(R), e_t against e_t-1 "
+                {k::kEci, "edge crawl index: luma blurred with sigma 1, e = Y(V) - Y(R), e_t against e_t-1 "
                         "warped with the renderer's motion vectors (bilinear), on reference edges (Sobel of blurred "
                         "reference luma > 0.02, dilated 1 px), 4 px margin, disocclusions (5% view-depth mismatch) "
                         "and pairs across cuts excluded; sequence ECI pools numerators and denominators"},
-                {"flip", "LDR-FLIP (Andersson et al. 2020) as NVIDIA's tool v1.6 computes it: mean of the error "
+                {k::kFlip, "LDR-FLIP (Andersson et al. 2020) as NVIDIA's tool v1.6 computes it: mean of the error "
                          "map and weighted quartiles (pixels weighted by their error); summary flip_mean is the mean "
                          "of the per-frame means"},
-                {"flip_ppd", settings::flipPpd(rc.options.tune)},
-                {"cvvdp", "ColorVideoVDP (Mantiuk, Hammou, Hanji 2024, model " + std::string(metrics::cvvdpModelVersion()) +
+                {k::kFlipPpd, settings::flipPpd(rc.options.tune)},
+                {k::kCvvdp, "ColorVideoVDP (Mantiuk, Hammou, Hanji 2024, model " + std::string(metrics::cvvdpModelVersion()) +
                               ") on the display model settings.display at settings.cvvdp_fps frames per second: JOD, 10 "
                               "= no visible difference, one JOD less = 75% of viewers prefer the better; frames.csv "
                               "cvvdp_jod is each frame's, summary cvvdp_jod the sequence's (docs/method/cvvdp.md)"},
-                {"reference_kind", rc.options.tune.reference == settings::Reference::Ssaa
+                {k::kReferenceKind, rc.options.tune.reference == settings::Reference::Ssaa
                                        ? "ssaa: " + std::to_string(rc.options.tune.ssaa) + "x" +
                                              std::to_string(rc.options.tune.ssaa) + " samples per pixel, box filter in HDR"
                                        : std::string("full")},
                 // The library --save-frames writes through; loaded only then (OpenImageIO's
                 // plugins are 80 MB of a run's memory), the worst frames' encoders otherwise.
-                {"image_io", rc.options.save_frames ? metrics::imageIoBackend() : metrics::encodeBackend()},
-                {"scorer", r.scorer},
-                {"scorer_requested", settings::text(*settings::find("scorer"), rc.options.tune)},
-                {"scorer_note", r.scorer_note},
-                {"scored_repeat", 0}};
+                {k::kImageIo, rc.options.save_frames ? metrics::imageIoBackend() : metrics::encodeBackend()},
+                {k::kScorer, r.scorer},
+                {k::kScorerRequested, settings::text(*settings::find("scorer"), rc.options.tune)},
+                {k::kScorerNote, r.scorer_note},
+                {k::kScoredRepeat, 0}};
     if (r.scorer == "cpu") {
-        out["scorer_threads"] =
+        out[k::kScorerThreads] =
             scoringThreads(rc.options.control.scoring_threads, int(rc.settings.width), int(rc.settings.height));
-        out["scorer_frames"] = scorerFrames(int(rc.settings.width), int(rc.settings.height));
+        out[k::kScorerFrames] = scorerFrames(int(rc.settings.width), int(rc.settings.height));
     }
-    if (!r.reference_ms.empty()) out["reference_gpu_ms_median"] = median(r.reference_ms);
+    if (!r.reference_ms.empty()) out[k::kReferenceGpuMsMedian] = median(r.reference_ms);
     return out;
 }
 
 // One variant (or sweep configuration): what ran, its settings, its description from the
 // renderer, the resolve's bandwidth, the frame alignment check and the headline numbers.
 json variantJson(const RunContext& rc, const VariantRun& vr, const VariantSummary& sm) {
+    namespace k = rundir::run::variant;
     json passes = json::array();
-    for (const auto& p : vr.passes_ran) passes.push_back({{"name", p}, {"ran", true}});
-    for (const auto& [p, reason] : vr.left_out) passes.push_back({{"name", p}, {"ran", false}, {"reason", reason}});
-    json v = {{"name", vr.name},
-              {"status", vr.status},
-              {"pipeline", rc.settings.deferred ? "deferred" : "forward"},
-              {"passes", passes}};
-    if (!vr.note.empty()) v["note"] = vr.note;
+    for (const auto& p : vr.passes_ran) passes.push_back({{k::pass::kName, p}, {k::pass::kRan, true}});
+    for (const auto& [p, reason] : vr.left_out)
+        passes.push_back({{k::pass::kName, p}, {k::pass::kRan, false}, {k::pass::kReason, reason}});
+    json v = {{k::kName, vr.name},
+              {k::kStatus, vr.status},
+              {k::kPipeline, rc.settings.deferred ? "deferred" : "forward"},
+              {k::kPasses, passes}};
+    if (!vr.note.empty()) v[k::kNote] = vr.note;
     if (!vr.settings.empty() || vr.variant != vr.name) {
-        v["variant"] = vr.variant;
-        v["speedup_baseline"] = vr.baseline;
+        v[k::kVariant] = vr.variant;
+        v[k::kSpeedupBaseline] = vr.baseline;
         json set = json::object();
         for (const auto& st : vr.settings) set[st.name] = st.word.empty() ? json(st.value) : json(st.word);
-        v["settings"] = set;
+        v[k::kSettings] = set;
     }
     for (const auto& [key, value] : vr.description) v[key] = value;
     resolveBandwidth(v, sm, rc.results.copy_bandwidth);
     if (vr.alignment) {
+        namespace fa = k::frame_alignment;
         const auto& a = *vr.alignment;
         auto finite = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
-        v["frame_alignment"] = {{"frame", a.frame}, {"psnr_db_same", finite(a.psnr_same)},
-                                {"psnr_db_prev", finite(a.psnr_prev)}, {"psnr_db_next", finite(a.psnr_next)},
-                                {"ok", a.ok}};
+        v[k::kFrameAlignment] = {{fa::kFrame, a.frame}, {fa::kPsnrDbSame, finite(a.psnr_same)},
+                                 {fa::kPsnrDbPrev, finite(a.psnr_prev)}, {fa::kPsnrDbNext, finite(a.psnr_next)},
+                                 {fa::kOk, a.ok}};
     }
     if (sm.frames > 0) {
-        v["gpu_ms_median"] = sm.gpu_ms_median;
-        v["speedup_vs_full"] = number(sm.speedup);
-        v["speedup_ci_low"] = number(sm.speedup_low);
-        v["speedup_ci_high"] = number(sm.speedup_high);
-        v["psnr_db"] = number(sm.psnr_db);
-        v["psnr_db_is_inf"] = sm.psnr_db && std::isinf(*sm.psnr_db);
-        v["ssim_mean"] = number(sm.ssim_mean);
-        v["flip_mean"] = number(sm.flip_mean);
-        v["cvvdp_jod"] = number(sm.cvvdp_jod);
-        v["eci"] = number(sm.eci);
-        v["render_width"] = sm.render_width;
-        v["render_height"] = sm.render_height;
+        v[k::kGpuMsMedian] = sm.gpu_ms_median;
+        v[k::kSpeedup] = number(sm.speedup);
+        v[k::kSpeedupLow] = number(sm.speedup_low);
+        v[k::kSpeedupHigh] = number(sm.speedup_high);
+        v[k::kPsnrDb] = number(sm.psnr_db);
+        v[k::kPsnrDbIsInf] = sm.psnr_db && std::isinf(*sm.psnr_db);
+        v[k::kSsimMean] = number(sm.ssim_mean);
+        v[k::kFlipMean] = number(sm.flip_mean);
+        v[k::kCvvdpJod] = number(sm.cvvdp_jod);
+        v[k::kEci] = number(sm.eci);
+        v[k::kRenderWidth] = sm.render_width;
+        v[k::kRenderHeight] = sm.render_height;
     }
     return v;
 }
 
 // The validation layer's counts and its first messages.
 json validationJson(vk::Context& ctx) {
+    namespace k = rundir::run::validation;
     auto& val = ctx.validation;
     json messages = json::array();
     {
         std::lock_guard lock(val.mutex);
         for (const auto& m : val.first_messages) messages.push_back(m);
     }
-    return {{"enabled", ctx.validation_enabled},
-            {"errors", val.errors.load()},
-            {"warnings", val.warnings.load()},
-            {"messages", val.errors.load() + val.warnings.load()},
-            {"first_messages", messages}};
+    return {{k::kEnabled, ctx.validation_enabled},
+            {k::kErrors, val.errors.load()},
+            {k::kWarnings, val.warnings.load()},
+            {k::kMessages, val.errors.load() + val.warnings.load()},
+            {k::kFirstMessages, messages}};
 }
 
 // Where the wall time went (harness/base/wall_account.h): the main thread's parts, which add up
 // to `seconds`, and the workers' CPU time per task, which overlaps them.
 json wallJson(const WallAccount& wall) {
+    namespace k = rundir::run::wall;
     json parts = json::object(), workers = json::object();
     for (size_t i = 0; i < kWallParts; ++i) parts[wallPartKey(WallPart(i))] = wall.part(WallPart(i));
     for (size_t i = 0; i < kWorkerTasks; ++i) workers[workerTaskKey(WorkerTask(i))] = wall.worker(WorkerTask(i));
     json rss = json::object();
     for (const auto& [after, mib] : wall.peakRss()) rss[after] = mib;
-    return {{"seconds", wall.total()}, {"parts_s", parts}, {"worker_cpu_s", workers}, {"peak_rss_mib_after", rss}};
+    return {{k::kSeconds, wall.total()}, {k::kPartsS, parts}, {k::kWorkerCpuS, workers}, {k::kPeakRssMibAfter, rss}};
 }
 
 // What the run needed and had (harness/run/memory_check.h).
 json memoryJson(const MemoryFigures& m) {
+    namespace k = rundir::run::memory;
     auto maybe = [](const std::optional<double>& v) { return v ? json(*v) : json(); };
     json after = json::array();
     for (const auto& r : m.after)
-        after.push_back({{"after", r.after},
-                         {"peak_rss_mib", r.peak_rss_mib},
-                         {"device_allocated_mib", r.device_allocated_mib},
-                         {"device_usage_mib", maybe(r.device_usage_mib)}});
+        after.push_back({{k::after::kAfter, r.after},
+                         {k::after::kPeakRssMib, r.peak_rss_mib},
+                         {k::after::kDeviceAllocatedMib, r.device_allocated_mib},
+                         {k::after::kDeviceUsageMib, maybe(r.device_usage_mib)}});
     double peak_rss = 0;
     std::optional<double> device_usage;
     for (const auto& r : m.after) {
         peak_rss = std::max(peak_rss, r.peak_rss_mib);
         if (r.device_usage_mib) device_usage = std::max(device_usage.value_or(0), *r.device_usage_mib);
     }
-    return {{"estimate_host_mib", m.host_estimate_mib},
-            {"estimate_device_mib", m.device_estimate_mib},
-            {"host_limit_mib", m.host_limit_mib},
-            {"host_limit_from", m.host_limit_from},
-            {"device_limit_mib", m.device_limit_mib},
-            {"device_limit_from", m.device_limit_from},
-            {"peak_rss_mib", peak_rss},
-            {"device_allocated_peak_mib", m.device_allocated_peak_mib},
-            {"host_visible_allocated_peak_mib", m.host_visible_allocated_peak_mib},
-            {"device_usage_peak_mib", maybe(device_usage)},
-            {"device_budget_mib", maybe(m.device_budget_mib)},
-            {"device_heap_mib", m.device_heap_mib},
-            {"after", after}};
+    return {{k::kEstimateHostMib, m.host_estimate_mib},
+            {k::kEstimateDeviceMib, m.device_estimate_mib},
+            {k::kHostLimitMib, m.host_limit_mib},
+            {k::kHostLimitFrom, m.host_limit_from},
+            {k::kDeviceLimitMib, m.device_limit_mib},
+            {k::kDeviceLimitFrom, m.device_limit_from},
+            {k::kPeakRssMib, peak_rss},
+            {k::kDeviceAllocatedPeakMib, m.device_allocated_peak_mib},
+            {k::kHostVisibleAllocatedPeakMib, m.host_visible_allocated_peak_mib},
+            {k::kDeviceUsagePeakMib, maybe(device_usage)},
+            {k::kDeviceBudgetMib, maybe(m.device_budget_mib)},
+            {k::kDeviceHeapMib, m.device_heap_mib},
+            {k::kAfter, after}};
 }
 
 // What the run directory holds.
 std::vector<std::string> fileList(const RunContext& rc) {
-    std::vector<std::string> files = {"frames.csv", "summary.csv", "run.json"};
-    if (rc.options.save_frames) files.push_back("frames/");
+    std::vector<std::string> files = {rundir::kFramesCsv, rundir::kSummaryCsv, rundir::kRunJson};
+    if (rc.options.save_frames) files.push_back(std::string(rundir::kFramesDir) + "/");
     files.insert(files.end(), rc.results.worst_files.begin(), rc.results.worst_files.end());
-    files.push_back("report.html");
+    files.push_back(rundir::kReportHtml);
     return files;
 }
 
@@ -333,13 +350,14 @@ std::vector<std::string> fileList(const RunContext& rc) {
 
 // The worst frames and their files (each written once, however many entries name it).
 json worstJson(const std::vector<WorstFrame>& worst) {
+    namespace k = rundir::run::worst;
     json out = json::array();
     for (const auto& wf : worst) {
         json files = json::object(), page = json::object();
         for (const auto& [what, file] : wf.files) files[what] = file;
         for (const auto& [what, file] : wf.page) page[what] = file;
-        out.push_back({{"variant", wf.variant}, {"kind", wf.kind}, {"frame", wf.frame}, {"value", number(wf.value)},
-                       {"files", files}, {"page", page}});
+        out.push_back({{k::kVariant, wf.variant}, {k::kKind, wf.kind}, {k::kFrame, wf.frame},
+                       {k::kValue, number(wf.value)}, {k::kFiles, files}, {k::kPage, page}});
     }
     return out;
 }
@@ -353,41 +371,43 @@ std::string isoDate() {
 
 void writeRunJson(const std::filesystem::path& file, const RunContext& rc, const std::vector<VariantSummary>& summaries,
                   size_t nan_cells) {
+    using namespace rundir::run;
     const RunResults& r = rc.results;
     json j;
-    j["tool"] = {{"name", "cbrbench"}, {"version", CBR_VERSION}, {"commit", CBR_GIT_COMMIT}};
-    j["date"] = isoDate();
-    j["command_line"] = rc.options.control.argv;
-    j["host"] = hostJson();
-    j["wall_seconds"] = r.seconds;
-    j["first_frame_wall_seconds"] = r.first_frame_seconds;
-    j["device"] = deviceJson(rc);
-    j["settings"] = settingsJson(rc);
-    j["scene"] = sceneJson(rc);
-    j["path"] = pathJson(rc);
-    j["metrics"] = metricsJson(rc);
-    j["reference_variant"] = std::string(variants::referenceVariant().name);  // what the others are timed and scored against
-    json variants = json::array();
-    for (size_t i = 0; i < r.variants.size(); ++i) variants.push_back(variantJson(rc, r.variants[i], summaries[i]));
-    j["variants"] = variants;
-    j["non_finite_cells"] = nan_cells;  // NaNs written as empty CSV cells (0 in a healthy run)
-    j["validation"] = validationJson(rc.ctx);
-    j["files"] = fileList(rc);
-    j["worst"] = worstJson(r.worst);
-    j["health"] = healthJson(r);
-    if (rc.wall) j["wall"] = wallJson(*rc.wall);
-    if (!r.memory.after.empty()) j["memory"] = memoryJson(r.memory);
+    j[kTool] = {{tool::kName, "cbrbench"}, {tool::kVersion, CBR_VERSION}, {tool::kCommit, CBR_GIT_COMMIT}};
+    j[kDate] = isoDate();
+    j[kCommandLine] = rc.options.control.argv;
+    j[kHost] = hostJson();
+    j[kWallSeconds] = r.seconds;
+    j[kFirstFrameWallSeconds] = r.first_frame_seconds;
+    j[kDevice] = deviceJson(rc);
+    j[kSettings] = settingsJson(rc);
+    j[kScene] = sceneJson(rc);
+    j[kPath] = pathJson(rc);
+    j[kMetrics] = metricsJson(rc);
+    j[kReferenceVariant] = std::string(variants::referenceVariant().name);  // what the others are timed and scored against
+    json list = json::array();
+    for (size_t i = 0; i < r.variants.size(); ++i) list.push_back(variantJson(rc, r.variants[i], summaries[i]));
+    j[kVariants] = list;
+    j[kNonFiniteCells] = nan_cells;  // NaNs written as empty CSV cells (0 in a healthy run)
+    j[kValidation] = validationJson(rc.ctx);
+    j[kFiles] = fileList(rc);
+    j[kWorst] = worstJson(r.worst);
+    j[kHealth] = healthJson(r);
+    if (rc.wall) j[kWall] = wallJson(*rc.wall);
+    if (!r.memory.after.empty()) j[kMemory] = memoryJson(r.memory);
     reports::writeTextAtomically(file, j.dump(2) + "\n");
 }
 
 void updateRunJsonWall(const std::filesystem::path& dir, const RunContext& rc) {
+    using namespace rundir::run;
     if (!rc.wall) return;
-    const auto file = dir / "run.json";
+    const auto file = dir / rundir::kRunJson;
     std::ifstream in(file);
     json j = json::parse(in);
-    j["wall_seconds"] = rc.wall->total();
-    j["wall"] = wallJson(*rc.wall);
-    if (!rc.results.memory.after.empty()) j["memory"] = memoryJson(rc.results.memory);
+    j[kWallSeconds] = rc.wall->total();
+    j[kWall] = wallJson(*rc.wall);
+    if (!rc.results.memory.after.empty()) j[kMemory] = memoryJson(rc.results.memory);
     reports::writeTextAtomically(file, j.dump(2) + "\n");
 }
 

@@ -15,6 +15,7 @@
 #include "metrics/image_encode.h"
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
+#include "rundir/run_json_variants.h"
 
 namespace cbr::harness {
 
@@ -187,7 +188,7 @@ void QualityScorer::submitScore(Chain& c, const std::string& variant, FrameRow& 
             row.quality.flip_q3 = f.flip_q3;
             std::lock_guard lock(c.mutex);
             if (row.quality.ssim && (c.worst_ssim.frame < 0 || *row.quality.ssim < c.worst_ssim.value))
-                keepWorst(c, "ssim", c.worst_ssim, {frame.index, *row.quality.ssim, ref, frame.rgba, frame.classes, nullptr});
+                keepWorst(c, rundir::run::worst::kSsim, c.worst_ssim, {frame.index, *row.quality.ssim, ref, frame.rgba, frame.classes, nullptr});
         } catch (const std::exception& e) {
             row.quality.note += std::string("metrics failed: ") + e.what() + "; ";
         }
@@ -261,7 +262,7 @@ void QualityScorer::crawlStep(const std::string& variant, FrameRow& row, const Q
         row.quality.crawl_denominator = cf.denominator;
         if (cf.no_edges) row.quality.note += "no reference edges in the valid region: ECI 0; ";
         if (c.worst_eci.frame < 0 || cf.eci > c.worst_eci.value)
-            keepWorst(c, "eci", c.worst_eci,
+            keepWorst(c, rundir::run::worst::kEci, c.worst_eci,
                       {frame.index, cf.eci, ref, frame.rgba, frame.classes,
                        cf.crawl_map ? std::make_shared<const std::vector<uint8_t>>(heatMap(*cf.crawl_map, 8.0)) : nullptr});
     } catch (const std::exception& e) {

@@ -12,8 +12,13 @@
 #include "metrics/flip.h"
 #include "metrics/image_encode.h"
 #include "metrics/image_io.h"
+#include "rundir/files.h"
+#include "rundir/run_json_variants.h"
 
 namespace cbr::harness {
+
+// run.json worst[].files and page: the images of a worst frame, each file named after its key.
+namespace worst_image = rundir::run::worst::image;
 
 // A chain's new worst frame of a kind: its images to the spill, when there is one, for finish()
 // to read back; kept in memory otherwise (or when the spill cannot be written).
@@ -48,7 +53,7 @@ void QualityScorer::offerWorstLater(const std::string& variant, const std::strin
                                     WorstLoader load) {
     Chain& c = chain(variant);
     std::lock_guard lock(c.mutex);
-    const bool ssim = kind == "ssim";
+    const bool ssim = kind == rundir::run::worst::kSsim;
     Worst& w = ssim ? c.worst_ssim : c.worst_eci;
     if (w.frame >= 0 && (ssim ? !(value < w.value) : !(value > w.value))) return;
     w = Worst{};
@@ -105,7 +110,7 @@ public:
     Writer(const std::filesystem::path& dir, int width, int height, double flip_ppd, WorkerPool& workers,
            WallAccount* wall)
         : dir_(dir), w_(width), h_(height), flip_ppd_(flip_ppd), workers_(workers), wall_(wall) {
-        std::filesystem::create_directories(dir / "worst" / "page");
+        std::filesystem::create_directories(dir / rundir::kWorstDir / rundir::kWorstPageDir);
     }
 
     void add(WorstFrame& wf, const Worst& worst) {
@@ -113,19 +118,19 @@ public:
         std::snprintf(stem, sizeof stem, "%s_%04d", wf.variant.c_str(), wf.frame);
         const std::string base = stem;
         std::snprintf(stem, sizeof stem, "reference_%04d", wf.frame);
-        image(wf, "reference", stem, kept(worst.reference), kFrame);
-        image(wf, "variant", base, kept(worst.image), kFrame);
+        image(wf, worst_image::kReference, stem, kept(worst.reference), kFrame);
+        image(wf, worst_image::kVariant, base, kept(worst.image), kFrame);
         maps(wf, base, worst);
         cvvdpMap(wf, base, worst);
         if (worst.crawl_map) {
-            image(wf, "crawl_map", base + "_crawl_map", kept(worst.crawl_map), kMap);
+            image(wf, worst_image::kCrawlMap, base + "_" + worst_image::kCrawlMap, kept(worst.crawl_map), kMap);
         } else if (worst.crawl_values) {
-            image(wf, "crawl_map", base + "_crawl_map", [map = worst.crawl_values] {
+            image(wf, worst_image::kCrawlMap, base + "_" + worst_image::kCrawlMap, [map = worst.crawl_values] {
                 return colour(heatMapOf(map->size(), 8.0, [&](size_t i) { return double((*map)[i]); }));
             }, kMap);
         }
         if (worst.classes && !worst.classes->empty())
-            image(wf, "class_map", base + "_class_map", [classes = worst.classes] { return colour(classMapRgba(*classes)); },
+            image(wf, worst_image::kClassMap, base + "_" + worst_image::kClassMap, [classes = worst.classes] { return colour(classMapRgba(*classes)); },
                   kMap);
     }
 
@@ -149,8 +154,9 @@ private:
 
     // Files of one image: recorded in the entry, encoded only the first time the stem appears.
     void image(WorstFrame& wf, const std::string& what, const std::string& stem, Pixels pixels, int page_width) {
-        wf.files.push_back({what, "worst/" + stem + ".png"});
-        wf.page.push_back({what, "worst/page/" + stem + ".jpg"});
+        const std::string worst_dir = std::string(rundir::kWorstDir) + "/";
+        wf.files.push_back({what, worst_dir + stem + ".png"});
+        wf.page.push_back({what, worst_dir + rundir::kWorstPageDir + "/" + stem + ".jpg"});
         if (!scheduled_.insert(stem).second) return;
         const int quality = page_width == kFrame ? kFrameQuality : kMapQuality;
         workers_.submit([this, stem, pixels = std::move(pixels), page_width, quality] {
@@ -159,8 +165,8 @@ private:
                 const Bytes rgba = pixels();
                 if (!rgba) return;  // its making failed, and said so
                 const metrics::Rgba8View full{w_, h_, *rgba};
-                metrics::writeFileAtomically(dir_ / "worst" / (stem + ".png"), metrics::encodePng(full));
-                metrics::writeFileAtomically(dir_ / "worst" / "page" / (stem + ".jpg"),
+                metrics::writeFileAtomically(dir_ / rundir::kWorstDir / (stem + ".png"), metrics::encodePng(full));
+                metrics::writeFileAtomically(dir_ / rundir::kWorstDir / rundir::kWorstPageDir / (stem + ".jpg"),
                                              metrics::encodeJpeg(metrics::downscale(full, page_width), quality));
             } catch (const std::exception& e) {
                 std::fprintf(stderr, "cbrbench: worst-frame image %s not written: %s\n", stem.c_str(), e.what());
@@ -173,11 +179,11 @@ private:
     // is parallel inside, and the full-size intermediates of several frames at once would not
     // fit in a 4K run's memory).
     void maps(WorstFrame& wf, const std::string& base, const Worst& worst) {
-        if (scheduled_.count(base + "_error")) {
-            for (const char* what : {"error", "ssim_map", "flip_map"}) image(wf, what, base + "_" + what, nullptr, kMap);
+        if (scheduled_.count(base + "_" + worst_image::kError)) {
+            for (const char* what : {worst_image::kError, worst_image::kSsimMap, worst_image::kFlipMap}) image(wf, what, base + "_" + what, nullptr, kMap);
             return;
         }
-        image(wf, "error", base + "_error", [reference = worst.reference, variant = worst.image, n = pixels()] {
+        image(wf, worst_image::kError, base + "_" + worst_image::kError, [reference = worst.reference, variant = worst.image, n = pixels()] {
             const auto& a = *reference;
             const auto& b = *variant;
             return colour(heatMapOf(n, 4.0, [&](size_t i) {
@@ -187,10 +193,10 @@ private:
         }, kMap);
         if (worst.ssim_map && worst.flip_map) {
             // Dissimilarity: bright where worse. FLIP's error is already in perceptual units on [0,1]: unscaled.
-            image(wf, "ssim_map", base + "_ssim_map", [map = worst.ssim_map] {
+            image(wf, worst_image::kSsimMap, base + "_" + worst_image::kSsimMap, [map = worst.ssim_map] {
                 return colour(heatMapOf(map->size(), 2.0, [&](size_t i) { return 1.0 - double((*map)[i]); }));
             }, kMap);
-            image(wf, "flip_map", base + "_flip_map", [map = worst.flip_map] {
+            image(wf, worst_image::kFlipMap, base + "_" + worst_image::kFlipMap, [map = worst.flip_map] {
                 return colour(heatMapOf(map->size(), 1.0, [&](size_t i) { return double((*map)[i]); }));
             }, kMap);
             return;
@@ -210,8 +216,8 @@ private:
         } catch (const std::exception& e) {
             std::fprintf(stderr, "cbrbench: maps of %s not written: %s\n", base.c_str(), e.what());
         }
-        image(wf, "ssim_map", base + "_ssim_map", kept(ssim), kMap);
-        image(wf, "flip_map", base + "_flip_map", kept(flip), kMap);
+        image(wf, worst_image::kSsimMap, base + "_" + worst_image::kSsimMap, kept(ssim), kMap);
+        image(wf, worst_image::kFlipMap, base + "_" + worst_image::kFlipMap, kept(flip), kMap);
     }
 
     // ColorVideoVDP's map, at 4x (a quarter of the way to 10 JOD is white): kept by the chain step
@@ -219,11 +225,11 @@ private:
     void cvvdpMap(WorstFrame& wf, const std::string& base, const Worst& worst) {
         constexpr double kScale = 4.0;
         if (worst.cvvdp_map) {
-            image(wf, "cvvdp_map", base + "_cvvdp_map", [map = worst.cvvdp_map] {
+            image(wf, worst_image::kCvvdpMap, base + "_" + worst_image::kCvvdpMap, [map = worst.cvvdp_map] {
                 return colour(heatMapOf(map->size(), kScale, [&](size_t i) { return (*map)[i] / 255.0; }));
             }, kMap);
         } else if (worst.cvvdp_values) {
-            image(wf, "cvvdp_map", base + "_cvvdp_map", [map = worst.cvvdp_values] {
+            image(wf, worst_image::kCvvdpMap, base + "_" + worst_image::kCvvdpMap, [map = worst.cvvdp_values] {
                 return colour(heatMapOf(map->size(), kScale, [&](size_t i) { return double((*map)[i]); }));
             }, kMap);
         }
@@ -287,7 +293,7 @@ std::vector<WorstFrame> QualityScorer::finish(const std::filesystem::path& dir) 
     Writer writer(dir, width_, height_, flip_ppd_, encoders, wall_);
     for (const auto& variant : variant_order_) {
         Chain& c = *chains_.at(variant);
-        for (auto [kind, worst] : {std::pair<const char*, Worst*>{"ssim", &c.worst_ssim}, {"eci", &c.worst_eci}}) {
+        for (auto [kind, worst] : {std::pair<const char*, Worst*>{rundir::run::worst::kSsim, &c.worst_ssim}, {rundir::run::worst::kEci, &c.worst_eci}}) {
             if (worst->frame < 0) continue;
             // One frame's images loaded at a time, once the queue has drained to what runs:
             // the frames in memory are this one and those whose last encodes are running.

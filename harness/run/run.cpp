@@ -15,6 +15,8 @@
 #include "reports/output_dir.h"
 #include "reports/report.h"
 #include "reports/sweep.h"
+#include "rundir/files.h"
+#include "rundir/run_json_health.h"
 
 namespace cbr::harness {
 namespace {
@@ -97,7 +99,7 @@ void writeFiles(RunState& s, reports::OutputDir& out) {
         if (!options.control.silent) reports::writeReport(out.path());
         if (options.control.sweep) reports::writeSweepReport(out.path(), variantRoles());
     }
-    noteMemory(s.ctx, "report", s.results.memory, s.wall);
+    noteMemory(s.ctx, rundir::run::memory::kReport, s.results.memory, s.wall);
     s.wall.close();
     s.results.seconds = s.wall.total();
     updateRunJsonWall(out.path(), rc);
@@ -108,7 +110,7 @@ void writeFiles(RunState& s, reports::OutputDir& out) {
     if (options.control.sweep) {
         for (const auto& line : reports::sweepSummaryLines(reports::loadSweep(out.finalPath()).points, variantRoles()))
             std::cout << line << "\n";
-        std::cout << "sweep: " << (shown / "sweep.csv").string() << ", " << (shown / "sweep.html").string() << "\n";
+        std::cout << "sweep: " << (shown / rundir::kSweepCsv).string() << ", " << (shown / rundir::kSweepHtml).string() << "\n";
     }
 }
 
@@ -148,13 +150,13 @@ int runBenchmark(const RunOptions& options) {
     // Once the run is known to fit and its slowdown to apply: a refused run says one line, and nothing else.
     if (!options.control.silent) std::fprintf(stderr, "cbrbench: %s\n", sceneLoadLine(p.scene, p.load).c_str());
     renderQualityFrames(s);
-    noteMemory(s.ctx, "quality_pass", s.results.memory, s.wall);
+    noteMemory(s.ctx, rundir::run::memory::kQualityPass, s.results.memory, s.wall);
     renderRepetitions(s);
     assessHealth(s);
     s.spill.close();  // every timed row is in it: frames.csv is written from it
-    noteMemory(s.ctx, "timed_frames", s.results.memory, s.wall);
+    noteMemory(s.ctx, rundir::run::memory::kTimedFrames, s.results.memory, s.wall);
     scoreFrames(s);
-    noteMemory(s.ctx, "worst_images", s.results.memory, s.wall);
+    noteMemory(s.ctx, rundir::run::memory::kWorstImages, s.results.memory, s.wall);
     releaseAndMeasure(s);
     writeFiles(s, out);
     if (!options.control.silent) std::fprintf(stderr, "cbrbench: %s\n", s.wall.line().c_str());

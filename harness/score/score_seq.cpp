@@ -28,6 +28,11 @@
 #include "reports/output_dir.h"
 #include "reports/report.h"
 #include "reports/report_data.h"
+#include "rundir/files.h"
+#include "rundir/frames_csv.h"
+#include "rundir/run_json_sequence.h"
+#include "rundir/setting_columns.h"
+#include "rundir/summary_csv.h"
 
 namespace cbr::harness {
 
@@ -236,9 +241,10 @@ SeqThreshold parseSeqThreshold(const std::string& spec, const std::string& optio
         const char* column;
         bool higher_is_worse;
     };
-    static const Known kKnown[] = {{"psnr", "psnr_db", false}, {"ssim", "ssim", false}, {"jod", "cvvdp_jod", false},
-                                   {"flip", "flip_mean", true},
-                                   {"eci", "eci", true},       {"flicker", "flicker_ratio", true}};
+    namespace f = rundir::frames;
+    static const Known kKnown[] = {{"psnr", f::kPsnrDb, false}, {"ssim", f::kSsim, false}, {"jod", f::kCvvdpJod, false},
+                                   {"flip", f::kFlipMean, true},
+                                   {"eci", f::kEci, true},       {"flicker", f::kFlickerRatio, true}};
     const auto eq = spec.find('=');
     SeqThreshold t;
     t.metric = spec.substr(0, eq);
@@ -268,64 +274,61 @@ namespace {
 // frames.csv of a sequence: the run's quality columns plus where each frame came from.
 void writeSeqFramesCsv(const fs::path& file, const SeqRows& rows, const std::vector<SeqFrameInfo>& infos,
                        bool motion_files) {
-    reports::CsvTable t({"variant", "repeat", "frame", "frame_number", "reference_file", "test_file", "psnr_db", "mse",
-                         "ssim", "ssim_luma", "flip_mean", "flip_q1", "flip_median", "flip_q3", "cvvdp_jod", "eci",
-                         "flicker_ratio", "crawl_valid_fraction", "motion", "shift_dx", "shift_dy",
-                         "shift_response", "global_shift_rejected", "cut", "note"});
+    using namespace rundir::frames;
+    reports::CsvTable t(sequenceColumns());
     for (size_t i = 0; i < rows.size(); ++i) {
         const auto& row = rows[i];
         const auto& q = row.quality;
         const auto& info = infos[i];
         std::map<std::string, reports::Cell> m;
-        m["variant"] = row.variant;
-        m["repeat"] = 0;
-        m["frame"] = row.frame;
-        m["frame_number"] = info.number;
-        m["reference_file"] = info.reference.string();
-        m["test_file"] = info.test.string();
-        m["psnr_db"] = optional(q.psnr_db);
-        m["mse"] = optional(q.mse);
-        m["ssim"] = optional(q.ssim);
-        m["ssim_luma"] = optional(q.ssim_luma);
-        m["flip_mean"] = optional(q.flip_mean);
-        m["flip_q1"] = optional(q.flip_q1);
-        m["flip_median"] = optional(q.flip_median);
-        m["flip_q3"] = optional(q.flip_q3);
-        if (q.cvvdp_q) m["cvvdp_jod"] = metrics::cvvdpJod(*q.cvvdp_q);
-        m["eci"] = optional(q.eci);
-        m["flicker_ratio"] = optional(q.flicker_ratio);
-        m["crawl_valid_fraction"] = optional(q.crawl_valid_fraction);
-        m["motion"] = motion_files ? "files" : "global shift";
+        m[kVariant] = row.variant;
+        m[kRepeat] = 0;
+        m[kFrame] = row.frame;
+        m[kFrameNumber] = info.number;
+        m[kReferenceFile] = info.reference.string();
+        m[kTestFile] = info.test.string();
+        m[kPsnrDb] = optional(q.psnr_db);
+        m[kMse] = optional(q.mse);
+        m[kSsim] = optional(q.ssim);
+        m[kSsimLuma] = optional(q.ssim_luma);
+        m[kFlipMean] = optional(q.flip_mean);
+        m[kFlipQ1] = optional(q.flip_q1);
+        m[kFlipMedian] = optional(q.flip_median);
+        m[kFlipQ3] = optional(q.flip_q3);
+        if (q.cvvdp_q) m[kCvvdpJod] = metrics::cvvdpJod(*q.cvvdp_q);
+        m[kEci] = optional(q.eci);
+        m[kFlickerRatio] = optional(q.flicker_ratio);
+        m[kCrawlValidFraction] = optional(q.crawl_valid_fraction);
+        m[kMotion] = motion_files ? "files" : "global shift";
         if (!motion_files && !info.cut) {
-            m["shift_dx"] = info.shift_dx;
-            m["shift_dy"] = info.shift_dy;
-            m["shift_response"] = info.shift_response;
-            m["global_shift_rejected"] = info.shift_rejected;
+            m[kShiftDx] = info.shift_dx;
+            m[kShiftDy] = info.shift_dy;
+            m[kShiftResponse] = info.shift_response;
+            m[kGlobalShiftRejected] = info.shift_rejected;
         }
-        m["cut"] = info.cut;
-        m["note"] = q.note + row.note;
+        m[kCut] = info.cut;
+        m[kNote] = q.note + row.note;
         t.addRow(m);
     }
     t.write(file);
-    reportNaNs(t, "frames.csv");
+    reportNaNs(t, rundir::kFramesCsv);
 }
 
 void writeSeqSummaryCsv(const fs::path& file, const VariantSummary& s, int width, int height) {
-    reports::CsvTable t({"variant", "status", "frames", "repeats", "width", "height", "psnr_db_mean", "psnr_db_min",
-                         "psnr_db_p5", "ssim_mean", "ssim_min", "ssim_luma_mean", "flip_mean", "cvvdp_jod", "eci", "eci_p95",
-                         "eci_max", "flicker_ratio_mean", "note"});
+    using namespace rundir::summary;
+    reports::CsvTable t(sequenceColumns());
     std::map<std::string, reports::Cell> m;
-    m["variant"] = s.variant;
-    m["status"] = "ok";
-    m["frames"] = s.frames;
-    m["repeats"] = 1;
-    m["width"] = width;
-    m["height"] = height;
+    m[kVariant] = s.variant;
+    m[kStatus] = "ok";
+    m[kFrames] = s.frames;
+    m[kRepeats] = 1;
+    m[kWidth] = width;
+    m[kHeight] = height;
     summaryQualityCells(m, s);
-    m["note"] = s.note;
+    m[kNote] = s.note;
     t.addRow(m);
     t.write(file);
-    reportNaNs(t, "summary.csv");
+    reportNaNs(t, rundir::kSummaryCsv);
 }
 
 json finiteOrNull(const std::optional<double>& v) { return v && std::isfinite(*v) ? json(*v) : json(nullptr); }
@@ -343,11 +346,12 @@ std::vector<Crossing> judge(const std::vector<SeqThreshold>& warn, const std::ve
                             const SeqRows& rows, const std::vector<SeqFrameInfo>& infos) {
     std::vector<Crossing> out;
     auto value = [](const Quality& q, const std::string& column) -> std::optional<double> {
-        if (column == "psnr_db") return q.psnr_db;
-        if (column == "ssim") return q.ssim;
-        if (column == "flip_mean") return q.flip_mean;
-        if (column == "cvvdp_jod") return q.cvvdp_q ? std::optional<double>(metrics::cvvdpJod(*q.cvvdp_q)) : std::nullopt;
-        if (column == "eci") return q.eci;
+        namespace f = rundir::frames;
+        if (column == f::kPsnrDb) return q.psnr_db;
+        if (column == f::kSsim) return q.ssim;
+        if (column == f::kFlipMean) return q.flip_mean;
+        if (column == f::kCvvdpJod) return q.cvvdp_q ? std::optional<double>(metrics::cvvdpJod(*q.cvvdp_q)) : std::nullopt;
+        if (column == f::kEci) return q.eci;
         return q.flicker_ratio;
     };
     for (bool is_fail : {true, false})
@@ -365,62 +369,80 @@ std::vector<Crossing> judge(const std::vector<SeqThreshold>& warn, const std::ve
     return out;
 }
 
+// run.json sequence: the two sequences, how frames were matched, and the motion the crawl took.
+json sequenceJson(const ScoreSeqOptions& o, const SeqInputs& in, const Scored& s) {
+    namespace k = rundir::run::sequence;
+    namespace km = k::motion;
+    json motion = {{km::kSource, in.motion_files.empty() ? "global shift" : "files"}};
+    if (in.motion_files.empty())
+        motion[km::kMethod] = "one translation per frame pair: phase correlation of the reference's luma (OpenCV "
+                              "phaseCorrelate, Hann window), refined by Gauss-Newton steps on the sigma-1 blurred luma, "
+                              "kept where it explains the reference's change better than no motion (else 0); no "
+                              "disocclusion test (no depth)";
+    else
+        motion.update({{km::kFiles, o.motion}, {km::kScale, {in.motion_sx, in.motion_sy}},
+                       {km::kConvention, "the first two channels x scale: the surface at pixel p of frame t was at p + "
+                                         "motion in frame t-1, in pixels; no disocclusion test (no depth)"}});
+    return {{k::kReference, o.reference},
+            {k::kTest, o.test},
+            {k::kFrames, in.reference.frames.size()},
+            {k::kMatchedBy, in.reference.pattern && in.test.pattern ? "frame number" : "sorted name"},
+            {k::kMotion, motion},
+            {k::kCuts, o.cuts},
+            {k::kConversions, s.conversions}};
+}
+
+// run.json thresholds: those given, those crossed, and the verdict.
+json thresholdsJson(const std::vector<Crossing>& crossings, const std::vector<SeqThreshold>& warn,
+                    const std::vector<SeqThreshold>& fail) {
+    namespace k = rundir::run::thresholds;
+    json th = {{k::kWarn, json::array()}, {k::kFail, json::array()}};
+    for (const auto& t : warn) th[k::kWarn].push_back({{k::kMetric, t.metric}, {k::kValue, t.value}});
+    for (const auto& t : fail) th[k::kFail].push_back({{k::kMetric, t.metric}, {k::kValue, t.value}});
+    th[k::kCrossed] = json::array();
+    for (const auto& c : crossings)
+        th[k::kCrossed].push_back({{k::kMetric, c.threshold->metric}, {k::crossed::kThreshold, c.threshold->value},
+                                   {k::crossed::kLevel, c.fail ? k::kFail : k::kWarn}, {k::crossed::kFrame, c.frame},
+                                   {k::crossed::kFrameNumber, c.number}, {k::kValue, finiteOrNull(c.value)}});
+    bool any_fail = false, any_warn = false;
+    for (const auto& c : crossings) (c.fail ? any_fail : any_warn) = true;
+    th[k::kVerdict] = any_fail ? "FAILURE" : any_warn ? "WARNING" : "PASS";
+    return th;
+}
+
 json runJson(const ScoreSeqOptions& o, const SeqInputs& in, const Scored& s, const VariantSummary& sum,
              const std::vector<Crossing>& crossings, const std::vector<SeqThreshold>& warn,
              const std::vector<SeqThreshold>& fail, double seconds, const std::vector<WorstFrame>& worst) {
+    using namespace rundir::run;
+    namespace ks = rundir::run::settings;
     json j;
-    j["kind"] = "score-seq";
-    j["tool"] = {{"name", "cbrbench"}, {"version", CBR_VERSION}, {"commit", CBR_GIT_COMMIT}};
-    j["date"] = isoDate();
-    j["command_line"] = o.argv;
-    j["host"] = hostJson();
-    j["wall_seconds"] = seconds;
-    j["settings"] = {{"width", s.width},
-                     {"height", s.height},
-                     {"flip_ppd", settings::flipPpd(o.tune)},
-                     {"display", settings::toJson(*settings::find("display"), o.tune)},
-                     {"cvvdp_fps", in.reference.frames.size() > 1 ? o.fps : 0.0},
-                     {"exposure", o.exposure}};
-    j["scene"] = {{"name", "captured sequence"}};
-    j["path"] = {{"name", in.name}};
-    json motion = {{"source", in.motion_files.empty() ? "global shift" : "files"}};
-    if (in.motion_files.empty())
-        motion["method"] = "one translation per frame pair: phase correlation of the reference's luma (OpenCV "
-                           "phaseCorrelate, Hann window), refined by Gauss-Newton steps on the sigma-1 blurred luma, "
-                           "kept where it explains the reference's change better than no motion (else 0); no "
-                           "disocclusion test (no depth)";
-    else
-        motion.update({{"files", o.motion}, {"scale", {in.motion_sx, in.motion_sy}},
-                       {"convention", "the first two channels x scale: the surface at pixel p of frame t was at p + "
-                                      "motion in frame t-1, in pixels; no disocclusion test (no depth)"}});
-    j["sequence"] = {{"reference", o.reference},
-                     {"test", o.test},
-                     {"frames", in.reference.frames.size()},
-                     {"matched_by", in.reference.pattern && in.test.pattern ? "frame number" : "sorted name"},
-                     {"motion", motion},
-                     {"cuts", o.cuts},
-                     {"conversions", s.conversions}};
-    json th = {{"warn", json::array()}, {"fail", json::array()}};
-    for (const auto& t : warn) th["warn"].push_back({{"metric", t.metric}, {"value", t.value}});
-    for (const auto& t : fail) th["fail"].push_back({{"metric", t.metric}, {"value", t.value}});
-    th["crossed"] = json::array();
-    for (const auto& c : crossings)
-        th["crossed"].push_back({{"metric", c.threshold->metric}, {"threshold", c.threshold->value},
-                                 {"level", c.fail ? "fail" : "warn"}, {"frame", c.frame},
-                                 {"frame_number", c.number}, {"value", finiteOrNull(c.value)}});
-    bool any_fail = false, any_warn = false;
-    for (const auto& c : crossings) (c.fail ? any_fail : any_warn) = true;
-    th["verdict"] = any_fail ? "FAILURE" : any_warn ? "WARNING" : "PASS";
-    j["thresholds"] = th;
-    j["summary"] = {{"psnr_db", finiteOrNull(sum.psnr_db)},
-                    {"psnr_db_is_inf", sum.psnr_db && std::isinf(*sum.psnr_db)},
-                    {"ssim_mean", finiteOrNull(sum.ssim_mean)},
-                    {"flip_mean", finiteOrNull(sum.flip_mean)},
-                    {"cvvdp_jod", finiteOrNull(sum.cvvdp_jod)},
-                    {"eci", finiteOrNull(sum.eci)},
-                    {"flicker_ratio_mean", finiteOrNull(sum.flicker_ratio_mean)}};
-    j["variants"] = json::array({{{"name", in.name}, {"status", "ok"}}});
-    j["worst"] = worstJson(worst);
+    j[kKind] = kScoreSeqKind;
+    j[kTool] = {{tool::kName, "cbrbench"}, {tool::kVersion, CBR_VERSION}, {tool::kCommit, CBR_GIT_COMMIT}};
+    j[kDate] = isoDate();
+    j[kCommandLine] = o.argv;
+    j[kHost] = hostJson();
+    j[kWallSeconds] = seconds;
+    const cbr::settings::Row& display = *cbr::settings::find("display");
+    j[kSettings] = {{ks::kWidth, s.width},
+                    {ks::kHeight, s.height},
+                    {rundir::settingColumn("flip-ppd"), cbr::settings::flipPpd(o.tune)},
+                    {display.column, cbr::settings::toJson(display, o.tune)},
+                    {ks::kCvvdpFps, in.reference.frames.size() > 1 ? o.fps : 0.0},
+                    {rundir::settingColumn("exposure"), o.exposure}};
+    j[kScene] = {{rundir::run::scene::kName, "captured sequence"}};
+    j[kPath] = {{rundir::run::path::kName, in.name}};
+    j[kSequence] = sequenceJson(o, in, s);
+    j[kThresholds] = thresholdsJson(crossings, warn, fail);
+    namespace sum_k = sequence_summary;
+    j[kSummary] = {{sum_k::kPsnrDb, finiteOrNull(sum.psnr_db)},
+                   {sum_k::kPsnrDbIsInf, sum.psnr_db && std::isinf(*sum.psnr_db)},
+                   {sum_k::kSsimMean, finiteOrNull(sum.ssim_mean)},
+                   {sum_k::kFlipMean, finiteOrNull(sum.flip_mean)},
+                   {sum_k::kCvvdpJod, finiteOrNull(sum.cvvdp_jod)},
+                   {sum_k::kEci, finiteOrNull(sum.eci)},
+                   {sum_k::kFlickerRatioMean, finiteOrNull(sum.flicker_ratio_mean)}};
+    j[kVariants] = json::array({{{variant::kName, in.name}, {variant::kStatus, "ok"}}});
+    j[kWorst] = worstJson(worst);
     return j;
 }
 
@@ -474,9 +496,9 @@ int runScoreSeq(const ScoreSeqOptions& given) {
     const auto crossings = judge(warn, fail, rows, infos);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    writeSeqFramesCsv(out.path() / "frames.csv", rows, infos, !in.motion_files.empty());
-    writeSeqSummaryCsv(out.path() / "summary.csv", sum, s.width, s.height);
-    reports::writeTextAtomically(out.path() / "run.json",
+    writeSeqFramesCsv(out.path() / rundir::kFramesCsv, rows, infos, !in.motion_files.empty());
+    writeSeqSummaryCsv(out.path() / rundir::kSummaryCsv, sum, s.width, s.height);
+    reports::writeTextAtomically(out.path() / rundir::kRunJson,
                                  runJson(o, in, s, sum, crossings, warn, fail, seconds, results.worst).dump(2) + "\n");
     reports::writeReport(out.path());
     out.commit();
@@ -497,7 +519,7 @@ int runScoreSeq(const ScoreSeqOptions& given) {
                     c.threshold->value);
     }
     if (!warn.empty() || !fail.empty()) std::printf("%s\n", any_fail ? "FAILURE" : any_warn ? "WARNING" : "PASS");
-    std::printf("output: %s\nreport: %s\n", out.finalPath().c_str(), (out.finalPath() / "report.html").c_str());
+    std::printf("output: %s\nreport: %s\n", out.finalPath().c_str(), (out.finalPath() / rundir::kReportHtml).c_str());
     return any_fail ? kSeqFail : any_warn ? kSeqWarn : kSeqPass;
 }
 

@@ -23,6 +23,8 @@
 #include "reports/csv.h"
 #include "reports/output_dir.h"
 #include "reports/stress_html.h"
+#include "rundir/files.h"
+#include "rundir/run_json_variants.h"
 
 namespace cbr::harness {
 
@@ -44,6 +46,12 @@ const std::vector<StressCaseInfo>& stressCases() {
 }
 
 namespace {
+
+// run.json validation.messages: what the validation layer said (0 without it).
+int validationMessages(const nlohmann::json& run) {
+    const auto it = run.find(rundir::run::kValidation);
+    return it != run.end() && it->is_object() ? it->value(rundir::run::validation::kMessages, 0) : 0;
+}
 
 void checkStressOptions(const StressOptions& o) {
     if (o.static_frames < 2 || o.subpixel_frames < 101)
@@ -89,9 +97,9 @@ public:
         }
         if (o_.validate)
             for (auto& [key, child] : ch)
-                if (child->loaded && child->run.contains("validation") && child->run["validation"].value("messages", 0) != 0) {
+                if (const auto messages = validationMessages(child->run); child->loaded && messages != 0) {
                     v.held = false;
-                    v.detail += "; " + key + ": " + std::to_string(child->run["validation"].value("messages", 0)) +
+                    v.detail += "; " + key + ": " + std::to_string(messages) +
                                 " validation messages";
                 }
         // Messages name inputs under the partial directory; say where they will be.
@@ -108,7 +116,7 @@ public:
         std::vector<reports::StressRunLink> links;
         for (const auto& [key, child] : ch) {
             std::string rel = pipeline_ + "/" + fs::relative(child->dir, out_.path() / pipeline_).string();
-            links.push_back({key, fs::exists(child->dir / "report.html") ? rel + "/report.html" : std::string()});
+            links.push_back({key, fs::exists(child->dir / rundir::kReportHtml) ? rel + "/" + rundir::kReportHtml : std::string()});
         }
         return links;
     }

@@ -13,6 +13,9 @@
 #include "metrics/image_io.h"
 #include "renderer/scene/scene.h"
 #include "renderer/variants/variants.h"
+#include "rundir/pixel_classes.h"
+#include "rundir/run_json.h"
+#include "rundir/summary_csv.h"
 
 namespace cbr::harness::stress {
 namespace {
@@ -39,7 +42,7 @@ std::string scaledBaseline() { return std::string(variants::findVariant(kCbr.fro
 std::string qualityLine(const Child& c) {
     std::string s;
     for (const auto& v : kVariants)
-        if (v != variants::referenceVariant().name) s += (s.empty() ? "" : ", ") + v + " " + db(summaryValue(c, v, "psnr_db_mean")) + " dB";
+        if (v != variants::referenceVariant().name) s += (s.empty() ? "" : ", ") + v + " " + db(summaryValue(c, v, rundir::summary::kPsnrDbMean)) + " dB";
     return s;
 }
 
@@ -71,7 +74,8 @@ Verdict sameAsBase(Children& ch, const std::string& other, double min_db, double
     }
     double worst = 0;
     for (const auto& var : kCbr)
-        for (const char* cls : {"px_reused_mean", "px_occluded_mean", "px_missing_parity_mean"}) {
+        for (const char* pixels : {rundir::pixels::kReused, rundir::pixels::kOccluded, rundir::pixels::kMissingParity}) {
+            const std::string cls = rundir::summary::statMean(pixels);
             auto x = summaryValue(a, var, cls), y = summaryValue(b, var, cls);
             if (x && y) worst = std::max(worst, std::abs(*x - *y));
         }
@@ -196,7 +200,7 @@ void addMotionCases(std::vector<Case>& cases, const Inputs& in) {
              const Child& r = *c.at("subpixel");
              v.held = true;
              for (const auto& var : kCbr) {
-                 auto s = frameSeries(r, var, "psnr_db");
+                 auto s = frameSeries(r, var, rundir::frames::kPsnrDb);
                  if (s.size() < 101) return v.held = false, v.detail = "too few frames", v;
                  double early = 0, late = 0;
                  for (size_t i = 1; i <= 50; ++i) early += s[i] / 50;
@@ -217,10 +221,10 @@ void addMotionCases(std::vector<Case>& cases, const Inputs& in) {
                          const Child& r = *c.at("cancel");
                          v.held = true;
                          for (const auto& var : kCbr) {
-                             auto miss = summaryValue(r, var, "px_missing_parity_mean");
-                             auto reused = summaryValue(r, var, "px_reused_mean");
-                             auto psnr = summaryValue(r, var, "psnr_db_mean");
-                             auto ssim = summaryValue(r, var, "ssim_mean");
+                             auto miss = summaryValue(r, var, rundir::summary::statMean(rundir::pixels::kMissingParity));
+                             auto reused = summaryValue(r, var, rundir::summary::statMean(rundir::pixels::kReused));
+                             auto psnr = summaryValue(r, var, rundir::summary::kPsnrDbMean);
+                             auto ssim = summaryValue(r, var, rundir::summary::kSsimMean);
                              v.detail += var + " missing by parity " + num(miss) + ", reused " + num(reused) + ", " +
                                          db(psnr) + " dB, SSIM " + num(ssim) + "; ";
                              const bool parity_holes = !fullHistory(var);  // a full-res history has none
@@ -246,8 +250,8 @@ void addHistoryCases(std::vector<Case>& cases, const Inputs& in) {
              if (!v.finite) return v;
              v.held = true;
              for (const auto& var : kCbr) {
-                 auto reused = frame11(*c.at("turn"), var, "px_reused");
-                 auto pt = frame11(*c.at("turn"), var, "psnr_db"), pc = frame11(*c.at("cut"), var, "psnr_db");
+                 auto reused = frame11(*c.at("turn"), var, rundir::pixels::kReused);
+                 auto pt = frame11(*c.at("turn"), var, rundir::frames::kPsnrDb), pc = frame11(*c.at("cut"), var, rundir::frames::kPsnrDb);
                  v.detail += var + " frame 11 reused " + num(reused) + ", " + db(pt) + " dB vs " + db(pc) + " dB after a cut; ";
                  if (!reused || *reused > 0.01 || !pt || !pc || std::abs(*pt - *pc) > 0.5) v.held = false;
              }
@@ -264,9 +268,9 @@ void addHistoryCases(std::vector<Case>& cases, const Inputs& in) {
              const Child& r = *c.at("cut");
              v.held = true;
              for (const auto& var : kCbr) {
-                 auto reset = frame11(r, var, "px_reset"), reused = frame11(r, var, "px_reused");
-                 auto p = frame11(r, var, "psnr_db");
-                 auto s = frameSeries(r, var, "psnr_db");
+                 auto reset = frame11(r, var, rundir::pixels::kReset), reused = frame11(r, var, rundir::pixels::kReused);
+                 auto p = frame11(r, var, rundir::frames::kPsnrDb);
+                 auto s = frameSeries(r, var, rundir::frames::kPsnrDb);
                  // The first frame is the other reset (spatial fill only): a cut frame without
                  // smear is as good as it. With LOD bias -1 the reconstructed frames gained more
                  // than reset frames do (atrium: cut 25.5 dB, median 29.1), so the median alone
@@ -298,7 +302,7 @@ void addStaticCameraCase(std::vector<Case>& cases, const StressOptions& o) {
              const Child& r = *c.at("static");
              v.held = true;
              for (const auto& var : kCbr) {
-                 auto s = frameSeries(r, var, "psnr_db");
+                 auto s = frameSeries(r, var, rundir::frames::kPsnrDb);
                  // Drift: the worst of the first k frames after the first against the last k's.
                  const size_t k = std::min<size_t>(50, s.size() / 2);
                  double worst = INFINITY, early = INFINITY, late = INFINITY;
@@ -333,15 +337,15 @@ std::function<Verdict(Children&)> constantImageCheck(const char* key) {
         v.held = true;
         int flagged = 0, frames = 0;
         for (const auto& var : kVariants) {
-            auto p = summaryValue(r, var, "psnr_db_mean"), s = summaryValue(r, var, "ssim_mean"),
-                 e = summaryValue(r, var, "eci");
+            auto p = summaryValue(r, var, rundir::summary::kPsnrDbMean), s = summaryValue(r, var, rundir::summary::kSsimMean),
+                 e = summaryValue(r, var, rundir::summary::kEci);
             if (!p || !std::isinf(*p) || !s || *s != 1.0 || !e || *e != 0.0) v.held = false;
             v.detail += var + " PSNR " + db(p) + ", SSIM " + num(s) + ", ECI " + num(e) + "; ";
         }
         for (size_t i = 0; i < r.frames.size(); ++i)
-            if (r.frames.num(i, "frame").value_or(0) > 0 && r.frames.text(i, "variant") != variants::referenceVariant().name) {
+            if (r.frames.num(i, rundir::frames::kFrame).value_or(0) > 0 && r.frames.text(i, rundir::frames::kVariant) != variants::referenceVariant().name) {
                 ++frames;
-                flagged += r.frames.text(i, "note").find("no reference edges") != std::string::npos;
+                flagged += r.frames.text(i, rundir::frames::kNote).find("no reference edges") != std::string::npos;
             }
         v.detail += std::to_string(flagged) + " of " + std::to_string(frames) + " frame pairs flagged 'no edges'";
         if (flagged != frames) v.held = false;
@@ -361,10 +365,10 @@ void addImageCases(std::vector<Case>& cases, const Inputs& in) {
                          if (!v.finite) return v;
                          const Child& r = *c.at("base");
                          const std::string scaled = scaledBaseline();
-                         auto drr = summaryValue(r, scaled, "eci");
+                         auto drr = summaryValue(r, scaled, rundir::summary::kEci);
                          v.held = bool(drr);
                          for (const auto& var : kCbr) {
-                             auto e = summaryValue(r, var, "eci");
+                             auto e = summaryValue(r, var, rundir::summary::kEci);
                              v.detail += var + " ECI " + num(e, 4) + "; ";
                              if (!e || !drr || *e > *drr) v.held = false;
                          }
@@ -430,7 +434,7 @@ void addGltfCases(std::vector<Case>& cases, const Inputs& in) {
                              } else if (r.exit_code == 0) {
                                  std::string why;
                                  v.finite = finiteAndOk(r, why);
-                                 auto warnings = r.run.value("scene", json::object()).value("warnings", json::array());
+                                 auto warnings = r.run.value(rundir::run::kScene, json::object()).value(rundir::run::scene::kWarnings, json::array());
                                  std::string found;
                                  for (const auto& w : warnings)
                                      if (w.is_string() && w.get<std::string>().find(warning) != std::string::npos)

@@ -10,6 +10,9 @@
 #include "metrics/image_io.h"
 #include "metrics/metrics.h"
 #include "harness/base/process.h"
+#include "rundir/files.h"
+#include "rundir/run_json.h"
+#include "rundir/summary_csv.h"
 
 namespace cbr::harness::stress {
 namespace {
@@ -40,9 +43,11 @@ void runChild(const fs::path& self, Child& c, const std::vector<std::string>& co
     c.err = readText(err_log);
     if (c.exit_code == 0) {
         try {
-            c.frames = reports::readCsv(c.dir / "frames.csv", reports::isReportNumericColumn, {"variant", "frame"});
-            c.summary = reports::readCsv(c.dir / "summary.csv", reports::isReportNumericColumn, {"variant"});
-            c.run = json::parse(readText(c.dir / "run.json"));
+            c.frames = reports::readCsv(c.dir / rundir::kFramesCsv, reports::isReportNumericColumn,
+                                        {rundir::frames::kVariant, rundir::frames::kFrame});
+            c.summary = reports::readCsv(c.dir / rundir::kSummaryCsv, reports::isReportNumericColumn,
+                                         {rundir::summary::kVariant});
+            c.run = json::parse(readText(c.dir / rundir::kRunJson));
             c.loaded = true;
         } catch (const std::exception& e) {
             c.err += std::string("stress: reading the run's files: ") + e.what() + "\n";
@@ -52,14 +57,14 @@ void runChild(const fs::path& self, Child& c, const std::vector<std::string>& co
 
 std::optional<double> summaryValue(const Child& c, const std::string& variant, const std::string& col) {
     for (size_t r = 0; r < c.summary.size(); ++r)
-        if (c.summary.text(r, "variant") == variant) return c.summary.num(r, col);
+        if (c.summary.text(r, rundir::summary::kVariant) == variant) return c.summary.num(r, col);
     return std::nullopt;
 }
 
 std::optional<double> frameValue(const Child& c, const std::string& variant, int frame, const std::string& col) {
     for (size_t r = 0; r < c.frames.size(); ++r)
-        if (c.frames.text(r, "variant") == variant && c.frames.num(r, "frame") == frame &&
-            c.frames.num(r, "repeat").value_or(0) == 0)
+        if (c.frames.text(r, rundir::frames::kVariant) == variant && c.frames.num(r, rundir::frames::kFrame) == frame &&
+            c.frames.num(r, rundir::frames::kRepeat).value_or(0) == 0)
             return c.frames.num(r, col);
     return std::nullopt;
 }
@@ -67,8 +72,8 @@ std::optional<double> frameValue(const Child& c, const std::string& variant, int
 std::vector<double> frameSeries(const Child& c, const std::string& variant, const std::string& col) {
     std::map<int, double> by_frame;
     for (size_t r = 0; r < c.frames.size(); ++r)
-        if (c.frames.text(r, "variant") == variant && c.frames.num(r, "repeat").value_or(0) == 0)
-            if (auto v = c.frames.num(r, col)) by_frame[int(*c.frames.num(r, "frame"))] = *v;
+        if (c.frames.text(r, rundir::frames::kVariant) == variant && c.frames.num(r, rundir::frames::kRepeat).value_or(0) == 0)
+            if (auto v = c.frames.num(r, col)) by_frame[int(*c.frames.num(r, rundir::frames::kFrame))] = *v;
     std::vector<double> out;
     for (auto& [f, v] : by_frame) out.push_back(v);
     return out;
@@ -79,17 +84,17 @@ bool finiteAndOk(const Child& c, std::string& why) {
     if (c.signal) return why = "crashed (signal " + std::to_string(c.signal) + ")", false;
     if (c.exit_code != 0) return why = "exit " + std::to_string(c.exit_code) + ": " + c.err.substr(0, 200), false;
     if (!c.loaded) return why = c.err, false;
-    if (c.run.value("non_finite_cells", 0) != 0)
-        return why = std::to_string(c.run.value("non_finite_cells", 0)) + " non-finite cells", false;
+    if (c.run.value(rundir::run::kNonFiniteCells, 0) != 0)
+        return why = std::to_string(c.run.value(rundir::run::kNonFiniteCells, 0)) + " non-finite cells", false;
     for (const auto* t : {&c.frames, &c.summary})
         for (size_t r = 0; r < t->size(); ++r) {
             // unsteady: the machine disturbed the timing, which says nothing about soundness.
-            const std::string status = t->text(r, "status");
-            if (status != "ok" && status != "unsteady") return why = t->text(r, "variant") + " " + t->text(r, "status"), false;
+            const std::string status = t->text(r, rundir::frames::kStatus);
+            if (status != "ok" && status != "unsteady") return why = t->text(r, rundir::frames::kVariant) + " " + status, false;
             for (const auto& h : t->header) {
                 if (!reports::isReportNumericColumn(h)) continue;
                 auto v = t->num(r, h);
-                if (v && std::isinf(*v) && h.rfind("psnr", 0) != 0)
+                if (v && std::isinf(*v) && h.rfind(rundir::frames::kPsnrDb, 0) != 0)
                     return why = h + " is infinite in " + t->file.filename().string(), false;
             }
         }

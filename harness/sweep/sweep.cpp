@@ -13,6 +13,7 @@
 #include "reports/output_dir.h"
 #include "settings/table.h"
 #include "reports/sweep.h"
+#include "rundir/files.h"
 
 namespace cbr::harness {
 namespace {
@@ -55,8 +56,8 @@ int runOuterSweeps(const RunOptions& options, const std::vector<std::string>& pa
     std::cout << "\nsweep over " << outer.size() << " runs:\n";
     for (const auto& line : reports::sweepSummaryLines(reports::loadSweep(out.finalPath()).points, variantRoles()))
         std::cout << line << "\n";
-    std::cout << "sweep: " << (out.finalPath() / "sweep.csv").string() << ", "
-              << (out.finalPath() / "sweep.html").string() << " (each run in its own subdirectory)\n";
+    std::cout << "sweep: " << (out.finalPath() / rundir::kSweepCsv).string() << ", "
+              << (out.finalPath() / rundir::kSweepHtml).string() << " (each run in its own subdirectory)\n";
     return 0;
 }
 

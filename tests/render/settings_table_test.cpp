@@ -12,6 +12,7 @@
 
 #include "bench_runner.h"
 #include "reports/sweep.h"
+#include "rundir/sweep_csv.h"
 #include "settings/table.h"
 
 namespace {
@@ -144,7 +145,7 @@ TEST(SettingsTable, RunJsonAndCompareKey) {
 
 // Sweep's parameters are the rows that sweep, each with a column in sweep.csv.
 TEST(SettingsTable, SweepParameters) {
-    const auto& columns = cbr::reports::sweepColumns();
+    const auto& columns = cbr::rundir::sweep::columns();
     for (const auto& row : cbr::settings::table()) {
         SCOPED_TRACE(row.name);
         EXPECT_EQ(std::find(columns.begin(), columns.end(), row.column) != columns.end(), row.sweep != nullptr);

@@ -14,6 +14,7 @@
 #include "reports/html.h"
 #include "reports/jod.h"
 #include "reports/sweep.h"
+#include "rundir/sweep_csv.h"
 
 using cbr::harness::expandSweep;
 using cbr::harness::outerSweeps;
@@ -444,7 +445,7 @@ std::filesystem::path sweepDir(const std::string& name, bool column, bool jods) 
     const fs::path dir = fs::temp_directory_path() / ("cbr-sweep-jod-" + name + "-" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
-    std::vector<std::string> columns = cbr::reports::sweepColumns();
+    std::vector<std::string> columns = cbr::rundir::sweep::columns();
     if (!column) std::erase(columns, std::string(cbr::reports::kJodColumn));
     cbr::reports::CsvTable table(columns);
     struct Row {
