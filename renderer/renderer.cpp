@@ -15,9 +15,11 @@
 #include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
 #include "renderer/vk/pipelines.h"
+#include "rundir/run_json_variants.h"
 #include "shaders/spin.comp.h"
 
 namespace cbr::render {
+namespace key = rundir::run::variant;  // run.json variants[] keys (rundir/)
 namespace {
 
 constexpr uint32_t kSpinCalibration = 1u << 15;  // iterations timed during warm-up
@@ -428,7 +430,7 @@ void Renderer::calibrateSlowdown(const FrameResult& warmup) {
 std::vector<std::pair<std::string, std::string>> Renderer::describe() const {
     auto d = variant_->describe();
     if (spin_.pipeline)
-        d.push_back({"debug_slowdown", settings_.debug_slowdown_pass + " +" + std::to_string(settings_.debug_slowdown_pct) +
+        d.push_back({key::kDebugSlowdown, settings_.debug_slowdown_pass + " +" + std::to_string(settings_.debug_slowdown_pct) +
                                            "%: " + std::to_string(spin_iterations_) + " spin iterations" +
                                            (slowdown_applied_ ? "" : " (pass not in this variant: not applied)")});
     return d;

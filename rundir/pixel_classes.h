@@ -1,7 +1,6 @@
 // The checkerboard's pixel classes as columns: frames.csv `px_<class>` (the renderer's frame
-// statistics: renderer/variants/checkerboard.cpp statNames spells them itself, beside rundir/ on
-// its floor, and RundirSchema.* holds them to these), summary.csv `px_<class>_mean`, sweep.csv
-// `px_<class>`.
+// statistics, renderer/variants/checkerboard.cpp statNames), summary.csv `px_<class>_mean`,
+// sweep.csv `px_<class>`.
 #pragma once
 
 namespace cbr::rundir::pixels {

@@ -33,9 +33,8 @@ inline constexpr const char* kEci = summary::kEci;
 inline constexpr const char* kRenderWidth = summary::kRenderWidth;
 inline constexpr const char* kRenderHeight = summary::kRenderHeight;
 
-// The renderer's description of the variant (render::Renderer::describe), each a string. The
-// renderer stands beside rundir/ on its floor and spells these itself; RundirSchema.* holds
-// what it writes to these names.
+// The renderer's description of the variant (render::Renderer::describe, written with these
+// names), each a string.
 inline constexpr const char* kPipelineDetail = "pipeline_detail";
 inline constexpr const char* kRoute = "route";
 inline constexpr const char* kRouteReason = "route_reason";

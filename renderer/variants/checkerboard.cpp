@@ -12,8 +12,11 @@
 #include "renderer/shaders/cbr_pattern.h"
 #include "renderer/vk/check.h"
 #include "renderer/vk/context.h"
+#include "rundir/pixel_classes.h"
+#include "rundir/run_json_variants.h"
 
 namespace cbr::variants {
+namespace key = rundir::run::variant;  // run.json variants[] keys (rundir/)
 namespace {
 
 const char* historyStorage(render::HistoryFormat format) {
@@ -220,62 +223,62 @@ public:
 
     std::vector<std::string> statNames() const override {
         if (!settings_.fullHistory())
-            return {"px_shaded", "px_reused", "px_missing_parity", "px_occluded", "px_offscreen", "px_reset"};
-        return {"px_shaded", "px_reused", "px_missing_parity", "px_occluded", "px_offscreen", "px_reset", "px_clipped"};
+            return {std::begin(rundir::pixels::kClasses), std::end(rundir::pixels::kClasses) - 1};  // no px_clipped
+        return {std::begin(rundir::pixels::kClasses), std::end(rundir::pixels::kClasses)};
     }
 
     std::vector<std::pair<std::string, std::string>> describe() const override {
         std::vector<std::pair<std::string, std::string>> d = {
-            {"route", route_.name},
-            {"route_reason", route_.reason},
-            {"quarter_resolution", std::to_string(quarter_.width) + "x" + std::to_string(quarter_.height)},
-            {"lod_bias", std::to_string(settings_.cbr_lod_bias)},
-            {"occlusion_rule", clip_ ? "clip: no occlusion test; history reused wherever its reprojection is on "
+            {key::kRoute, route_.name},
+            {key::kRouteReason, route_.reason},
+            {key::kQuarterResolution, std::to_string(quarter_.width) + "x" + std::to_string(quarter_.height)},
+            {key::kLodBias, std::to_string(settings_.cbr_lod_bias)},
+            {key::kOcclusionRule, clip_ ? "clip: no occlusion test; history reused wherever its reprojection is on "
                                        "screen, the YCoCg clip the only rejection (TAA's rule; always the full history)"
                                : cso_ ? "CSO: view-space depth test"
                                       : "ASO: any quarter-res motion is missing"},
-            {"motion", !has_motion_ ? "camera motion from depth reprojection (static scene)"
+            {key::kMotion, !has_motion_ ? "camera motion from depth reprojection (static scene)"
                        : settings_.resolve_impl == render::ResolveImpl::Reference
                            ? "per-pixel motion vectors written by every opaque draw (moving objects present)"
                            : "motion vectors written by moving instances only (drawn last); elsewhere camera "
                              "motion from depth reprojection in the resolve"},
-            {"fill", "tone-mapped average of frame N's cardinal neighbours, weights 1/(1+luma)"},
-            {"history", settings_.fullHistory()
+            {key::kFill, "tone-mapped average of frame N's cardinal neighbours, weights 1/(1+luma)"},
+            {key::kHistory, settings_.fullHistory()
                             ? std::string("full: the previous resolved frame (linear, output size, ") +
                                   historyStorage(resolve_.history_format) + "), " +
                                   (settings_.history_filter == settings::HistoryFilter::CatmullRom ? "Catmull-Rom (5 bilinear taps)" : "bilinear") +
                                   " at the reprojected position, clipped towards the centre of the YCoCg box of this frame's "
                               "shaded cardinal neighbours; CSO compares frame N-1's quarter-res depth there"
                             : "quarter: frame N-1's quarter-res samples (the paper's)"},
-            {"pipeline_detail", deferred_ ? "deferred: checkerboard G-buffer, per-sample lighting into the SRT, "
+            {key::kPipelineDetail, deferred_ ? "deferred: checkerboard G-buffer, per-sample lighting into the SRT, "
                                      "transparency in the CFB"
                                    : "forward"},
-            {"lost_border", route_.route == CBR_ROUTE_MSAA_JITTER
+            {key::kLostBorder, route_.route == CBR_ROUTE_MSAA_JITTER
                                 ? "top-right quadrants of the last quarter-res column (full-res column 2*ceil(W/2)-1) "
                                   "are never shaded; filled from neighbours"
                                 : "none"}};
         bool reference = settings_.resolve_impl == render::ResolveImpl::Reference;
-        d.push_back({"resolve", reference ? "reference: the pre-issue-14 per-pixel branching shader, 8x8 groups"
+        d.push_back({key::kResolve, reference ? "reference: the pre-issue-14 per-pixel branching shader, 8x8 groups"
                                           : "tiled: 16x16 groups load frame N's samples (plus a halo) into shared "
                                             "memory once; every pixel evaluates every candidate, selected arithmetically"});
-        if (!reference) d.push_back({"resolve_group", std::to_string(resolve_.group_pixels) + "x" +
+        if (!reference) d.push_back({key::kResolveGroup, std::to_string(resolve_.group_pixels) + "x" +
                                                           std::to_string(resolve_.group_pixels) + " pixels per group"});
-        d.push_back({"tonemap", fused_ ? "fused into the resolve (cbr_resolve_tonemap); frame N-1 stays in linear "
+        d.push_back({key::kTonemap, fused_ ? "fused into the resolve (cbr_resolve_tonemap); frame N-1 stays in linear "
                                          "colour in the quarter-res sample sets"
                                        : "a separate tonemap pass"});
-        d.push_back({"class_stats", reference ? "subgroup ballots per class and invocation in the timed resolve"
+        d.push_back({key::kClassStats, reference ? "subgroup ballots per class and invocation in the timed resolve"
                                               : "counted per workgroup in the timed resolve: one subgroup sum of "
                                                 "packed counts, one shared histogram, at most 6 global adds per group, into "
                                                 "device-local counters copied for the host after the last timestamp"});
-        d.push_back({"class_map", reference ? "written by the timed resolve every frame"
+        d.push_back({key::kClassMap, reference ? "written by the timed resolve every frame"
                                             : "written only on quality frames, by the untimed cbr_class_map pass "
                                               "after the last timestamp"});
-        d.push_back({"resolve_bytes_per_frame",
+        d.push_back({key::kResolveBytesPerFrame,
                      std::to_string(std::llround(passes::cbrResolveBytes(resolve_, sets_[0], settings_.width,
                                                                          settings_.height)))});
         if (cso_) {
-            d.push_back({"cso_tolerance", std::to_string(settings_.cso_tolerance)});
-            d.push_back({"cso_mode", settings_.cso_mode == settings::CsoMode::Absolute ? "absolute" : "relative"});
+            d.push_back({key::kCsoTolerance, std::to_string(settings_.cso_tolerance)});
+            d.push_back({key::kCsoMode, settings_.cso_mode == settings::CsoMode::Absolute ? "absolute" : "relative"});
         }
         return d;
     }

@@ -10,8 +10,10 @@
 #include "renderer/passes/tonemap_pass.h"
 #include "renderer/passes/upscale_pass.h"
 #include "renderer/vk/context.h"
+#include "rundir/run_json_variants.h"
 
 namespace cbr::variants {
+namespace key = rundir::run::variant;  // run.json variants[] keys (rundir/)
 namespace {
 
 enum class Mode { Native, Upscale, Taau };
@@ -168,23 +170,23 @@ public:
     std::vector<std::pair<std::string, std::string>> describe() const override {
         if (!taau_) return {};
         VkExtent2D r = renderExtent(settings_.taau_scale);
-        return {{"render_resolution", std::to_string(r.width) + "x" + std::to_string(r.height)},
-                {"jitter", "Halton(2,3), " + std::to_string(settings_.taau_phases) +
+        return {{key::kRenderResolution, std::to_string(r.width) + "x" + std::to_string(r.height)},
+                {key::kJitter, "Halton(2,3), " + std::to_string(settings_.taau_phases) +
                                " phases, restarted at every history reset; applied to the projection, not to motion"},
-                {"lod_bias", "log2(render width / output width) = " +
+                {key::kLodBias, "log2(render width / output width) = " +
                                  std::to_string(std::log2(double(r.width) / settings_.width))},
-                {"motion", has_motion_ ? "motion vectors written by moving instances only (drawn last); elsewhere "
+                {key::kMotion, has_motion_ ? "motion vectors written by moving instances only (drawn last); elsewhere "
                                          "camera motion from depth reprojection in the resolve"
                                        : "camera motion from depth reprojection (static scene)"},
-                {"history", "full-res linear RGBA16F (alpha: accumulated sample weight), Catmull-Rom (5 bilinear "
+                {key::kHistory, "full-res linear RGBA16F (alpha: accumulated sample weight), Catmull-Rom (5 bilinear "
                             "taps) at the reprojected position of the nearest depth in the 3x3 render samples, "
                             "clipped towards the centre of their YCoCg box"},
-                {"blend", "exponential, weight " + std::to_string(settings_.taau_blend) +
+                {key::kBlend, "exponential, weight " + std::to_string(settings_.taau_blend) +
                               " x exp(-2.29 d^2) (d: nearest sample to the pixel centre, output pixels); a running "
                               "mean until the accumulated weight reaches 1/blend"},
-                {"reset", "history dropped at cuts and where the reprojection leaves the frame: the 3x3 samples' "
+                {key::kReset, "history dropped at cuts and where the reprojection leaves the frame: the 3x3 samples' "
                           "Gaussian-weighted mean"},
-                {"tonemap", fused_upscale_ ? "fused into the resolve (taau_resolve_tonemap); the history stays linear"
+                {key::kTonemap, fused_upscale_ ? "fused into the resolve (taau_resolve_tonemap); the history stays linear"
                                            : "a separate tonemap pass"}};
     }
 
