@@ -12,7 +12,7 @@
 #include "harness/calibrate/calibrate.h"
 #include "harness/cli_text.h"
 #include "harness/compare/compare.h"
-#include "harness/jobs/matrix_spec.h"
+#include "harness/jobs/job_matrix.h"
 #include "harness/run/run.h"
 #include "harness/output/table_roles.h"
 #include "harness/jobs/sweep_configs.h"

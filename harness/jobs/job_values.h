@@ -1,6 +1,6 @@
 // A job's typed values: the resolution, the pipeline, the export formats and the scene
 // offset. Each is read from its words once, where the command line is read (cli.cpp, through
-// matrix_spec.h), and written back as words where a file or a message shows it.
+// job_matrix.h), and written back as words where a file or a message shows it.
 #pragma once
 
 #include <cstdint>

@@ -40,7 +40,7 @@ struct Slowdown {
 // std::invalid_argument naming `flag`, the text and what it accepts.
 Slowdown parseSlowdown(const std::string& text, const std::string& flag = "--debug-slowdown");
 
-// One job: a whole run of one scene, path, pipeline and resolution (matrix_spec.h expands a
+// One job: a whole run of one scene, path, pipeline and resolution (job_matrix.h expands a
 // command line's lists into these). Every value is typed: nothing after the command line
 // reads a word of it again.
 struct RunOptions {

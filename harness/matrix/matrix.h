@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/jobs/matrix_spec.h"
+#include "harness/jobs/job_matrix.h"
 
 namespace cbr::harness {
 

@@ -1,5 +1,5 @@
-// The command line's matrix specification, its jobs and its plan hash (matrix_spec.h).
-#include "harness/jobs/matrix_spec.h"
+// The command line's matrix specification, its jobs and its plan hash (job_matrix.h).
+#include "harness/jobs/job_matrix.h"
 
 #include <algorithm>
 #include <cctype>
