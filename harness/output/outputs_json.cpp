@@ -8,6 +8,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "harness/base/fnv.h"
 #include "harness/base/process.h"
 #include "harness/output/outputs_internal.h"
 #include "harness/quality/quality.h"
@@ -30,12 +31,6 @@ namespace cbr::harness {
 namespace {
 
 using nlohmann::json;
-
-uint64_t fnv1a(const void* data, size_t n, uint64_t h = 1469598103934665603ull) {
-    auto* p = static_cast<const uint8_t*>(data);
-    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-    return h;
-}
 
 std::string hex(uint64_t v) {
     char buf[20];
